@@ -1,0 +1,198 @@
+"""Emit the numba kernel module of a topology: fill the template, sign it, write it.
+
+The template (``templates/kernel.py.tmpl``) holds the generic numerics (scan
+loop, Brent refinement, LU determinant, renormalisation); this module prints the
+per-component expressions into it. Only the components of the topology's kinds
+are printed, and the attachment loops are left out for a bare beam.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+from pathlib import Path
+from string import Template
+
+import sympy as sp
+
+from mstmm.kernels import signature
+from mstmm.topology import ATTACHMENT_PARAMETERS, BEAM_PARAMETERS, KNOWN_ZERO, Topology, unknown
+
+from . import special
+from . import symbols as S
+from .components import beam, rigid_body, spring_mass
+from .compound import pair_index
+from .printer import assignments, code
+
+TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
+
+
+def _indent(lines: list[str], n: int) -> str:
+    pad = " " * n
+    return "\n".join(pad + line if line.strip() else "" for line in lines)
+
+
+def _series_lines(funcs: tuple[special.Reduced, ...]) -> list[str]:
+    """Horner evaluation in ``z = x^4`` of each reduced function's Taylor series."""
+    lines = []
+    for f in funcs:
+        coeffs = [repr(float(a)) for a in f.series()]
+        expr = coeffs[-1]
+        for a in reversed(coeffs[:-1]):
+            expr = f"{a} + z * ({expr})"
+        lines.append(f"{f.name} = {expr}")
+    return lines
+
+
+def _closed_lines(funcs, scaled: bool) -> list[str]:
+    out = []
+    for f in funcs:
+        if scaled:
+            E, chs, shs = sp.symbols("E chs shs")
+            expr = special.scaled_closed_form(f, E, chs, shs)
+        else:
+            expr = f.closed
+        out.append(f"{f.name} = {code(expr.subs(special.x, S.x))}")
+    return out
+
+
+def _matrix_fill(M: sp.Matrix, name: str) -> list[str]:
+    targets = [f"{name}[{i}, {j}]" for i in range(M.rows) for j in range(M.cols)]
+    return assignments(targets, list(M), indent="")
+
+
+def _compound_step(C: sp.Matrix) -> list[str]:
+    """``v <- C v`` for a 6x6 symbolic compound, through CSE'd scalars."""
+    v = sp.symbols("v0:6")
+    lines = [f"v{a} = v[{a}]" for a in range(6)]
+    lines += assignments([f"v[{a}]" for a in range(6)], list(C * sp.Matrix(v)), indent="")
+    return lines
+
+
+SPRING_MASS_FUNCTIONS = '''
+
+@njit(cache=True)
+def spring_mass_compound_step(v, beta, kappa, mu):
+    """v <- (1 - mu beta^4 / kappa) C2(P) v: the condensed spring-mass branch, pole-free."""
+$step
+
+
+@njit(cache=True)
+def spring_mass_tip(k, m, omega):
+    """Geometric (H_I2 B e_Y) and shear (U_I2 B e_Y) of a unit tip displacement, B = U_s U_m."""
+$tip
+    return geometric, shear
+'''
+
+SPRING_MASS_STABLE_LOOP = """\
+n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+for i in range(n):
+    q = 3 + ATTACHMENT_STRIDE * i
+    rho = (p[q] - pos) / L
+    pos = p[q]
+    if rho > 0.0:
+        log += beam_compound_step(v, beta, rho)
+    kappa = p[q + 1] * L**3 / EI
+    mu = p[q + 2] / (mbar * L)
+    spring_mass_compound_step(v, beta, kappa, mu)
+    log += renormalise(v)"""
+
+SPRING_MASS_PAPER_LOOP = """\
+for i in range(n):
+    q = 3 + ATTACHMENT_STRIDE * i
+    l = p[q] - pos
+    pos = p[q]
+    if l > 0.0:
+        beam_transfer(lam, l, EI, U)
+        apply_columns(U, W, ncols, col)
+    geometric, shear = spring_mass_tip(p[q + 1], p[q + 2], omega)
+    # geometric equation, paper Eq. (3): -H_I1 Z_I1 + H_I2 Z_I2 = 0
+    for j in range(ncols):
+        A[4 + i, j] = -W[H_I1_INDEX, j]
+    A[4 + i, ncols] = geometric
+    # rigid body output, paper Eq. (2): Z_O = U_I1 Z_I1 + U_I2 Z_I2
+    W[U_I2_ROW, ncols] = shear
+    ncols += 1"""
+
+
+def _spring_mass_functions() -> str:
+    C, _pole = spring_mass.condensed_compound(S.kappa, S.mu, S.beta**2)
+    col = spring_mass.tip_column(S.k, S.m, S.omega)
+    geometric = (rigid_body.H_I2() * col)[0, 0]
+    shear = (rigid_body.U_I2() * col)[_u_i2_row(), 0]
+    tip = assignments(["geometric", "shear"], [geometric, shear], indent="")
+    return Template(SPRING_MASS_FUNCTIONS).substitute(
+        step=_indent(_compound_step(C), 4), tip=_indent(tip, 4)
+    )
+
+
+def _h_i1_index() -> int:
+    (idx,) = [j for j in range(4) if rigid_body.H_I1()[0, j] != 0]
+    return idx
+
+
+def _u_i2_row() -> int:
+    (row,) = [i for i in range(4) if rigid_body.U_I2()[i, 1] != 0]
+    return row
+
+
+def _parameter_doc(topology: Topology) -> str:
+    names = list(BEAM_PARAMETERS)
+    for kind in topology.kinds:
+        fields = ", ".join(ATTACHMENT_PARAMETERS[kind])
+        names.append(f"then per {kind} ({fields}), sorted by x")
+    return "[" + ", ".join(names) + "]"
+
+
+def regenerate_command(topology: Topology) -> str:
+    """Shell command that writes this kernel again."""
+    return f"python -m mstmm.derive --topology {topology.key} --out DIR"
+
+
+def kernel_source(topology: Topology) -> str:
+    """The complete source of the kernel module of ``topology``."""
+    kinds = topology.kinds
+    if kinds not in ((), ("spring_mass",)):
+        raise NotImplementedError(f"no emitter for attachment kinds {kinds}")
+    has_sm = "spring_mass" in kinds
+    C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
+    U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
+    U_red = beam.transfer_matrix_reduced(S.lam, S.l, S.EI, S.K)
+    left_unknown = unknown(topology.left)
+    right_unknown = unknown(topology.right)
+    rb_constants = (
+        f"H_I1_INDEX = {_h_i1_index()}  # H_I1 = [1 0 0 0] picks Y (paper Eq. (3))\n"
+        f"U_I2_ROW = {_u_i2_row()}  # U_I2 puts the branch shear into Q (paper Eq. (2))"
+        if has_sm
+        else ""
+    )
+    n_att = "any number of spring-mass branches" if has_sm else "no attachments"
+    values = dict(
+        key=topology.key,
+        left=topology.left,
+        right=topology.right,
+        attachments_text=n_att,
+        threshold=repr(special.SERIES_THRESHOLD),
+        parameter_doc=_parameter_doc(topology),
+        regenerate=regenerate_command(topology),
+        sympy_version=importlib.metadata.version("sympy"),
+        signature=signature(topology),
+        left_unknown=repr(left_unknown),
+        right_unknown=repr(right_unknown),
+        start_pair=pair_index(left_unknown),
+        end_pair=pair_index(KNOWN_ZERO[topology.right]),
+        rigid_body_modes=topology.rigid_body_modes,
+        stride=len(ATTACHMENT_PARAMETERS["spring_mass"]) if has_sm else 1,
+        rigid_body_constants=rb_constants,
+        krylov_series=_indent(_series_lines(special.KRYLOV), 8),
+        krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
+        compound_series=_indent(_series_lines(special.COMPOUND), 8),
+        compound_closed=_indent(_closed_lines(special.COMPOUND, scaled=True), 8),
+        beam_transfer=_indent(_matrix_fill(U_paper, "U"), 4),
+        beam_transfer_reduced=_indent(_matrix_fill(U_red, "U"), 4),
+        beam_compound=_indent(_compound_step(C_beam), 4),
+        attachment_functions=_spring_mass_functions() if has_sm else "",
+        stable_attachment_loop=_indent(SPRING_MASS_STABLE_LOOP.splitlines(), 4) if has_sm else "",
+        paper_attachment_loop=_indent(SPRING_MASS_PAPER_LOOP.splitlines(), 4) if has_sm else "",
+    )
+    text = Template(TEMPLATE.read_text()).substitute(values)
+    return "\n".join(line.rstrip() for line in text.splitlines()) + "\n"

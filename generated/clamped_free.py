@@ -1,0 +1,382 @@
+"""Characteristic functions of the MSTMM topology ``clamped_free`` (generated, do not edit).
+
+What: the natural frequencies of a uniform Euler-Bernoulli beam (clamped at x = 0,
+free at x = L) carrying no attachments are the zeros of
+
+* ``delta_paper``: det U_bar(omega), paper Eqs. (1)-(4) evaluated as printed
+  (tree algorithm, geometric equations, boundary reduction, LU determinant);
+* ``delta_stable`` (default): the same roots from the second-compound chain in
+  units L = 1, EI = 1, reduced beam functions (series below x = 1.5),
+  spring-mass poles multiplied out exactly once, renormalised every step.
+
+Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
+
+Parameter vector p (SI): [L, EI, mbar]
+Regenerate: python -m mstmm.derive --topology clamped_free --out DIR
+Derived by mstmm.derive with SymPy 1.14.0.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+TOPOLOGY = "clamped_free"
+SIGNATURE = "6f14950a717f280a1eeabbd86eea9386f7e22a21"
+LEFT_UNKNOWN = (2, 3)
+RIGHT_UNKNOWN = (0, 1)
+START_PAIR = 5
+END_PAIR = 5
+RIGID_BODY_MODES = 0
+ATTACHMENT_STRIDE = 1
+PAPER = 0
+STABLE = 1
+
+
+@njit(cache=True)
+def krylov(x):
+    """Reduced Krylov functions K0 = S, K1 = T/x, K2 = G/x^2, K3 = V/x^3 (paper Eq. (1))."""
+    if x < 1.5:
+        z = x**4
+        K0 = 1.0 + z * (0.041666666666666664 + z * (2.48015873015873e-05 + z * (2.08767569878681e-09 + z * (4.779477332387385e-14 + z * (4.110317623312165e-19)))))
+        K1 = 1.0 + z * (0.008333333333333333 + z * (2.7557319223985893e-06 + z * (1.6059043836821613e-10 + z * (2.8114572543455206e-15 + z * (1.9572941063391263e-20)))))
+        K2 = 0.5 + z * (0.001388888888888889 + z * (2.755731922398589e-07 + z * (1.1470745597729725e-11 + z * (1.5619206968586225e-16 + z * (8.896791392450574e-22)))))
+        K3 = 0.16666666666666666 + z * (0.0001984126984126984 + z * (2.505210838544172e-08 + z * (7.647163731819816e-13 + z * (8.22063524662433e-18))))
+    else:
+        K0 = (0.5)*math.cos(x) + (0.5)*math.cosh(x)
+        K1 = (0.5)*(math.sin(x) + math.sinh(x))/x
+        K2 = (0.5)*(-math.cos(x) + math.cosh(x))/x**2
+        K3 = (0.5)*(-math.sin(x) + math.sinh(x))/x**3
+    return K0, K1, K2, K3
+
+
+@njit(cache=True)
+def compound_krylov(x):
+    """Compound functions F1..F4 and E, scaled by exp(-x) above the threshold; returns the shift."""
+    if x < 1.5:
+        z = x**4
+        shift = 0.0
+        E = 1.0
+        F1 = 1.0 + z * (-0.03333333333333333 + z * (4.409171075837743e-05 + z * (-1.0277788055565833e-08 + z * (7.197330571124533e-13 + z * (-2.0042691648912653e-17 + z * (2.6406708364838804e-22))))))
+        F2 = 0.5 + z * (-0.005555555555555556 + z * (4.409171075837742e-06 + z * (-7.341277182547024e-10 + z * (3.9985169839580737e-14 + z * (-9.110314385869388e-19)))))
+        F3 = 0.3333333333333333 + z * (-0.0015873015873015873 + z * (8.01667468334135e-07 + z * (-9.788369576729365e-11 + z * (4.208965246271657e-15 + z * (-7.922012509451641e-20)))))
+        F4 = 0.08333333333333333 + z * (-0.0001984126984126984 + z * (6.680562236117792e-08 + z * (-6.117730985455853e-12 + z * (2.1044826231358284e-16 + z * (-3.3008385456048505e-21)))))
+    else:
+        shift = x
+        E = math.exp(-x)
+        chs = 0.5 + 0.5 * E * E
+        shs = 0.5 - 0.5 * E * E
+        F1 = (0.5)*chs*math.sin(x)/x + (0.5)*shs*math.cos(x)/x
+        F2 = (0.5)*shs*math.sin(x)/x**2
+        F3 = (0.5)*chs*math.sin(x)/x**3 - 0.5*shs*math.cos(x)/x**3
+        F4 = (0.5)*E/x**4 - 0.5*chs*math.cos(x)/x**4
+    return shift, E, F1, F2, F3, F4
+
+
+@njit(cache=True)
+def beam_transfer(lam, l, EI, U):
+    """Beam segment transfer matrix exactly as printed in paper Eq. (1)."""
+    t0 = l*lam
+    t1 = (0.5)*math.cos(t0)
+    t2 = math.cosh(t0)
+    t3 = t1 + (0.5)*t2
+    t4 = (0.5)*math.sin(t0)
+    t5 = math.sinh(t0)
+    t6 = t4 + (0.5)*t5
+    t7 = t6/lam
+    t8 = 1.0/EI
+    t9 = lam**2
+    t10 = -t1 + (0.5)*t2
+    t11 = t10*t8/t9
+    t12 = lam**3
+    t13 = -t4 + (0.5)*t5
+    t14 = lam*t13
+    t15 = EI*t10*t9
+    U[0, 0] = t3
+    U[0, 1] = t7
+    U[0, 2] = t11
+    U[0, 3] = t13*t8/t12
+    U[1, 0] = t14
+    U[1, 1] = t3
+    U[1, 2] = t7*t8
+    U[1, 3] = t11
+    U[2, 0] = t15
+    U[2, 1] = EI*t14
+    U[2, 2] = t3
+    U[2, 3] = t7
+    U[3, 0] = EI*t12*t6
+    U[3, 1] = t15
+    U[3, 2] = t14
+    U[3, 3] = t3
+
+
+@njit(cache=True)
+def beam_transfer_reduced(lam, l, EI, U):
+    """Paper Eq. (1) with the reduced Krylov functions: exact for lam*l -> 0."""
+    x = lam * l
+    K0, K1, K2, K3 = krylov(x)
+    t0 = K1*l
+    t1 = 1.0/EI
+    t2 = K2*l**2
+    t3 = t1*t2
+    t4 = K3*l**3
+    t5 = lam**4
+    t6 = t4*t5
+    t7 = EI*t5
+    t8 = t2*t7
+    U[0, 0] = K0
+    U[0, 1] = t0
+    U[0, 2] = t3
+    U[0, 3] = t1*t4
+    U[1, 0] = t6
+    U[1, 1] = K0
+    U[1, 2] = t0*t1
+    U[1, 3] = t3
+    U[2, 0] = t8
+    U[2, 1] = EI*t6
+    U[2, 2] = K0
+    U[2, 3] = t0
+    U[3, 0] = t0*t7
+    U[3, 1] = t8
+    U[3, 2] = t6
+    U[3, 3] = K0
+
+
+@njit(cache=True)
+def beam_compound_step(v, beta, rho):
+    """v <- C2(U_beam) v in units L = 1, EI = 1; returns the log of the scale taken out."""
+    x = beta * rho
+    shift, E, F1, F2, F3, F4 = compound_krylov(x)
+    v0 = v[0]
+    v1 = v[1]
+    v2 = v[2]
+    v3 = v[3]
+    v4 = v[4]
+    v5 = v[5]
+    t0 = beta**4
+    t1 = rho**4
+    t2 = F4*t1
+    t3 = t0*t2
+    t4 = E - t3
+    t5 = F1*rho
+    t6 = t5*v1
+    t7 = F2*rho**2
+    t8 = t7*v2
+    t9 = t7*v3
+    t10 = F3*rho**3
+    t11 = t10*v4
+    t12 = E - 2.0*t3
+    t13 = 2.0*t7
+    t14 = t0*v0
+    t15 = t0*t10
+    t16 = -t14*t7 - t15*v1 + t5*v4 + t7*v5
+    v[0] = t11 + t2*v5 + t4*v0 + t6 + t8 + t9
+    v[1] = -t10*t14 + t10*v5 + t12*v1 + t13*v4 + t5*v2 + t5*v3
+    v[2] = t16 - t3*v3 + t4*v2
+    v[3] = t16 - t3*v2 + t4*v3
+    v[4] = F1*rho*v5 - t0*t13*v1 + t12*v4 - t14*t5 - t15*v2 - t15*v3
+    v[5] = F4*beta**8*t1*v0 - t0*t11 - t0*t6 - t0*t8 - t0*t9 + t4*v5
+    return shift
+
+
+@njit(cache=True)
+def renormalise(v):
+    """Divide v by a power of two near its largest entry; return the natural log taken out."""
+    big = 0.0
+    for a in range(v.shape[0]):
+        big = max(big, abs(v[a]))
+    if big == 0.0 or not math.isfinite(big):
+        return 0.0
+    e = math.frexp(big)[1]
+    f = math.ldexp(1.0, -e)
+    for a in range(v.shape[0]):
+        v[a] *= f
+    return e * 0.6931471805599453
+
+
+@njit(cache=True)
+def delta_stable(omega, p):
+    """Reduced determinant from the second-compound chain, as (mantissa, log)."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    v = np.zeros(6)
+    v[START_PAIR] = 1.0
+    log = 0.0
+    pos = 0.0
+
+    rho = (L - pos) / L
+    if rho > 0.0:
+        log += beam_compound_step(v, beta, rho)
+    log += renormalise(v)
+    return v[END_PAIR], log
+
+
+@njit(cache=True)
+def u_bar_paper(omega, p):
+    """U_bar of paper Eq. (4) after the boundary reduction, rows: main TE then geometric."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+    lam = math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    size = n + 4
+    A = np.zeros((size, size))
+    W = np.zeros((4, n + 2))
+    W[LEFT_UNKNOWN[0], 0] = 1.0
+    W[LEFT_UNKNOWN[1], 1] = 1.0
+    U = np.zeros((4, 4))
+    col = np.zeros(4)
+    pos = 0.0
+    ncols = 2
+
+    l = L - pos
+    if l > 0.0:
+        beam_transfer(lam, l, EI, U)
+        apply_columns(U, W, ncols, col)
+    for r in range(4):
+        for j in range(n + 2):
+            A[r, j] = W[r, j]
+    A[RIGHT_UNKNOWN[0], n + 2] = -1.0
+    A[RIGHT_UNKNOWN[1], n + 3] = -1.0
+    return A
+
+
+@njit(cache=True)
+def apply_columns(U, W, ncols, col):
+    """W[:, :ncols] <- U W[:, :ncols] (the transfers of all boundaries so far)."""
+    for j in range(ncols):
+        for r in range(4):
+            col[r] = U[r, 0] * W[0, j] + U[r, 1] * W[1, j] + U[r, 2] * W[2, j] + U[r, 3] * W[3, j]
+        for r in range(4):
+            W[r, j] = col[r]
+
+
+@njit(cache=True)
+def lu_logdet(A):
+    """Determinant by LU with partial pivoting, as (sign, log|det|); A is overwritten."""
+    n = A.shape[0]
+    sign = 1.0
+    log = 0.0
+    for k in range(n):
+        piv = k
+        big = abs(A[k, k])
+        for r in range(k + 1, n):
+            if abs(A[r, k]) > big:
+                big = abs(A[r, k])
+                piv = r
+        if big == 0.0:
+            return 0.0, 0.0
+        if piv != k:
+            sign = -sign
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[piv, j]
+                A[piv, j] = tmp
+        d = A[k, k]
+        if d < 0.0:
+            sign = -sign
+        log += math.log(abs(d))
+        for r in range(k + 1, n):
+            f = A[r, k] / d
+            if f != 0.0:
+                for j in range(k + 1, n):
+                    A[r, j] -= f * A[k, j]
+    return sign, log
+
+
+@njit(cache=True)
+def delta_paper(omega, p):
+    """det U_bar of paper Eq. (4), as (mantissa, log)."""
+    return lu_logdet(u_bar_paper(omega, p))
+
+
+@njit(cache=True)
+def delta(omega, p, formulation):
+    """The characteristic function of the chosen formulation, as (mantissa, log)."""
+    if formulation == PAPER:
+        return delta_paper(omega, p)
+    return delta_stable(omega, p)
+
+
+@njit(cache=True)
+def evaluate(omegas, p, formulation, mant, logs):
+    """Fill mant[i], logs[i] with the characteristic function at omegas[i] (the scan loop)."""
+    for i in range(omegas.shape[0]):
+        mant[i], logs[i] = delta(omegas[i], p, formulation)
+
+
+@njit(cache=True)
+def scaled(omega, p, formulation, ref):
+    """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
+    m, g = delta(omega, p, formulation)
+    return m * math.exp(min(g - ref, 700.0))
+
+
+@njit(cache=True)
+def refine(a, b, p, formulation, rtol, maxiter):
+    """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
+    ma, ga = delta(a, p, formulation)
+    mb, gb = delta(b, p, formulation)
+    ref = max(ga, gb)
+    fa = ma * math.exp(ga - ref)
+    fb = mb * math.exp(gb - ref)
+    if fa == 0.0:
+        return a, 0, True
+    if fb == 0.0:
+        return b, 0, True
+    if (fa > 0.0) == (fb > 0.0):
+        return 0.5 * (a + b), 0, False
+    c = a
+    fc = fa
+    d = b - a
+    e = d
+    for it in range(maxiter):
+        if (fb > 0.0) == (fc > 0.0):
+            c = a
+            fc = fa
+            d = b - a
+            e = d
+        if abs(fc) < abs(fb):
+            a = b
+            b = c
+            c = a
+            fa = fb
+            fb = fc
+            fc = fa
+        tol = 2.0 * 2.220446049250313e-16 * abs(b) + 0.5 * rtol * abs(b)
+        m = 0.5 * (c - b)
+        if abs(m) <= tol or fb == 0.0:
+            return b, it, True
+        if abs(e) >= tol and abs(fa) > abs(fb):
+            s = fb / fa
+            if a == c:
+                pp = 2.0 * m * s
+                q = 1.0 - s
+            else:
+                q = fa / fc
+                r = fb / fc
+                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if pp > 0.0:
+                q = -q
+            else:
+                pp = -pp
+            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
+                e = d
+                d = pp / q
+            else:
+                d = m
+                e = d
+        else:
+            d = m
+            e = d
+        a = b
+        fa = fb
+        if abs(d) > tol:
+            b += d
+        else:
+            b += tol if m > 0.0 else -tol
+        fb = scaled(b, p, formulation, ref)
+    return b, maxiter, False

@@ -1,0 +1,50 @@
+"""mstmm: exact natural frequencies and mode shapes of beams carrying attached elements.
+
+Transfer matrix method of linear multibody systems (MSTMM; Abbas, Chen, Wang,
+Rui). The pipeline: a scene (TOML) -> ``mstmm.derive`` (SymPy: component
+matrices, overall transfer equation, boundary reduction, numba source) ->
+a generated kernel -> root search and mode shapes (this package; SymPy is
+never imported on this path).
+
+>>> import mstmm
+>>> scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+>>> sol = mstmm.solve(scene, modes=5)
+"""
+
+from __future__ import annotations
+
+from importlib.resources import files
+from pathlib import Path
+
+from .kernels import Kernel, load_kernel
+from .scene import Scene, SceneError, load_scene, scene_from_dict
+from .solve import Solution, solve
+from .topology import Topology, parameter_vector, topology_of
+
+__all__ = [
+    "Kernel",
+    "Scene",
+    "SceneError",
+    "Solution",
+    "Topology",
+    "example_path",
+    "kernel_for",
+    "load_kernel",
+    "load_scene",
+    "parameter_vector",
+    "scene_from_dict",
+    "solve",
+    "topology_of",
+]
+
+__version__ = "0.1.0"
+
+
+def example_path(name: str = "wu_chou_1998") -> Path:
+    """Path of a bundled scene (``wu_chou_1998``, ``bare_cantilever``)."""
+    return Path(str(files("mstmm.scenes") / f"{name}.toml"))
+
+
+def kernel_for(scene: Scene) -> Kernel:
+    """The compiled kernel of a scene's topology; call it with any parameter vector."""
+    return load_kernel(topology_of(scene))

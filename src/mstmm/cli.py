@@ -1,0 +1,159 @@
+"""Command line: ``mstmm solve | derive | show``.
+
+Bad input prints one line ``mstmm: error: <file>: <field>: <problem> (got <value>)``
+and exits with status 2, before anything is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import sys
+from pathlib import Path
+
+from .kernels import FORMULATIONS, KernelError
+from .scene import Scene, SceneError, load_scene
+
+EXIT_BAD_INPUT = 2
+EXIT_FAILURE = 1
+
+
+def _scene(path: str | None) -> Scene:
+    if path is None:
+        from . import example_path
+
+        return load_scene(example_path("wu_chou_1998"))
+    return load_scene(path)
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+def _frequency(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a frequency in rad/s, got {text!r}") from None
+    if not value >= 0.0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"expected a finite frequency >= 0, got {text!r}")
+    return value
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, status 2
+        sys.stderr.write(f"mstmm: error: {message}\n")
+        raise SystemExit(EXIT_BAD_INPUT)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = _Parser(prog="mstmm", description="Natural frequencies of beams by MSTMM.")
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    s = sub.add_parser("solve", help="natural frequencies and mode shapes of a scene")
+    s.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
+    g = s.add_mutually_exclusive_group()
+    g.add_argument("--modes", type=_positive_int, help="the N lowest frequencies (default 10)")
+    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
+    s.add_argument("--format", choices=("table", "json", "csv"), default="table")
+    s.add_argument("--formulation", choices=tuple(FORMULATIONS), default="stable")
+    s.add_argument("--shapes", action="store_true", help="include mode shapes in JSON")
+    d = sub.add_parser("derive", help="write the kernel of a scene's topology, print where")
+    d.add_argument("scene")
+    d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
+    w = sub.add_parser("show", help="print the symbolic U_bar of a scene (and det when small)")
+    w.add_argument("scene")
+    return ap
+
+
+def _solve(args) -> int:
+    from .solve import solve
+
+    scene = _scene(args.scene)
+    band = tuple(args.band) if args.band else None
+    if band is not None and band[1] <= band[0]:
+        raise SceneError("<command line>", "--band", "HI must exceed LO", list(band))
+    sol = solve(
+        scene,
+        modes=args.modes,
+        band=band,
+        formulation=args.formulation,
+        shapes=args.shapes and args.format == "json",
+    )
+    if args.format == "json":
+        print(json.dumps(sol.to_dict(shapes=args.shapes)))
+    elif args.format == "csv":
+        buf = io.StringIO()
+        wr = csv.writer(buf, lineterminator="\n")
+        wr.writerow(["mode", "omega_rad_s", "f_hz", "multiplicity", "converged"])
+        for i, (w, f, m, c) in enumerate(
+            zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
+        ):
+            wr.writerow([i, repr(float(w)), repr(float(f)), int(m), bool(c)])
+        sys.stdout.write(buf.getvalue())
+    else:
+        print(f"{scene.name}: {len(sol.omega)} natural frequencies ({sol.formulation} formulation)")
+        print(f"{'mode':>4}  {'omega [rad/s]':>24}  {'f [Hz]':>24}  mult")
+        for i, (w, f, m, c) in enumerate(
+            zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
+        ):
+            flag = "" if c else "  NOT CONVERGED"
+            print(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
+        t = sol.timings
+        print(f"time: load {t['load']:.3f} s, scan+refine {t['scan_refine'] * 1e3:.2f} ms")
+    for warning in sol.warnings:
+        print(f"mstmm: warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _derive(args) -> int:
+    from .kernels import cache_dir, write_kernel
+    from .topology import topology_of
+
+    scene = _scene(args.scene)
+    topology = topology_of(scene)
+    out = args.out if args.out is not None else cache_dir()
+    try:
+        path = write_kernel(topology, out)
+    except OSError as exc:
+        raise KernelError(f"cannot write the kernel into {out}: {exc}") from exc
+    print(path)
+    return 0
+
+
+def _show(args) -> int:
+    import sympy as sp
+
+    from mstmm.derive import MAX_DETERMINANT_SIZE, symbolic
+
+    scene = _scene(args.scene)
+    der = symbolic(scene)
+    print(f"{scene.name}: Z_bar = {list(der.Z_bar)}")
+    print("U_bar =")
+    print(sp.pretty(der.U_bar, wrap_line=False))
+    if der.U_bar.rows <= MAX_DETERMINANT_SIZE - 1:
+        print("det U_bar =")
+        print(sp.pretty(der.determinant(), wrap_line=False))
+    else:
+        print(f"(det U_bar not expanded: U_bar is {der.U_bar.rows}x{der.U_bar.rows})")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``mstmm`` command."""
+    args = build_parser().parse_args(argv)
+    try:
+        return {"solve": _solve, "derive": _derive, "show": _show}[args.command](args)
+    except SceneError as exc:
+        print(f"mstmm: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KernelError as exc:
+        print(f"mstmm: error: {exc}", file=sys.stderr)
+        return EXIT_FAILURE

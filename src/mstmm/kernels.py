@@ -1,0 +1,219 @@
+"""Topology -> compiled kernel: the committed module, the user cache, or a fresh derivation.
+
+A kernel is a generated module (see ``derive/templates/kernel.py.tmpl``) whose
+numba functions compute the characteristic functions of one topology for any
+parameter vector. Lookup order:
+
+1. ``mstmm.generated.<key>`` (committed for the bundled scenes), if its
+   ``SIGNATURE`` matches the current derivation code;
+2. ``<cache>/<key>_<signature>.py`` in the user cache (``MSTMM_CACHE`` or
+   ``$XDG_CACHE_HOME/mstmm`` or ``~/.cache/mstmm``);
+3. derive it with SymPy (only now is SymPy imported), write it to the cache
+   atomically, and load it from there.
+
+Files carry a hash of everything that decides their content in their name, so
+numba's on-disk cache (keyed on the file) stays valid (DESIGN.md, tool-chain facts).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.metadata
+import importlib.util
+import os
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from types import ModuleType
+
+import numpy as np
+
+from .topology import Topology
+
+#: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
+KERNEL_FORMAT = 1
+
+PAPER = 0
+STABLE = 1
+FORMULATIONS = {"paper": PAPER, "stable": STABLE}
+
+
+class KernelError(RuntimeError):
+    """A kernel could not be generated, written or loaded."""
+
+
+def _derive_dir() -> Path:
+    spec = importlib.util.find_spec("mstmm.derive")
+    if spec is None or not spec.submodule_search_locations:
+        raise KernelError("the mstmm.derive package is missing from this installation")
+    return Path(next(iter(spec.submodule_search_locations)))
+
+
+def _derive_digest() -> str:
+    h = hashlib.sha1()
+    root = _derive_dir()
+    for path in sorted(root.rglob("*")):
+        if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
+            h.update(path.relative_to(root).as_posix().encode())
+            h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+_DIGEST: str | None = None
+
+
+def signature(topology: Topology) -> str:
+    """sha1 of the topology, the derive/ sources, the SymPy version and the kernel format."""
+    global _DIGEST
+    if _DIGEST is None:
+        _DIGEST = _derive_digest()
+    text = "|".join(
+        [
+            topology.key,
+            _DIGEST,
+            importlib.metadata.version("sympy"),
+            str(KERNEL_FORMAT),
+        ]
+    )
+    return hashlib.sha1(text.encode()).hexdigest()
+
+
+def cache_dir() -> Path:
+    """Directory of kernels derived at run time (``MSTMM_CACHE`` overrides)."""
+    env = os.environ.get("MSTMM_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(Path.home(), ".cache")
+    return Path(base) / "mstmm"
+
+
+def _load_file(path: Path, module_name: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(module_name, path)
+    if spec is None or spec.loader is None:
+        raise KernelError(f"cannot load kernel {path}")
+    module = importlib.util.module_from_spec(spec)
+    # numba caches a module under its name: register it before executing it
+    sys.modules[module_name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[module_name]
+        raise
+    return module
+
+
+def _bundled(topology: Topology, sig: str) -> ModuleType | None:
+    name = f"mstmm.generated.{topology.key}"
+    try:
+        module = importlib.import_module(name)
+    except ModuleNotFoundError:
+        return None
+    return module if getattr(module, "SIGNATURE", None) == sig else None
+
+
+def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
+    """Derive the kernel of ``topology`` and write it atomically into ``directory``."""
+    from mstmm.derive.emit import kernel_source  # SymPy only here
+
+    source = kernel_source(topology)
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".py")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(source)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def kernel_module(topology: Topology) -> tuple[ModuleType, str]:
+    """The kernel module of ``topology`` and where it came from (a path or package name)."""
+    sig = signature(topology)
+    module = _bundled(topology, sig)
+    if module is not None:
+        return module, module.__name__
+    directory = cache_dir()
+    path = directory / f"{topology.key}_{sig[:16]}.py"
+    if not path.exists():
+        try:
+            write_kernel(topology, directory)
+        except OSError as exc:
+            raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
+    module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
+    if module_name in sys.modules:
+        return sys.modules[module_name], str(path)
+    return _load_file(path, module_name), str(path)
+
+
+@dataclass
+class Kernel:
+    """A loaded kernel: the characteristic functions of one topology, for any parameters."""
+
+    topology: Topology
+    module: ModuleType
+    origin: str
+
+    def evaluate(
+        self, omegas: np.ndarray, p: np.ndarray, formulation: str = "stable"
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Characteristic function at each ``omega`` as ``(mantissa, log)`` arrays."""
+        omegas = np.ascontiguousarray(omegas, dtype=np.float64)
+        mant = np.empty_like(omegas)
+        logs = np.empty_like(omegas)
+        self.module.evaluate(omegas, _params(p), FORMULATIONS[formulation], mant, logs)
+        return mant, logs
+
+    def delta(
+        self, omega: float, p: np.ndarray, formulation: str = "stable"
+    ) -> tuple[float, float]:
+        """``(mantissa, log)`` of the characteristic function at one frequency."""
+        mant, logs = self.evaluate(np.array([omega]), p, formulation)
+        return float(mant[0]), float(logs[0])
+
+    def refine(
+        self,
+        a: float,
+        b: float,
+        p: np.ndarray,
+        formulation: str = "stable",
+        rtol: float = 0.0,
+        maxiter: int = 200,
+    ) -> tuple[float, int, bool]:
+        """Root in a sign-change bracket ``[a, b]``: ``(omega, iterations, converged)``."""
+        root, its, ok = self.module.refine(
+            float(a), float(b), _params(p), FORMULATIONS[formulation], float(rtol), int(maxiter)
+        )
+        return float(root), int(its), bool(ok)
+
+    def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
+        """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
+        return self.module.u_bar_paper(float(omega), _params(p))
+
+    def beam_transfer(self, lam: float, l: float, EI: float) -> np.ndarray:
+        """Beam segment matrix of paper Eq. (1), exact for small ``lam*l``."""
+        U = np.empty((4, 4))
+        self.module.beam_transfer_reduced(float(lam), float(l), float(EI), U)
+        return U
+
+
+def _params(p) -> np.ndarray:
+    return np.ascontiguousarray(p, dtype=np.float64)
+
+
+_LOADED: dict[str, Kernel] = {}
+
+
+def load_kernel(topology: Topology) -> Kernel:
+    """The kernel of ``topology`` (memoised per process)."""
+    kernel = _LOADED.get(topology.key)
+    if kernel is None:
+        module, origin = kernel_module(topology)
+        kernel = Kernel(topology, module, origin)
+        _LOADED[topology.key] = kernel
+    return kernel

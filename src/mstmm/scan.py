@@ -1,0 +1,246 @@
+"""Root search on the characteristic function: grid scan, recursive minimum search, refinement.
+
+The idea of the seed's recursive eigenvalue search (paper ref. [9]): look at
+``|Delta(omega)|``, not only at its sign. On a grid uniform in ``beta = lam L``
+(beam modes are spaced about ``pi`` apart in ``beta``), with extra nodes
+clustered around each oscillator frequency ``sqrt(k/m)`` (where roots crowd):
+
+* a sign change between two nodes is refined by Brent's method (in the kernel);
+* a local minimum of ``log|Delta|`` without a sign change is searched
+  recursively on finer grids: a sign change found there gives two close roots;
+  a minimum that keeps falling to round-off level is an even-multiplicity root,
+  located on the derivative's sign change;
+* zero-frequency rigid-body modes are counted from the end conditions.
+
+The interface is :func:`find_roots`; the kernel supplies the evaluations.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kernels import Kernel
+
+#: Grid nodes per ``pi`` of ``beta`` (about one beam mode).
+NODES_PER_MODE = 24
+#: Relative offsets of the extra nodes around an oscillator frequency.
+CLUSTER = np.concatenate([-np.logspace(-1, -9, 9), [0.0], np.logspace(-9, -1, 9)])
+#: Depth of the recursive minimum search (each level refines a cell 16-fold).
+MAX_DEPTH = 12
+#: A minimum counts as a double root when |Delta| falls this far below its neighbours.
+DOUBLE_ROOT_DROP = 1e-12
+
+
+@dataclass(frozen=True)
+class Root:
+    """A natural frequency (rad/s) with its multiplicity and how far it can be trusted."""
+
+    omega: float
+    multiplicity: int = 1
+    converged: bool = True
+    how: str = "sign"  # sign | minimum | rigid
+
+
+def beta_of(omega, p):
+    """``beta = lam L = L (mbar omega^2 / EI)^(1/4)``."""
+    L, EI, mbar = p[0], p[1], p[2]
+    return L * np.sqrt(np.sqrt(mbar * np.square(omega) / EI))
+
+
+def omega_of(beta, p):
+    """Inverse of :func:`beta_of`."""
+    L, EI, mbar = p[0], p[1], p[2]
+    return np.square(np.asarray(beta) / L) * math.sqrt(EI / mbar)
+
+
+def oscillator_frequencies(kernel: Kernel, p: np.ndarray) -> np.ndarray:
+    """``sqrt(k/m)`` of every spring-mass, the places where roots crowd."""
+    if "spring_mass" not in kernel.topology.kinds:
+        return np.empty(0)
+    rec = np.asarray(p[3:]).reshape(-1, 3)
+    return np.unique(np.sqrt(rec[:, 1] / rec[:, 2]))
+
+
+def grid(w_lo: float, w_hi: float, p: np.ndarray, oscillators: np.ndarray) -> np.ndarray:
+    """Scan nodes in ``[w_lo, w_hi]``: uniform in ``beta`` plus clusters at the oscillators."""
+    b_lo, b_hi = float(beta_of(w_lo, p)), float(beta_of(w_hi, p))
+    n = max(2, int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1)
+    nodes = [omega_of(np.linspace(b_lo, b_hi, n), p)]
+    for w in oscillators:
+        c = w * (1.0 + CLUSTER)
+        nodes.append(c[(c > w_lo) & (c < w_hi)])
+    out = np.unique(np.concatenate(nodes))
+    out[0], out[-1] = w_lo, w_hi
+    return out
+
+
+def _logabs(mant: np.ndarray, logs: np.ndarray) -> np.ndarray:
+    with np.errstate(divide="ignore"):
+        return np.log(np.abs(mant)) + logs
+
+
+def _sign_brackets(w, mant):
+    s = np.sign(mant)
+    return [i for i in range(len(w) - 1) if s[i] * s[i + 1] < 0]
+
+
+def _exact_zeros(w, mant):
+    return [i for i in range(1, len(w) - 1) if mant[i] == 0.0]
+
+
+def _local_minima(w, mant, la):
+    s = np.sign(mant)
+    out = []
+    for i in range(1, len(w) - 1):
+        if la[i] < la[i - 1] and la[i] < la[i + 1] and s[i - 1] == s[i] == s[i + 1] != 0:
+            out.append(i)
+    return out
+
+
+class _Search:
+    def __init__(self, kernel: Kernel, p: np.ndarray, formulation: str, rtol: float):
+        self.kernel, self.p, self.formulation, self.rtol = kernel, p, formulation, rtol
+        self.roots: list[Root] = []
+
+    def evaluate(self, w):
+        mant, logs = self.kernel.evaluate(w, self.p, self.formulation)
+        return mant, _logabs(mant, logs)
+
+    def bracket(self, a: float, b: float) -> None:
+        root, _its, ok = self.kernel.refine(a, b, self.p, self.formulation, self.rtol)
+        self.roots.append(Root(root, 1, ok, "sign"))
+
+    def scan(self, w: np.ndarray) -> None:
+        mant, la = self.evaluate(w)
+        self.scan_values(w, mant, la, depth=0)
+
+    def scan_values(self, w, mant, la, depth: int) -> None:
+        for i in _sign_brackets(w, mant):
+            self.bracket(w[i], w[i + 1])
+        for i in _exact_zeros(w, mant):
+            self.roots.append(Root(float(w[i]), 1, True, "sign"))
+        for i in _local_minima(w, mant, la):
+            self.minimum(w[i - 1], w[i + 1], la[i - 1], la[i + 1], depth)
+
+    def minimum(self, a: float, b: float, la: float, lb: float, depth: int) -> None:
+        """Recursive search of a cell around a local minimum of log|Delta|."""
+        w = np.linspace(a, b, 17)
+        mant, lw = self.evaluate(w)
+        if _sign_brackets(w, mant) or _exact_zeros(w, mant):
+            self.scan_values(w, mant, lw, depth + 1)
+            return
+        i = int(np.argmin(lw))
+        if i in (0, len(w) - 1):
+            return  # the minimum left the cell: a slope, no root
+        drop = lw[i] - min(la, lb)
+        if (
+            drop < math.log(DOUBLE_ROOT_DROP)
+            or depth >= MAX_DEPTH
+            or w[i + 1] - w[i] <= 4e-16 * w[i]
+        ):
+            if drop < math.log(DOUBLE_ROOT_DROP):
+                self.double_root(w[i - 1], w[i + 1])
+            return
+        self.minimum(w[i - 1], w[i + 1], la, lb, depth + 1)
+
+    def double_root(self, a: float, b: float) -> None:
+        """Even-multiplicity root: bisect on the sign of the slope of |Delta|."""
+        h = (b - a) * 1e-3
+
+        def slope(x):
+            (m1, m2), (g1, g2) = self.kernel.evaluate(
+                np.array([x - h, x + h]), self.p, self.formulation
+            )
+            return abs(m2) * math.exp(g2 - g1) - abs(m1)
+
+        lo, hi = a, b
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if hi - lo <= 4e-16 * mid:
+                break
+            if slope(mid) < 0.0:
+                lo = mid
+            else:
+                hi = mid
+            h = min(h, 0.25 * (hi - lo)) or h
+        self.roots.append(Root(0.5 * (lo + hi), 2, True, "minimum"))
+
+
+def find_roots(
+    kernel: Kernel,
+    p: np.ndarray,
+    *,
+    band: tuple[float, float] | None = None,
+    modes: int | None = None,
+    formulation: str = "stable",
+    rtol: float = 0.0,
+) -> list[Root]:
+    """Natural frequencies in ``band`` (rad/s), or the lowest ``modes``, with multiplicity.
+
+    Rigid-body modes (omega = 0) are included whenever the band starts at 0 or
+    ``modes`` is given.
+    """
+    if (band is None) == (modes is None):
+        raise ValueError("give exactly one of band= or modes=")
+    p = np.ascontiguousarray(p, dtype=np.float64)
+    search = _Search(kernel, p, formulation, rtol)
+    osc = oscillator_frequencies(kernel, p)
+    rigid = kernel.topology.rigid_body_modes
+    if band is not None:
+        w_lo, w_hi = float(band[0]), float(band[1])
+        if w_lo <= 0.0 and rigid:
+            search.roots.append(Root(0.0, rigid, True, "rigid"))
+        start = max(w_lo, _floor(p, osc))
+        if w_hi > start:
+            search.scan(grid(start, w_hi, p, osc))
+        return _merge(search.roots)
+    if rigid:
+        search.roots.append(Root(0.0, rigid, True, "rigid"))
+    lo = _floor(p, osc)
+    b_hi = (modes + 1.5) * math.pi
+    while _count(search.roots) < modes:
+        hi = float(omega_of(b_hi, p))
+        search.scan(grid(lo, hi, p, osc))
+        search.roots = _merge(search.roots)
+        lo, b_hi = hi, b_hi + (modes + 2) * math.pi
+    return _truncate(_merge(search.roots), modes)
+
+
+def _floor(p, osc) -> float:
+    """Lowest scanned frequency: below every beam mode and every oscillator."""
+    w = float(omega_of(1e-3, p))
+    if osc.size:
+        w = min(w, 0.01 * float(osc.min()))
+    return w
+
+
+def _count(roots: list[Root]) -> int:
+    return sum(r.multiplicity for r in roots)
+
+
+def _merge(roots: list[Root]) -> list[Root]:
+    """Sort and drop duplicates (a root found from two neighbouring scans)."""
+    out: list[Root] = []
+    for r in sorted(roots, key=lambda r: r.omega):
+        if (
+            out
+            and abs(r.omega - out[-1].omega) <= 1e-13 * max(abs(r.omega), 1e-300)
+            and r.how == out[-1].how
+        ):
+            continue
+        out.append(r)
+    return out
+
+
+def _truncate(roots: list[Root], modes: int) -> list[Root]:
+    out, n = [], 0
+    for r in roots:
+        if n >= modes:
+            break
+        take = min(r.multiplicity, modes - n)
+        out.append(Root(r.omega, take, r.converged, r.how) if take != r.multiplicity else r)
+        n += take
+    return out

@@ -1,0 +1,107 @@
+"""The Python API: a scene in, natural frequencies and mode shapes out."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .kernels import Kernel, load_kernel
+from .modes import ModeShape, mode_shape
+from .scan import find_roots
+from .scene import Scene
+from .topology import parameter_vector, topology_of
+
+
+@dataclass
+class Solution:
+    """Natural frequencies (rad/s, ascending, repeated by multiplicity) and what to trust."""
+
+    scene: Scene
+    omega: np.ndarray
+    multiplicity: np.ndarray
+    converged: np.ndarray
+    formulation: str
+    kernel_origin: str
+    timings: dict[str, float]
+    shapes: list[ModeShape] | None = None
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def hz(self) -> np.ndarray:
+        """Frequencies in Hz."""
+        return self.omega / (2.0 * math.pi)
+
+    def to_dict(self, shapes: bool = False) -> dict:
+        """JSON-ready summary."""
+        out = {
+            "scene": self.scene.name,
+            "formulation": self.formulation,
+            "omega": [float(w) for w in self.omega],
+            "hz": [float(f) for f in self.hz],
+            "multiplicity": [int(m) for m in self.multiplicity],
+            "converged": [bool(c) for c in self.converged],
+            "warnings": list(self.warnings),
+            "kernel": self.kernel_origin,
+            "timings": {k: float(v) for k, v in self.timings.items()},
+        }
+        if shapes and self.shapes is not None:
+            out["mode_shapes"] = [
+                {
+                    "omega": s.omega,
+                    "x": s.x.tolist(),
+                    "Y": s.Y.tolist(),
+                    "mass_x": s.mass_x.tolist(),
+                    "mass_Y": s.mass_Y.tolist(),
+                }
+                for s in self.shapes
+            ]
+        return out
+
+
+def solve(
+    scene: Scene,
+    modes: int | None = None,
+    band: tuple[float, float] | None = None,
+    *,
+    formulation: str = "stable",
+    shapes: bool = True,
+    rtol: float = 0.0,
+    kernel: Kernel | None = None,
+) -> Solution:
+    """Natural frequencies of ``scene``: the lowest ``modes`` (default 10) or all in ``band``.
+
+    ``formulation`` is ``"stable"`` (second-compound chain, default) or
+    ``"paper"`` (det U_bar of paper Eq. (4) as printed). Mode shapes follow
+    paper Eq. (5) unless ``shapes=False``.
+    """
+    if modes is None and band is None:
+        modes = 10
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    if kernel is None:
+        kernel = load_kernel(topology_of(scene))
+    p = parameter_vector(scene)
+    kernel.delta(1.0, p, formulation)  # compile (or load from numba's cache) before timing
+    t1 = time.perf_counter()
+    timings["load"] = t1 - t0
+    roots = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+    t2 = time.perf_counter()
+    timings["scan_refine"] = t2 - t1
+    omega = np.array([r.omega for r in roots for _ in range(r.multiplicity)], dtype=float)
+    mult = np.array([r.multiplicity for r in roots for _ in range(r.multiplicity)], dtype=int)
+    conv = np.array([r.converged for r in roots for _ in range(r.multiplicity)], dtype=bool)
+    warnings = [
+        f"omega = {w:.17g} rad/s: refinement did not converge; this value is not trusted"
+        for w, ok in zip(omega, conv, strict=True)
+        if not ok
+    ]
+    shape_list = None
+    if shapes:
+        shape_list = [mode_shape(kernel, p, r.omega) for r in roots if r.omega > 0]
+        timings["shapes"] = time.perf_counter() - t2
+    return Solution(
+        scene, omega, mult, conv, formulation, kernel.origin, timings, shape_list, warnings
+    )
