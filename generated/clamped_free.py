@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "6f14950a717f280a1eeabbd86eea9386f7e22a21"
+SIGNATURE = "1f852ac915b7661e0a0b004a706f8c8ab137d5cf"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "b278cc79c0928bbabfa01503789f929844c5df01"
+SIGNATURE = "07588c77c5193bb43378893f5660ea19ddeafb6d"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

@@ -1,0 +1,27 @@
+"""Shared fixtures: a private kernel cache for the whole test session, the references."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+
+DATA = Path(__file__).parent / "data"
+
+# Tests never touch the user's kernel cache: set before mstmm resolves it.
+os.environ["MSTMM_CACHE"] = tempfile.mkdtemp(prefix="mstmm-test-cache-")
+
+
+@pytest.fixture(scope="session")
+def reference() -> dict[str, list[float]]:
+    """Exact frequencies of ../shared/reference (copied into tests/data), rad/s."""
+    raw = json.loads((DATA / "reference.json").read_text())
+    return {name: [float(w) for w in entry["omega"]] for name, entry in raw.items()}
+
+
+@pytest.fixture(scope="session")
+def data_dir() -> Path:
+    return DATA
