@@ -8,11 +8,11 @@ import sys
 import numpy as np
 import pytest
 import sympy as sp
-
 from mstmm.derive import symbolic
 from mstmm.derive import symbols as S
 from mstmm.derive.bundled import BUNDLED_TOPOLOGIES, generated_dir
 from mstmm.derive.emit import kernel_source
+
 from mstmm.kernels import load_kernel
 from mstmm.scene import BOUNDARY_KINDS, scene_from_dict
 from mstmm.topology import parameter_vector, topology_of

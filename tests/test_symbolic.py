@@ -6,11 +6,11 @@ import random
 
 import mpmath
 import sympy as sp
-
 from mstmm.derive import special, symbolic
 from mstmm.derive import symbols as S
 from mstmm.derive.components import beam, spring_mass
 from mstmm.derive.compound import second_compound
+
 from mstmm.scene import scene_from_dict
 
 b = sp.Symbol("b", positive=True)
