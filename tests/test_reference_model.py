@@ -1,0 +1,358 @@
+"""Checks of the independent reference model (tests/reference_model.py) against
+values that do not come from it: published reference numbers, closed-form
+characteristic equations solved here with mpmath, and physical limits."""
+
+from __future__ import annotations
+
+import json
+import random
+import sys
+import tomllib
+from pathlib import Path
+
+import mpmath
+import pytest
+from mpmath import mp, mpf
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from reference_model import (  # noqa: E402
+    band,
+    count_below,
+    frequencies,
+    global_determinant,
+    rigid_body_mode_count,
+    segment_stiffness_matrix,
+)
+
+DATA = Path(__file__).resolve().parent / "data"
+ENDS = ("clamped", "pinned", "free", "sliding")
+
+
+def scene(left, right, attachments=(), length=1.0, ei=1.0, mbar=1.0):
+    return {
+        "beam": {"length": length, "EI": ei, "mass_per_length": mbar, "left": left, "right": right},
+        "attachments": [{"type": "spring_mass", "x": x, "k": k, "m": m} for x, k, m in attachments],
+    }
+
+
+def mirrored(sc):
+    beam = dict(sc["beam"], left=sc["beam"]["right"], right=sc["beam"]["left"])
+    with mp.workdps(80):  # exact for the binary fractions used here
+        length = mpf(beam["length"])
+        atts = [dict(a, x=length - mpf(a["x"])) for a in sc["attachments"]]
+    return {"beam": beam, "attachments": atts}
+
+
+def rel_err(a, b):
+    a, b = mpf(a), mpf(b)
+    if b == 0:
+        return abs(a)
+    return abs(a - b) / abs(b)
+
+
+# ----------------------------------------------------------------- reference.json
+
+
+@pytest.mark.parametrize("name", ["wu_chou_1998", "bare_cantilever"])
+def test_reference_json(name):
+    expected = json.loads((DATA / "reference.json").read_text())[name]["omega"]
+    with open(DATA / f"{name}.toml", "rb") as fh:
+        sc = tomllib.load(fh)
+    got = frequencies(sc, len(expected), dps=30)
+    assert len(got) == len(expected) == 10
+    for w, ref in zip(got, expected, strict=True):
+        assert rel_err(w, ref) < 1e-15, (w, ref)
+
+
+# -------------------------------------------------------- closed-form bare beams
+
+# Characteristic equations (beta = lam L), each divided by cosh b so that it is
+# O(1) for large b, with asymptotic first guesses for the n-th root (n >= 1).
+# Derived independently (see the module docstring of reference_model for the
+# conditions; W -> W'' maps clamped <-> free, pinned <-> pinned, sliding <-> sliding).
+_EQ = {
+    "CF": (lambda b: mpmath.cos(b) + mpmath.sech(b), [mpf("1.8751")], lambda n: n - 0.5),
+    "CC": (lambda b: mpmath.cos(b) - mpmath.sech(b), [mpf("4.7300")], lambda n: n + 0.5),
+    "CP": (
+        lambda b: mpmath.sin(b) - mpmath.cos(b) * mpmath.tanh(b),
+        [mpf("3.9266")],
+        lambda n: n + 0.25,
+    ),
+    "CS": (
+        lambda b: mpmath.sin(b) + mpmath.cos(b) * mpmath.tanh(b),
+        [mpf("2.3650")],
+        lambda n: n - 0.25,
+    ),
+    "PP": (None, None, lambda n: n),
+    "PS": (None, None, lambda n: n - 0.5),
+}
+
+# (equation, number of rigid-body zeros) for each unordered pair of end conditions
+_PAIRS = {
+    frozenset(["clamped", "free"]): ("CF", 0),
+    frozenset(["clamped"]): ("CC", 0),
+    frozenset(["free"]): ("CC", 2),
+    frozenset(["clamped", "pinned"]): ("CP", 0),
+    frozenset(["pinned", "free"]): ("CP", 1),
+    frozenset(["clamped", "sliding"]): ("CS", 0),
+    frozenset(["free", "sliding"]): ("CS", 1),
+    frozenset(["pinned"]): ("PP", 0),
+    frozenset(["sliding"]): ("PP", 1),
+    frozenset(["pinned", "sliding"]): ("PS", 0),
+}
+
+
+def closed_form_betas(left, right, count):
+    eq, nzero = _PAIRS[frozenset([left, right])]
+    func, first, guess = _EQ[eq]
+    betas = [mpf(0)] * nzero
+    n = 1
+    while len(betas) < count:
+        if func is None:
+            root = mpf(guess(n)) * mp.pi
+        else:
+            start = first[0] if n == 1 else mpf(guess(n)) * mp.pi
+            root = mpmath.findroot(func, start)
+            # each root must sit in its own quarter-period window: nothing skipped
+            assert abs(root - mpf(guess(n)) * mp.pi) < 0.35
+        betas.append(root)
+        n += 1
+    return betas
+
+
+@pytest.mark.parametrize("left", ENDS)
+@pytest.mark.parametrize("right", ENDS)
+@pytest.mark.parametrize(
+    "length, ei, mbar", [(1, 1, 1), ("3.2", "2.5", "0.7")], ids=["unit", "scaled"]
+)
+def test_bare_beam_closed_form(left, right, length, ei, mbar):
+    with mp.workdps(40):
+        length, ei, mbar = mpf(length), mpf(ei), mpf(mbar)
+        sc = scene(left, right, length=length, ei=ei, mbar=mbar)
+        got = frequencies(sc, 8, dps=40)
+        assert rigid_body_mode_count(sc) == _PAIRS[frozenset([left, right])][1]
+    with mp.workdps(60):
+        scale = mpmath.sqrt(mpf(ei) / mbar) / length**2
+        expected = [b * b * scale for b in closed_form_betas(left, right, 8)]
+    assert len(got) == 8
+    for w, ref in zip(got, expected, strict=True):
+        if ref == 0:
+            assert w == 0
+        else:
+            assert rel_err(w, ref) < 1e-35, (left, right, w, ref)
+
+
+@pytest.mark.parametrize("left", ENDS)
+@pytest.mark.parametrize("right", ENDS)
+def test_rigid_modes_equal_count_near_zero(left, right):
+    sc = scene(left, right, [(0.0, 50.0, 0.3), (0.37, 80.0, 0.2), (1.0, 20.0, 0.1)])
+    nrigid = rigid_body_mode_count(sc)
+    assert count_below(sc, "1e-12", dps=30) == nrigid
+    got = frequencies(sc, nrigid + 2, dps=30)
+    assert got[:nrigid] == [0] * nrigid
+    assert all(w > 0 for w in got[nrigid:])
+
+
+# ------------------------------------------------------- attachments: limits
+
+
+def _tip_mass_betas(mu, count):
+    """Cantilever with a tip point mass mu * mbar L:
+    1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0, scanned on a grid."""
+
+    def f(b):
+        return (
+            mpmath.cos(b)
+            + mpmath.sech(b)
+            + mu * b * (mpmath.cos(b) * mpmath.tanh(b) - mpmath.sin(b))
+        )
+
+    roots, step = [], mpf("0.01")
+    a, fa = step, f(step)
+    while len(roots) < count:
+        b = a + step
+        fb = f(b)
+        if fa * fb < 0:
+            roots.append(mpmath.findroot(f, (a, b), solver="anderson"))
+        a, fa = b, fb
+    return roots
+
+
+def test_stiff_spring_tip_mass_limit_fixes_sign_convention():
+    mu = mpf("0.7")
+    with mp.workdps(40):
+        expected = _tip_mass_betas(mu, 6)
+    # k -> infinity: the spring-mass becomes a rigidly attached point mass
+    right_tip = scene("clamped", "free", [(1.0, mpf("1e40"), mu)])
+    left_tip = scene("free", "clamped", [(0.0, mpf("1e40"), mu)])
+    for sc in (right_tip, left_tip):
+        got = frequencies(sc, 6, dps=40)
+        for w, b in zip(got, expected, strict=True):
+            assert rel_err(w, b * b) < 1e-25
+
+
+def test_tiny_mass_changes_nothing():
+    bare = frequencies(scene("clamped", "free"), 8, dps=40)
+    # stiff or moderate spring, tiny mass: its own root sqrt(k/m) is far out of range
+    for k in (1e3, 1e12):
+        got = frequencies(scene("clamped", "free", [(0.6, k, 1e-30)]), 8, dps=40)
+        for w, ref in zip(got, bare, strict=True):
+            assert rel_err(w, ref) < 1e-20
+    # tiny mass tuned to w0 = 100 rad/s (between modes 3 and 4): adds a root near w0
+    with mp.workdps(80):
+        tiny = mpf("1e-30")
+        tuned = scene("clamped", "free", [(0.6, tiny * 100**2, tiny)])
+    got = frequencies(tuned, 9, dps=40)
+    expected = sorted(bare + [mpf(100)])
+    for w, ref in zip(got, expected, strict=True):
+        assert rel_err(w, ref) < 1e-20
+
+
+def test_mass_at_clamped_end_is_decoupled():
+    # W(0) = 0: the oscillators see a fixed point, sqrt(k/m) exactly, three times
+    bare = frequencies(scene("clamped", "free"), 6, dps=40)
+    got = frequencies(scene("clamped", "free", [(0.0, 1250.0, 0.125)] * 3), 9, dps=40)
+    expected = sorted(bare + [mpf(100)] * 3)
+    for w, ref in zip(got, expected, strict=True):
+        assert rel_err(w, ref) < 1e-30
+
+
+@pytest.mark.parametrize("x", [0.5, 1.0], ids=["interior", "free_end"])
+def test_three_identical_oscillators_double_root(x):
+    sc = scene("clamped", "free", [(x, 1250.0, 0.125)] * 3)  # sqrt(k/m) = 100 exactly
+    got = frequencies(sc, 10, dps=40)
+    at_w0 = [w for w in got if rel_err(w, 100) < 1e-30]
+    assert len(at_w0) == 2
+    assert count_below(sc, 101, dps=40) - count_below(sc, 99, dps=40) >= 2
+    assert sum(rel_err(w, 100) < 1e-30 for w in band(sc, 99.9, 100.1, dps=40)) == 2
+    # the in-phase motion of the three masses couples to the beam: a further root
+    assert len(got) == len(set(got)) + 1
+
+
+# ------------------------------------------------------------ self-consistency
+
+
+def test_segment_stiffness_closed_form_matches_numerical_solve():
+    with mp.workdps(50):
+        for beta, ell in [(mpf("0.3"), mpf("0.2")), (mpf("7.5"), mpf("0.9")), (mpf(40), mpf(1))]:
+            k = segment_stiffness_matrix(beta, ell)
+
+            def basis(s, n, beta=beta):
+                z = beta * s
+                d = [
+                    [mpmath.cos(z), -mpmath.sin(z), -mpmath.cos(z), mpmath.sin(z)],
+                    [mpmath.sin(z), mpmath.cos(z), -mpmath.sin(z), -mpmath.cos(z)],
+                    [mpmath.cosh(z), mpmath.sinh(z), mpmath.cosh(z), mpmath.sinh(z)],
+                    [mpmath.sinh(z), mpmath.cosh(z), mpmath.sinh(z), mpmath.cosh(z)],
+                ]
+                return [d[i][n] * beta**n for i in range(4)]
+
+            a = mpmath.matrix([basis(0, 0), basis(0, 1), basis(ell, 0), basis(ell, 1)])
+            b = mpmath.matrix(
+                [basis(0, 3), [-v for v in basis(0, 2)], [-v for v in basis(ell, 3)], basis(ell, 2)]
+            )
+            num = b * mpmath.inverse(a)
+            for i in range(4):
+                for j in range(4):
+                    assert abs(num[i, j] - k[i][j]) <= mpf("1e-30") * (1 + abs(num[i, j]))
+
+
+def test_mirror_symmetry_with_end_and_interior_attachments():
+    atts = [
+        (0.0, 300.0, 0.4),
+        (0.25, 1e4, 0.5),
+        (0.25, 500.0, 0.1),
+        (0.8, 50.0, 2.0),
+        (1.0, 80.0, 1),
+    ]
+    for left, right in [("clamped", "free"), ("free", "sliding"), ("pinned", "free")]:
+        sc = scene(left, right, atts, length=2.0, ei=3.0, mbar=0.5)
+        a = frequencies(sc, 12, dps=30)
+        b = frequencies(mirrored(sc), 12, dps=30)
+        for wa, wb in zip(a, b, strict=True):
+            assert rel_err(wa, wb) < 1e-25
+
+
+def test_determinant_sign_changes_match_roots_on_a_grid():
+    with open(DATA / "wu_chou_1998.toml", "rb") as fh:
+        sc = tomllib.load(fh)
+    roots = band(sc, 1, 5000, dps=20)
+    assert len(roots) == 6
+    assert roots == frequencies(sc, 6, dps=20)
+    # an independent scan of the global determinant, fine enough for these roots
+    grid = [mpf(1) + i * mpf(4999) / 1500 for i in range(1501)]
+    vals = [global_determinant(sc, w, dps=20) for w in grid]
+    changes = [(grid[i], grid[i + 1]) for i in range(1500) if (vals[i] > 0) != (vals[i + 1] > 0)]
+    assert len(changes) == len(roots)
+    for (lo, hi), r in zip(changes, roots, strict=True):
+        assert lo < r < hi
+
+
+def test_many_attachments_and_many_modes():
+    rng = random.Random(7)
+    atts = [
+        (round(rng.uniform(0, 2.0), 3), rng.uniform(10, 1e5), rng.uniform(0.01, 1))
+        for _ in range(50)
+    ]
+    sc = scene("clamped", "free", atts, length=2.0, ei=3.0, mbar=0.5)
+    a = frequencies(sc, 20, dps=30)
+    b = frequencies(mirrored(sc), 20, dps=30)
+    for wa, wb in zip(a, b, strict=True):
+        assert rel_err(wa, wb) < 1e-25
+    # 100 modes with 3 attachments: consecutive roots are separated, count agrees
+    sc3 = scene("free", "free", [(0.3, 1e4, 0.5), (0.7, 2e5, 0.2), (1.0, 5e3, 1.0)])
+    ws = frequencies(sc3, 100, dps=30)
+    assert ws[:2] == [0, 0] and all(x < y for x, y in zip(ws[2:], ws[3:], strict=False))
+    mid = (ws[-1] + ws[-2]) / 2
+    assert count_below(sc3, mid, dps=30) == 99
+
+
+_HARD = {
+    "soft_oscillator": ("clamped", "free", [(0.5, 1e-12, 1.0)]),
+    "soft_free_free": ("free", "free", [(0.5, 1e-12, 1.0), (1.0, 1e-8, 1e-3)]),
+    "close_positions": ("clamped", "free", [(0.5, 100.0, 0.1), (0.5 + 1e-12, 200.0, 0.3)]),
+    "heavy_mass": ("pinned", "pinned", [(0.3, 1e6, 1e3)]),
+    "stiff_spring": ("sliding", "free", [(0.2, 1e30, 0.5), (0.9, 1e-3, 1e-6)]),
+    "both_ends": ("free", "free", [(0.0, 1e3, 0.1), (1.0, 1e3, 0.1), (0.0, 5e2, 0.2)]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(_HARD))
+def test_converged_in_precision_and_band_agrees(case):
+    left, right, atts = _HARD[case]
+    sc = scene(left, right, atts)
+    a = frequencies(sc, 10, dps=30)
+    b = frequencies(sc, 10, dps=50)
+    for wa, wb in zip(a, b, strict=True):
+        assert rel_err(wa, wb) < 1e-30
+    with mp.workdps(50):
+        top = b[-1] * (1 + mpf("1e-20"))
+    assert len(band(sc, 0, top, dps=30)) == 10
+    for i in range(9):
+        if 0 < b[i] < b[i + 1]:
+            assert count_below(sc, (b[i] + b[i + 1]) / 2, dps=30) == i + 1
+
+
+def test_pinned_pinned_double_root_at_a_beam_frequency():
+    # two identical oscillators at the node of mode 2 (x = L/2), tuned to it:
+    # the beam mode (masses at rest) and the antiphase mass motion, a double root
+    with mp.workdps(80):
+        w2 = 4 * mp.pi**2
+        sc = scene("pinned", "pinned", [(0.5, w2**2, 1)] * 2)
+    got = frequencies(sc, 6, dps=40)
+    assert sum(rel_err(w, w2) < 1e-38 for w in got) == 2
+
+
+def test_input_layouts():
+    class Obj:
+        def __init__(self, **kw):
+            self.__dict__.update(kw)
+
+    atts = [(0.1, 190428.3750081235, 3.0775), (0.4, 285642.56251218525, 7.69375)]
+    beam = Obj(
+        length=1.0, EI=63476.125002707834, mass_per_length=15.3875, left="clamped", right="free"
+    )
+    obj = Obj(beam=beam, attachments=[Obj(x=x, k=k, m=m) for x, k, m in atts])
+    dct = scene("clamped", "free", atts, ei=63476.125002707834, mbar=15.3875)
+    assert frequencies(obj, 5, dps=25) == frequencies(dct, 5, dps=25)
