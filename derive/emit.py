@@ -55,6 +55,14 @@ def _closed_lines(funcs, scaled: bool) -> list[str]:
     return out
 
 
+def _clamped_clamped_lines() -> list[str]:
+    """``f = exp(-x) (1 - cos x cosh x)``, its sign is that of the equation."""
+    E, chs, shs = sp.symbols("E chs shs")
+    f = special.Reduced("f", beam.clamped_clamped_equation(special.x))
+    expr = special.scaled_closed_form(f, E, chs, shs)
+    return [f"f = {code(expr.subs(special.x, S.x))}"]
+
+
 def _matrix_fill(M: sp.Matrix, name: str) -> list[str]:
     targets = [f"{name}[{i}, {j}]" for i in range(M.rows) for j in range(M.cols)]
     return assignments(targets, list(M), indent="")
@@ -82,6 +90,29 @@ def spring_mass_tip(k, m, omega):
 $tip
     return geometric, shear
 '''
+
+SPRING_MASS_COUNT = '''
+
+@njit(cache=True)
+def spring_mass_stiffness(beta, kappa, mu):
+    """Pivot of the mass degree of freedom (k - m w^2, sign only) and the condensed
+    stiffness it adds to the node's Y (units L = EI = 1)."""
+$stiffness
+    return pivot, added
+'''
+
+SPRING_MASS_COUNT_LOOP = """\
+n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+for i in range(n):
+    q = 3 + ATTACHMENT_STRIDE * i
+    rho = (p[q] - pos) / L
+    pos = p[q]
+    if rho > 0.0:
+        count += segment_count(S, U, beta, rho)
+    pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
+    if pivot < 0.0:
+        count += 1
+    S[0, 0] += added"""
 
 SPRING_MASS_STABLE_LOOP = """\
 n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
@@ -120,9 +151,30 @@ def _spring_mass_functions() -> str:
     geometric = (rigid_body.H_I2() * col)[0, 0]
     shear = (rigid_body.U_I2() * col)[_u_i2_row(), 0]
     tip = assignments(["geometric", "shear"], [geometric, shear], indent="")
-    return Template(SPRING_MASS_FUNCTIONS).substitute(
-        step=_indent(_compound_step(C), 4), tip=_indent(tip, 4)
+    # node stiffness of the condensed branch: F = -(B10 / B00) Y (paper Eq. (3) eliminated)
+    col_nd = spring_mass.tip_column(S.kappa, S.mu, S.beta**2)
+    stiffness = assignments(
+        ["pivot", "added"], [col_nd[0], sp.cancel(-col_nd[1] / col_nd[0])], indent=""
     )
+    return Template(SPRING_MASS_FUNCTIONS + SPRING_MASS_COUNT).substitute(
+        step=_indent(_compound_step(C), 4),
+        tip=_indent(tip, 4),
+        stiffness=_indent(stiffness, 4),
+    )
+
+
+def _riccati_lines() -> list[str]:
+    Us = sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"U{i}{j}"))
+    s00, s01, s11 = sp.symbols("s00 s01 s11")
+    S_num, detX, detBP, m00 = beam.riccati_step(Us, sp.Matrix([[s00, s01], [s01, s11]]))
+    lines = [f"U{i}{j} = U[{i}, {j}]" for i in range(4) for j in range(4)]
+    targets = ["S00", "S01", "S10", "S11", "detX", "detBP", "m00"]
+    return lines + assignments(targets, [*S_num, detX, detBP, m00], indent="")
+
+
+def _penalty_lines(end: str) -> list[str]:
+    """Constrained Y / theta of an end as a huge stiffness (exact for the inertia count)."""
+    return [f"S[{d}, {d}] += PENALTY" for d in KNOWN_ZERO[end] if d < 2]
 
 
 def _h_i1_index() -> int:
@@ -157,6 +209,7 @@ def kernel_source(topology: Topology) -> str:
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
     U_red = beam.transfer_matrix_reduced(S.lam, S.l, S.EI, S.K)
+    U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
     left_unknown = unknown(topology.left)
     right_unknown = unknown(topology.right)
     rb_constants = (
@@ -189,6 +242,13 @@ def kernel_source(topology: Topology) -> str:
         compound_closed=_indent(_closed_lines(special.COMPOUND, scaled=True), 8),
         beam_transfer=_indent(_matrix_fill(U_paper, "U"), 4),
         beam_transfer_reduced=_indent(_matrix_fill(U_red, "U"), 4),
+        krylov_scaled=_indent(_closed_lines(special.KRYLOV, scaled=True), 4),
+        beam_transfer_scaled=_indent(_matrix_fill(U_nd, "U"), 4),
+        clamped_clamped=_indent(_clamped_clamped_lines(), 4),
+        riccati=_indent(_riccati_lines(), 4),
+        left_penalty=_indent(_penalty_lines(topology.left), 4),
+        right_penalty=_indent(_penalty_lines(topology.right), 4),
+        count_attachment_loop=_indent(SPRING_MASS_COUNT_LOOP.splitlines(), 4) if has_sm else "",
         beam_compound=_indent(_compound_step(C_beam), 4),
         attachment_functions=_spring_mass_functions() if has_sm else "",
         stable_attachment_loop=_indent(SPRING_MASS_STABLE_LOOP.splitlines(), 4) if has_sm else "",

@@ -10,6 +10,9 @@ free at x = L) carrying any number of spring-mass branches are the zeros of
   spring-mass poles multiplied out exactly once, renormalised every step.
 
 Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
+``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
+clamped-segment counts plus the negative pivots of the dynamic stiffness,
+eliminated node by node with Riccati transfer steps), independent of both.
 
 Parameter vector p (SI): [L, EI, mbar, then per spring_mass (x, k, m), sorted by x]
 Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
@@ -22,7 +25,7 @@ import numpy as np
 from numba import njit
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "07588c77c5193bb43378893f5660ea19ddeafb6d"
+SIGNATURE = "8fed85ab68d7b3e9a732829bf2b9c93e6bc9ebcd"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -31,6 +34,10 @@ RIGID_BODY_MODES = 0
 ATTACHMENT_STRIDE = 3
 PAPER = 0
 STABLE = 1
+#: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
+PENALTY = 1e40
+#: Longest piece (in lam*l) carried by one Riccati step of the count.
+RICCATI_STEP = 1.0
 H_I1_INDEX = 0  # H_I1 = [1 0 0 0] picks Y (paper Eq. (3))
 U_I2_ROW = 3  # U_I2 puts the branch shear into Q (paper Eq. (2))
 
@@ -49,6 +56,22 @@ def krylov(x):
         K2 = (0.5)*(-math.cos(x) + math.cosh(x))/x**2
         K3 = (0.5)*(-math.sin(x) + math.sinh(x))/x**3
     return K0, K1, K2, K3
+
+
+@njit(cache=True)
+def krylov_scaled(x):
+    """krylov(x) times exp(-shift), shift = x above the threshold (no overflow); returns shift."""
+    if x < 1.5:
+        K0, K1, K2, K3 = krylov(x)
+        return 0.0, K0, K1, K2, K3
+    E = math.exp(-x)
+    chs = 0.5 + 0.5 * E * E
+    shs = 0.5 - 0.5 * E * E
+    K0 = (0.5)*E*math.cos(x) + (0.5)*chs
+    K1 = (0.5)*E*math.sin(x)/x + (0.5)*shs/x
+    K2 = -0.5*E*math.cos(x)/x**2 + (0.5)*chs/x**2
+    K3 = -0.5*E*math.sin(x)/x**3 + (0.5)*shs/x**3
+    return x, K0, K1, K2, K3
 
 
 @njit(cache=True)
@@ -144,6 +167,35 @@ def beam_transfer_reduced(lam, l, EI, U):
 
 
 @njit(cache=True)
+def beam_transfer_scaled(beta, rho, U):
+    """Eq. (1) in units L = 1, EI = 1, times exp(-shift); returns shift."""
+    shift, K0, K1, K2, K3 = krylov_scaled(beta * rho)
+    t0 = K1*rho
+    t1 = K2*rho**2
+    t2 = K3*rho**3
+    t3 = beta**4
+    t4 = t2*t3
+    t5 = t1*t3
+    U[0, 0] = K0
+    U[0, 1] = t0
+    U[0, 2] = t1
+    U[0, 3] = t2
+    U[1, 0] = t4
+    U[1, 1] = K0
+    U[1, 2] = t0
+    U[1, 3] = t1
+    U[2, 0] = t5
+    U[2, 1] = t4
+    U[2, 2] = K0
+    U[2, 3] = t0
+    U[3, 0] = t0*t3
+    U[3, 1] = t5
+    U[3, 2] = t4
+    U[3, 3] = K0
+    return shift
+
+
+@njit(cache=True)
 def beam_compound_step(v, beta, rho):
     """v <- C2(U_beam) v in units L = 1, EI = 1; returns the log of the scale taken out."""
     x = beta * rho
@@ -209,6 +261,16 @@ def spring_mass_tip(k, m, omega):
 
 
 @njit(cache=True)
+def spring_mass_stiffness(beta, kappa, mu):
+    """Pivot of the mass degree of freedom (k - m w^2, sign only) and the condensed
+    stiffness it adds to the node's Y (units L = EI = 1)."""
+    t0 = beta**4*mu
+    pivot = 1.0 - t0/kappa
+    added = kappa*t0/(-kappa + t0)
+    return pivot, added
+
+
+@njit(cache=True)
 def renormalise(v):
     """Divide v by a power of two near its largest entry; return the natural log taken out."""
     big = 0.0
@@ -250,6 +312,142 @@ def delta_stable(omega, p):
         log += beam_compound_step(v, beta, rho)
     log += renormalise(v)
     return v[END_PAIR], log
+
+
+@njit(cache=True)
+def neg2(a, b, c):
+    """Number of negative eigenvalues of the symmetric matrix [[a, b], [b, c]]."""
+    det = a * c - b * b
+    if det < 0.0:
+        return 1
+    if a + c < 0.0:
+        return 2 if det > 0.0 else 1
+    return 0
+
+
+@njit(cache=True)
+def clamped_clamped_count(x):
+    """Natural frequencies of a segment clamped at both ends below x = lam l (J0 of one member)."""
+    if x < math.pi:
+        return 0
+    E = math.exp(-x)
+    chs = 0.5 + 0.5 * E * E
+    f = E - chs*math.cos(x)
+    i = int(x / math.pi)
+    s = 1 if f > 0.0 else -1
+    return i - (1 - (1 if i % 2 == 0 else -1) * s) // 2
+
+
+@njit(cache=True)
+def riccati_count(S, U, beta, rho):
+    """Riccati step of S across a piece with beta*rho <= RICCATI_STEP; returns its pivot count."""
+    beam_transfer_scaled(beta, rho, U)
+    s00 = S[0, 0]
+    s01 = 0.5 * (S[0, 1] + S[1, 0])
+    s11 = S[1, 1]
+    U00 = U[0, 0]
+    U01 = U[0, 1]
+    U02 = U[0, 2]
+    U03 = U[0, 3]
+    U10 = U[1, 0]
+    U11 = U[1, 1]
+    U12 = U[1, 2]
+    U13 = U[1, 3]
+    U20 = U[2, 0]
+    U21 = U[2, 1]
+    U22 = U[2, 2]
+    U23 = U[2, 3]
+    U30 = U[3, 0]
+    U31 = U[3, 1]
+    U32 = U[3, 2]
+    U33 = U[3, 3]
+    t0 = U12*s11
+    t1 = U13*s01
+    t2 = U11 + t0 - t1
+    t3 = -U30 - U32*s01 + U33*s00
+    t4 = U12*s01
+    t5 = U10 - U13*s00 + t4
+    t6 = -t5
+    t7 = -U31 - U32*s11 + U33*s01
+    t8 = U02*s01
+    t9 = U03*s00
+    t10 = U00 + t8 - t9
+    t11 = U02*s11
+    t12 = -U01 + U03*s01 - t11
+    t13 = U20 + U22*s01 - U23*s00
+    t14 = U21 + U22*s11 - U23*s01
+    t15 = U13*s00
+    t16 = s01**2
+    t17 = U03*U12
+    t18 = U02*U13
+    S00 = t2*t3 + t6*t7
+    S01 = t10*t7 + t12*t3
+    S10 = t13*t2 + t14*t6
+    S11 = t10*t14 + t12*t13
+    detX = U00*U11 + U00*t0 - U00*t1 - U01*U10 + U01*t15 - U01*t4 + U03*U10*s01 - U10*t11 + U11*t8 - U11*t9 - t0*t9 + t11*t15 + t16*t17 - t16*t18
+    detBP = -t17 + t18
+    m00 = -U02*t5 + U12*t10
+    n = 0
+    if detX * detBP < 0.0:
+        n = 1
+    elif m00 * detBP < 0.0:
+        n = 2
+    S[0, 0] = S00 / detX
+    S[0, 1] = S01 / detX
+    S[1, 0] = S10 / detX
+    S[1, 1] = S11 / detX
+    return n
+
+
+@njit(cache=True)
+def segment_count(S, U, beta, rho):
+    """Carry S across a segment in pieces of beta*rho <= RICCATI_STEP (a long piece's
+    transfer matrix is rank-one to working precision); returns the pivots and J0 it adds."""
+    x = beta * rho
+    pieces = max(1, int(math.ceil(x / RICCATI_STEP)))
+    n = 0
+    for _ in range(pieces):
+        n += riccati_count(S, U, beta, rho / pieces)
+        n += clamped_clamped_count(x / pieces)
+    return n
+
+
+@njit(cache=True)
+def count_below(omega, p):
+    """Number of natural frequencies below omega (with multiplicity), Wittrick-Williams."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    S = np.zeros((2, 2))
+    U = np.zeros((4, 4))
+    S[0, 0] += PENALTY
+    S[1, 1] += PENALTY
+    count = 0
+    pos = 0.0
+    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+    for i in range(n):
+        q = 3 + ATTACHMENT_STRIDE * i
+        rho = (p[q] - pos) / L
+        pos = p[q]
+        if rho > 0.0:
+            count += segment_count(S, U, beta, rho)
+        pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
+        if pivot < 0.0:
+            count += 1
+        S[0, 0] += added
+    rho = (L - pos) / L
+    if rho > 0.0:
+        count += segment_count(S, U, beta, rho)
+
+    return count + neg2(S[0, 0], 0.5 * (S[0, 1] + S[1, 0]), S[1, 1])
+
+
+@njit(cache=True)
+def counts(omegas, p, out):
+    """out[i] = count_below(omegas[i], p)."""
+    for i in range(omegas.shape[0]):
+        out[i] = count_below(omegas[i], p)
 
 
 @njit(cache=True)

@@ -191,6 +191,13 @@ class Kernel:
         )
         return float(root), int(its), bool(ok)
 
+    def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Number of natural frequencies below each ``omega`` (Wittrick-Williams)."""
+        omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
+        out = np.empty(omegas.shape, dtype=np.int64)
+        self.module.counts(omegas, _params(p), out)
+        return out
+
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
         return self.module.u_bar_paper(float(omega), _params(p))

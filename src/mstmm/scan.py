@@ -12,6 +12,14 @@ clustered around each oscillator frequency ``sqrt(k/m)`` (where roots crowd):
   located on the derivative's sign change;
 * zero-frequency rigid-body modes are counted from the end conditions.
 
+Then every root is checked against the kernel's root count ``N(omega)``
+(Wittrick-Williams, independent of the characteristic function): the band is
+cut at the midpoints between consecutive roots and each piece must hold
+exactly the roots found in it. A piece holding more is searched by bisection
+on the count (which cannot miss a root), a root in a piece holding none is
+dropped, and a piece whose count stays above one down to round-off width is a
+multiple root of that multiplicity.
+
 The interface is :func:`find_roots`; the kernel supplies the evaluations.
 """
 
@@ -169,6 +177,15 @@ class _Search:
         self.roots.append(Root(0.5 * (lo + hi), 2, True, "minimum"))
 
 
+@dataclass
+class Roots:
+    """The roots of a search and whether the independent count confirmed them."""
+
+    roots: list[Root]
+    count_checked: bool
+    notes: list[str]
+
+
 def find_roots(
     kernel: Kernel,
     p: np.ndarray,
@@ -177,11 +194,13 @@ def find_roots(
     modes: int | None = None,
     formulation: str = "stable",
     rtol: float = 0.0,
-) -> list[Root]:
+    certify: bool = True,
+) -> Roots:
     """Natural frequencies in ``band`` (rad/s), or the lowest ``modes``, with multiplicity.
 
     Rigid-body modes (omega = 0) are included whenever the band starts at 0 or
-    ``modes`` is given.
+    ``modes`` is given. With ``certify`` the roots are checked (and completed)
+    against the Wittrick-Williams count.
     """
     if (band is None) == (modes is None):
         raise ValueError("give exactly one of band= or modes=")
@@ -189,24 +208,80 @@ def find_roots(
     search = _Search(kernel, p, formulation, rtol)
     osc = oscillator_frequencies(kernel, p)
     rigid = kernel.topology.rigid_body_modes
+    floor = _floor(p, osc)
+    if certify:  # nothing but rigid-body modes may lie below the scan
+        while int(kernel.count_below(floor, p)[0]) > rigid and floor > 1e-300:
+            floor *= 1e-3
     if band is not None:
         w_lo, w_hi = float(band[0]), float(band[1])
-        if w_lo <= 0.0 and rigid:
-            search.roots.append(Root(0.0, rigid, True, "rigid"))
-        start = max(w_lo, _floor(p, osc))
-        if w_hi > start:
-            search.scan(grid(start, w_hi, p, osc))
-        return _merge(search.roots)
-    if rigid:
+        start = max(w_lo, floor)
+    else:
+        w_lo, start = 0.0, floor
+        b_hi = (modes + 1.5) * math.pi
+        w_hi = float(omega_of(b_hi, p))
+        # the count says how far the lowest `modes` reach
+        while certify and int(kernel.count_below(w_hi, p)[0]) < modes:
+            b_hi *= 1.5
+            w_hi = float(omega_of(b_hi, p))
+    if w_lo <= 0.0 and rigid:
         search.roots.append(Root(0.0, rigid, True, "rigid"))
-    lo = _floor(p, osc)
-    b_hi = (modes + 1.5) * math.pi
-    while _count(search.roots) < modes:
-        hi = float(omega_of(b_hi, p))
-        search.scan(grid(lo, hi, p, osc))
-        search.roots = _merge(search.roots)
-        lo, b_hi = hi, b_hi + (modes + 2) * math.pi
-    return _truncate(_merge(search.roots), modes)
+    if w_hi > start:
+        search.scan(grid(start, w_hi, p, osc))
+    roots = _merge(search.roots)
+    checked, notes = True, []
+    if certify and w_hi > start:
+        roots, checked, notes = _certify(search, roots, start, w_hi)
+    while band is None and _count(roots) < modes and not certify:
+        start, w_hi = w_hi, 2.0 * w_hi  # without a count: scan further until enough
+        search.roots = []
+        search.scan(grid(start, w_hi, p, osc))
+        roots = _merge(roots + search.roots)
+    if band is None:
+        roots = _truncate(roots, modes)
+    return Roots(roots, checked, notes)
+
+
+def _certify(search: _Search, roots: list[Root], lo: float, hi: float):
+    """Check the roots in (lo, hi] against the count; add missing ones, drop spurious ones."""
+    kernel, p = search.kernel, search.p
+    fixed = [r for r in roots if r.how == "rigid"]
+    inner = [r for r in roots if r.how != "rigid"]
+    cuts = [lo] + [0.5 * (a.omega + b.omega) for a, b in zip(inner, inner[1:])] + [hi]
+    counts = kernel.count_below(np.array(cuts), p)
+    out: list[Root] = []
+    notes: list[str] = []
+    for i, r in enumerate(inner):
+        expected = int(counts[i + 1] - counts[i])
+        if expected == 1:
+            out.append(Root(r.omega, 1, r.converged, r.how))
+        elif expected == 0:
+            notes.append(f"omega = {r.omega:.17g}: not a root by the count, dropped")
+        else:
+            out.extend(_isolate(search, cuts[i], cuts[i + 1], int(counts[i]), int(counts[i + 1])))
+    if not inner:
+        out.extend(_isolate(search, lo, hi, int(counts[0]), int(counts[-1])))
+    total = int(counts[-1] - counts[0])
+    checked = _count(out) == total
+    if not checked:
+        notes.append(f"count says {total} roots in ({lo:.6g}, {hi:.6g}), found {_count(out)}")
+    return _merge(fixed + out), checked, notes
+
+
+def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root]:
+    """All roots in (a, b) by bisection on the count ``N(b) - N(a)``, then Brent."""
+    if nb <= na:
+        return []
+    kernel, p = search.kernel, search.p
+    if b - a <= 8e-16 * b:
+        return [Root(0.5 * (a + b), nb - na, True, "count")]
+    if nb - na == 1:
+        (ma, mb), _ = kernel.evaluate(np.array([a, b]), p, search.formulation)
+        if ma * mb < 0.0:
+            root, _its, ok = kernel.refine(a, b, p, search.formulation, search.rtol)
+            return [Root(root, 1, ok, "count")]
+    mid = 0.5 * (a + b)
+    nm = int(kernel.count_below(mid, p)[0])
+    return _isolate(search, a, mid, na, nm) + _isolate(search, mid, b, nm, nb)
 
 
 def _floor(p, osc) -> float:

@@ -26,6 +26,7 @@ class Solution:
     formulation: str
     kernel_origin: str
     timings: dict[str, float]
+    count_checked: bool = False
     shapes: list[ModeShape] | None = None
     warnings: list[str] = field(default_factory=list)
 
@@ -43,6 +44,7 @@ class Solution:
             "hz": [float(f) for f in self.hz],
             "multiplicity": [int(m) for m in self.multiplicity],
             "converged": [bool(c) for c in self.converged],
+            "count_checked": bool(self.count_checked),
             "warnings": list(self.warnings),
             "kernel": self.kernel_origin,
             "timings": {k: float(v) for k, v in self.timings.items()},
@@ -85,23 +87,36 @@ def solve(
         kernel = load_kernel(topology_of(scene))
     p = parameter_vector(scene)
     kernel.delta(1.0, p, formulation)  # compile (or load from numba's cache) before timing
+    kernel.count_below(1.0, p)
     t1 = time.perf_counter()
     timings["load"] = t1 - t0
-    roots = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+    found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+    roots = found.roots
     t2 = time.perf_counter()
     timings["scan_refine"] = t2 - t1
     omega = np.array([r.omega for r in roots for _ in range(r.multiplicity)], dtype=float)
     mult = np.array([r.multiplicity for r in roots for _ in range(r.multiplicity)], dtype=int)
     conv = np.array([r.converged for r in roots for _ in range(r.multiplicity)], dtype=bool)
     warnings = [
-        f"omega = {w:.17g} rad/s: refinement did not converge; this value is not trusted"
-        for w, ok in zip(omega, conv, strict=True)
-        if not ok
-    ]
+        f"omega = {r.omega:.17g} rad/s: refinement did not converge; this value is not trusted"
+        for r in roots
+        if not r.converged
+    ] + found.notes
+    if not found.count_checked:
+        warnings.append("the roots disagree with the Wittrick-Williams count: some may be missing")
     shape_list = None
     if shapes:
         shape_list = [mode_shape(kernel, p, r.omega) for r in roots if r.omega > 0]
         timings["shapes"] = time.perf_counter() - t2
     return Solution(
-        scene, omega, mult, conv, formulation, kernel.origin, timings, shape_list, warnings
+        scene,
+        omega,
+        mult,
+        conv,
+        formulation,
+        kernel.origin,
+        timings,
+        found.count_checked,
+        shape_list,
+        warnings,
     )
