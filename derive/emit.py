@@ -95,10 +95,12 @@ SPRING_MASS_COUNT = '''
 
 @njit(cache=True)
 def spring_mass_stiffness(beta, kappa, mu):
-    """Pivot of the mass degree of freedom (k - m w^2, sign only) and the condensed
-    stiffness it adds to the node's Y (units L = EI = 1)."""
+    """Pivot of the mass degree of freedom (k - m w^2 over k) and the condensed stiffness
+    it adds to the node's Y, -shear / pivot (units L = EI = 1, B = U_spring U_mass)."""
 $stiffness
-    return pivot, added
+    if pivot == 0.0:
+        return 0.0, PENALTY  # at the oscillator frequency the branch pins the node
+    return pivot, -shear / pivot
 '''
 
 SPRING_MASS_COUNT_LOOP = """\
@@ -106,9 +108,9 @@ n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
 for i in range(n):
     q = 3 + ATTACHMENT_STRIDE * i
     rho = (p[q] - pos) / L
-    pos = p[q]
-    if rho > 0.0:
+    if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
         count += segment_count(S, U, beta, rho)
+    pos = p[q]
     pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
     if pivot < 0.0:
         count += 1
@@ -153,9 +155,7 @@ def _spring_mass_functions() -> str:
     tip = assignments(["geometric", "shear"], [geometric, shear], indent="")
     # node stiffness of the condensed branch: F = -(B10 / B00) Y (paper Eq. (3) eliminated)
     col_nd = spring_mass.tip_column(S.kappa, S.mu, S.beta**2)
-    stiffness = assignments(
-        ["pivot", "added"], [col_nd[0], sp.cancel(-col_nd[1] / col_nd[0])], indent=""
-    )
+    stiffness = assignments(["pivot", "shear"], [col_nd[0], col_nd[1]], indent="")
     return Template(SPRING_MASS_FUNCTIONS + SPRING_MASS_COUNT).substitute(
         step=_indent(_compound_step(C), 4),
         tip=_indent(tip, 4),

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "d481705185eb1d5f9a4d3a2003a1027ea24e59b4"
+SIGNATURE = "417d04ac521295e146b10e00d44561917ced83f7"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -35,7 +35,10 @@ ATTACHMENT_STRIDE = 1
 PAPER = 0
 STABLE = 1
 #: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
-PENALTY = 1e40
+PENALTY = 1e60
+#: A first segment shorter than this (units of L) is merged into the end node by the count:
+#: its stiffness (~12/rho^3) must stay far below PENALTY.
+MERGE_LENGTH = 1e-15
 #: Longest piece (in lam*l) carried by one Riccati step of the count.
 RICCATI_STEP = 1.0
 
@@ -338,6 +341,8 @@ def riccati_count(S, U, beta, rho):
     detX = U00*U11 + U00*t0 - U00*t1 - U01*U10 + U01*t15 - U01*t4 + U03*U10*s01 - U10*t11 + U11*t8 - U11*t9 - t0*t9 + t11*t15 + t16*t17 - t16*t18
     detBP = -t17 + t18
     m00 = -U02*t5 + U12*t10
+    if detX == 0.0:
+        detX = 5e-324  # exactly at a clamped-piece frequency: take one side
     n = 0
     if detX * detBP < 0.0:
         n = 1

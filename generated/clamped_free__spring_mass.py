@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "8fed85ab68d7b3e9a732829bf2b9c93e6bc9ebcd"
+SIGNATURE = "4291b241550892d9e9f9d4015016068c2a19eccb"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -35,7 +35,10 @@ ATTACHMENT_STRIDE = 3
 PAPER = 0
 STABLE = 1
 #: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
-PENALTY = 1e40
+PENALTY = 1e60
+#: A first segment shorter than this (units of L) is merged into the end node by the count:
+#: its stiffness (~12/rho^3) must stay far below PENALTY.
+MERGE_LENGTH = 1e-15
 #: Longest piece (in lam*l) carried by one Riccati step of the count.
 RICCATI_STEP = 1.0
 H_I1_INDEX = 0  # H_I1 = [1 0 0 0] picks Y (paper Eq. (3))
@@ -262,12 +265,14 @@ def spring_mass_tip(k, m, omega):
 
 @njit(cache=True)
 def spring_mass_stiffness(beta, kappa, mu):
-    """Pivot of the mass degree of freedom (k - m w^2, sign only) and the condensed
-    stiffness it adds to the node's Y (units L = EI = 1)."""
+    """Pivot of the mass degree of freedom (k - m w^2 over k) and the condensed stiffness
+    it adds to the node's Y, -shear / pivot (units L = EI = 1, B = U_spring U_mass)."""
     t0 = beta**4*mu
     pivot = 1.0 - t0/kappa
-    added = kappa*t0/(-kappa + t0)
-    return pivot, added
+    shear = t0
+    if pivot == 0.0:
+        return 0.0, PENALTY  # at the oscillator frequency the branch pins the node
+    return pivot, -shear / pivot
 
 
 @njit(cache=True)
@@ -387,6 +392,8 @@ def riccati_count(S, U, beta, rho):
     detX = U00*U11 + U00*t0 - U00*t1 - U01*U10 + U01*t15 - U01*t4 + U03*U10*s01 - U10*t11 + U11*t8 - U11*t9 - t0*t9 + t11*t15 + t16*t17 - t16*t18
     detBP = -t17 + t18
     m00 = -U02*t5 + U12*t10
+    if detX == 0.0:
+        detX = 5e-324  # exactly at a clamped-piece frequency: take one side
     n = 0
     if detX * detBP < 0.0:
         n = 1
@@ -429,9 +436,9 @@ def count_below(omega, p):
     for i in range(n):
         q = 3 + ATTACHMENT_STRIDE * i
         rho = (p[q] - pos) / L
-        pos = p[q]
-        if rho > 0.0:
+        if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
             count += segment_count(S, U, beta, rho)
+        pos = p[q]
         pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
         if pivot < 0.0:
             count += 1

@@ -25,3 +25,11 @@ def reference() -> dict[str, list[float]]:
 @pytest.fixture(scope="session")
 def data_dir() -> Path:
     return DATA
+
+
+# Property tests: deterministic in CI (same examples every run), random locally.
+from hypothesis import settings  # noqa: E402
+
+settings.register_profile("ci", derandomize=True, print_blob=True)
+if os.environ.get("CI"):
+    settings.load_profile("ci")

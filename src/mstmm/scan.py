@@ -264,7 +264,8 @@ def _certify(search: _Search, roots: list[Root], lo: float, hi: float):
     checked = _count(out) == total
     if not checked:
         notes.append(f"count says {total} roots in ({lo:.6g}, {hi:.6g}), found {_count(out)}")
-    return _merge(fixed + out), checked, notes
+    # pieces are disjoint: no duplicates to merge, and close roots must stay apart
+    return sorted(fixed + out, key=lambda r: r.omega), checked, notes
 
 
 def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root]:

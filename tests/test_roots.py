@@ -1,0 +1,159 @@
+"""The scanner never misses a root: the count against the reference, multiplicities, properties.
+
+The reference is ``tests/reference_model.py`` (mpmath, global assembly and its
+own Wittrick-Williams count on the exact segment stiffness), independent of
+the transfer-matrix kernels under test.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import reference_model as ref
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import mstmm
+from mstmm.scene import BOUNDARY_KINDS, scene_from_dict
+
+PAIRS = [(a, b) for a in BOUNDARY_KINDS for b in BOUNDARY_KINDS]
+
+
+def make(left, right, atts, L=1.0, EI=1.0, mbar=1.0):
+    beam = {"length": L, "EI": EI, "mass_per_length": mbar, "left": left, "right": right}
+    return scene_from_dict(
+        {
+            "beam": beam,
+            "attachments": [{"type": "spring_mass", "x": x, "k": k, "m": m} for x, k, m in atts],
+        }
+    )
+
+
+def rel(a, b):
+    return abs(float(a) - float(b)) / abs(float(b))
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_count_matches_reference_count(left, right):
+    rng = np.random.default_rng(abs(hash((left, right))) % 2**32)
+    atts = [
+        (float(x), float(k), float(m))
+        for x, k, m in zip(
+            rng.uniform(0, 1, 3), 10 ** rng.uniform(0, 4, 3), 10 ** rng.uniform(-2, 0, 3)
+        )
+    ]
+    sc = make(left, right, atts)
+    kernel = mstmm.kernel_for(sc)
+    p = mstmm.parameter_vector(sc)
+    ws = np.concatenate([[1e-3, 0.5], np.linspace(1.0, 3000.0, 25)])
+    got = kernel.count_below(ws, p)
+    exact = [ref.count_below(sc, w, dps=30) for w in ws]
+    assert list(got) == exact
+
+
+def test_identical_oscillators_at_one_point_give_a_double_root():
+    """Three identical spring-masses at x = 0.5: sqrt(k/m) is a root of multiplicity 2."""
+    sc = make("clamped", "free", [(0.5, 100.0, 1.0)] * 3)
+    sol = mstmm.solve(sc, modes=6, shapes=False)
+    exact = ref.frequencies(sc, 6, dps=30)
+    assert sol.count_checked
+    assert max(rel(a, b) for a, b in zip(sol.omega, exact)) < 1e-13
+    i = int(np.argmin(np.abs(sol.omega - 10.0)))
+    assert sol.multiplicity[i] == 2
+    assert abs(sol.omega[i] - 10.0) < 1e-13 * 10.0
+
+
+def test_close_pair_tuned_to_a_beam_mode():
+    """Two spring-masses 1e-7 L apart tuned to mode 2 of a pinned beam: every close root."""
+    w2 = (2 * math.pi) ** 2
+    m = 0.01
+    sc = make("pinned", "pinned", [(0.3, w2**2 * m, m), (0.3 + 1e-7, w2**2 * m, m)])
+    sol = mstmm.solve(sc, modes=8, shapes=False)
+    exact = ref.frequencies(sc, 8, dps=30)
+    assert sol.count_checked
+    assert len(sol.omega) == 8
+    assert max(rel(a, b) for a, b in zip(sol.omega, exact)) < 1e-12
+
+
+def test_free_free_gives_two_zeros_then_elastic_modes():
+    """Free-free: 0 twice, then cos b cosh b = 1, b1 = 4.730040744862704."""
+    sc = make("free", "free", [], L=2.0, EI=3.0, mbar=0.5)
+    sol = mstmm.solve(sc, modes=5, shapes=False)
+    assert list(sol.omega[:2]) == [0.0, 0.0]
+    assert list(sol.multiplicity[:2]) == [2, 2]
+    b1 = 4.730040744862704
+    assert rel(sol.omega[2], (b1 / 2.0) ** 2 * math.sqrt(3.0 / 0.5)) < 1e-13
+    exact = ref.frequencies(sc, 5, dps=30)
+    assert max(rel(a, b) for a, b in zip(sol.omega[2:], exact[2:])) < 1e-13
+
+
+def test_json_reports_multiplicity_and_count(tmp_path, data_dir):
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "mstmm",
+            "solve",
+            str(data_dir / "wu_chou_1998.toml"),
+            "--format",
+            "json",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    res = json.loads(out.stdout)
+    assert res["count_checked"] is True
+    assert res["multiplicity"] == [1] * 10
+
+
+# --- property test: random scenes, no missed and no spurious root in the lowest 20 ----------
+
+DECADES = st.floats(min_value=-3.0, max_value=3.0)
+
+
+@st.composite
+def scenes(draw):
+    left = draw(st.sampled_from(BOUNDARY_KINDS))
+    right = draw(st.sampled_from(BOUNDARY_KINDS))
+    n = draw(st.integers(min_value=1, max_value=50))
+    # positions on a 1e-6 L lattice, the ends included; coincident positions are common
+    position = st.one_of(
+        st.sampled_from([0.0, 1.0]), st.integers(1, 999_999).map(lambda i: i / 1e6)
+    )
+    base = draw(st.lists(position, min_size=1, max_size=n))
+    xs = [draw(st.sampled_from(base)) for _ in range(n)]
+    atts = [(x, 10 ** draw(DECADES) * 10.0, 10 ** draw(DECADES) * 0.1) for x in xs]
+    return make(left, right, atts)
+
+
+@settings(
+    max_examples=200,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+)
+@given(scenes())
+def test_property_no_missed_or_spurious_root(sc):
+    """Each reported omega_i is a root of the reference (the reference count jumps across
+    omega_i (1 +- 1e-9) past index i) and none is missing below it."""
+    sol = mstmm.solve(sc, modes=20, shapes=False)
+    assert len(sol.omega) == 20
+    assert sol.count_checked, sol.warnings
+    delta = 1e-9
+    i = 0
+    while i < 20:
+        w = float(sol.omega[i])
+        mult = int(sol.multiplicity[i])
+        if w == 0.0:
+            assert mult == ref.rigid_body_mode_count(sc)
+        else:
+            below = ref.count_below(sc, w * (1 - delta), dps=30)
+            above = ref.count_below(sc, w * (1 + delta), dps=30)
+            assert below <= i and above >= i + mult, (i, w, below, above)
+        i += mult
