@@ -24,6 +24,9 @@ from .compound import pair_index
 from .printer import assignments, code
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
+FORMULATION_TEMPLATE = TEMPLATE.with_name("formulation.py.tmpl")
+#: Formulations emitted into every kernel (``delta_<name>`` in the kernel template).
+FORMULATIONS = ("stable", "paper")
 
 
 def _indent(lines: list[str], n: int) -> str:
@@ -236,6 +239,10 @@ def kernel_source(topology: Topology) -> str:
         rigid_body_modes=topology.rigid_body_modes,
         stride=len(ATTACHMENT_PARAMETERS["spring_mass"]) if has_sm else 1,
         rigid_body_constants=rb_constants,
+        formulation_functions="\n\n".join(
+            Template(FORMULATION_TEMPLATE.read_text()).substitute(name=name).strip() + "\n"
+            for name in FORMULATIONS
+        ),
         krylov_series=_indent(_series_lines(special.KRYLOV), 8),
         krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
         compound_series=_indent(_series_lines(special.COMPOUND), 8),

@@ -22,18 +22,16 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "417d04ac521295e146b10e00d44561917ced83f7"
+SIGNATURE = "4c93708179d3b78963d738c17486a0cc3dc2db65"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
 END_PAIR = 5
 RIGID_BODY_MODES = 0
 ATTACHMENT_STRIDE = 1
-PAPER = 0
-STABLE = 1
 #: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
 PENALTY = 1e60
 #: A first segment shorter than this (units of L) is merged into the end node by the count:
@@ -41,6 +39,8 @@ PENALTY = 1e60
 MERGE_LENGTH = 1e-15
 #: Longest piece (in lam*l) carried by one Riccati step of the count.
 RICCATI_STEP = 1.0
+#: Scan nodes per pi of beta = lam L in ``lowest`` (beam modes are about pi apart).
+NODES_PER_MODE = 24
 
 
 @njit(cache=True)
@@ -475,33 +475,29 @@ def delta_paper(omega, p):
     return lu_logdet(u_bar_paper(omega, p))
 
 
-@njit(cache=True)
-def delta(omega, p, formulation):
-    """The characteristic function of the chosen formulation, as (mantissa, log)."""
-    if formulation == PAPER:
-        return delta_paper(omega, p)
-    return delta_stable(omega, p)
+# Scan loop and refinement, one copy per formulation: an entry point compiles only
+# the characteristic function it uses.
 
 
 @njit(cache=True)
-def evaluate(omegas, p, formulation, mant, logs):
-    """Fill mant[i], logs[i] with the characteristic function at omegas[i] (the scan loop)."""
+def evaluate_stable(omegas, p, mant, logs):
+    """mant[i], logs[i] = delta_stable(omegas[i], p): the scan loop."""
     for i in range(omegas.shape[0]):
-        mant[i], logs[i] = delta(omegas[i], p, formulation)
+        mant[i], logs[i] = delta_stable(omegas[i], p)
 
 
 @njit(cache=True)
-def scaled(omega, p, formulation, ref):
+def scaled_stable(omega, p, ref):
     """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
-    m, g = delta(omega, p, formulation)
+    m, g = delta_stable(omega, p)
     return m * math.exp(min(g - ref, 700.0))
 
 
 @njit(cache=True)
-def refine(a, b, p, formulation, rtol, maxiter):
+def refine_stable(a, b, p, rtol, maxiter):
     """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
-    ma, ga = delta(a, p, formulation)
-    mb, gb = delta(b, p, formulation)
+    ma, ga = delta_stable(a, p)
+    mb, gb = delta_stable(b, p)
     ref = max(ga, gb)
     fa = ma * math.exp(ga - ref)
     fb = mb * math.exp(gb - ref)
@@ -561,5 +557,225 @@ def refine(a, b, p, formulation, rtol, maxiter):
             b += d
         else:
             b += tol if m > 0.0 else -tol
-        fb = scaled(b, p, formulation, ref)
+        fb = scaled_stable(b, p, ref)
     return b, maxiter, False
+
+
+@njit(cache=True)
+def evaluate_paper(omegas, p, mant, logs):
+    """mant[i], logs[i] = delta_paper(omegas[i], p): the scan loop."""
+    for i in range(omegas.shape[0]):
+        mant[i], logs[i] = delta_paper(omegas[i], p)
+
+
+@njit(cache=True)
+def scaled_paper(omega, p, ref):
+    """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
+    m, g = delta_paper(omega, p)
+    return m * math.exp(min(g - ref, 700.0))
+
+
+@njit(cache=True)
+def refine_paper(a, b, p, rtol, maxiter):
+    """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
+    ma, ga = delta_paper(a, p)
+    mb, gb = delta_paper(b, p)
+    ref = max(ga, gb)
+    fa = ma * math.exp(ga - ref)
+    fb = mb * math.exp(gb - ref)
+    if fa == 0.0:
+        return a, 0, True
+    if fb == 0.0:
+        return b, 0, True
+    if (fa > 0.0) == (fb > 0.0):
+        return 0.5 * (a + b), 0, False
+    c = a
+    fc = fa
+    d = b - a
+    e = d
+    for it in range(maxiter):
+        if (fb > 0.0) == (fc > 0.0):
+            c = a
+            fc = fa
+            d = b - a
+            e = d
+        if abs(fc) < abs(fb):
+            a = b
+            b = c
+            c = a
+            fa = fb
+            fb = fc
+            fc = fa
+        tol = 2.0 * 2.220446049250313e-16 * abs(b) + 0.5 * rtol * abs(b)
+        m = 0.5 * (c - b)
+        if abs(m) <= tol or fb == 0.0:
+            return b, it, True
+        if abs(e) >= tol and abs(fa) > abs(fb):
+            s = fb / fa
+            if a == c:
+                pp = 2.0 * m * s
+                q = 1.0 - s
+            else:
+                q = fa / fc
+                r = fb / fc
+                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if pp > 0.0:
+                q = -q
+            else:
+                pp = -pp
+            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
+                e = d
+                d = pp / q
+            else:
+                d = m
+                e = d
+        else:
+            d = m
+            e = d
+        a = b
+        fa = fb
+        if abs(d) > tol:
+            b += d
+        else:
+            b += tol if m > 0.0 else -tol
+        fb = scaled_paper(b, p, ref)
+    return b, maxiter, False
+
+
+@njit(cache=True)
+def isolate(a, b, na, nb, p, out, k, modes):
+    """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
+    by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
+    width is a multiple root. Writes out[k:] (with multiplicity, up to modes); returns
+    the new k, or -1 if the bisection stack overflows."""
+    cap = 256
+    sa = np.empty(cap)
+    sb = np.empty(cap)
+    sna = np.empty(cap, dtype=np.int64)
+    snb = np.empty(cap, dtype=np.int64)
+    sa[0] = a
+    sb[0] = b
+    sna[0] = na
+    snb[0] = nb
+    top = 1
+    while top > 0 and k < modes:
+        top -= 1
+        a = sa[top]
+        b = sb[top]
+        na = sna[top]
+        nb = snb[top]
+        if nb <= na:
+            continue
+        if b - a <= 8.9e-16 * b:
+            for _ in range(nb - na):
+                if k < modes:
+                    out[k] = 0.5 * (a + b)
+                    k += 1
+            continue
+        if nb - na == 1:
+            ma = delta_stable(a, p)[0]
+            mb = delta_stable(b, p)[0]
+            if (ma > 0.0) != (mb > 0.0):
+                root, its, ok = refine_stable(a, b, p, 0.0, 200)
+                out[k] = root
+                k += 1
+                continue
+        if top + 2 > cap:
+            return -1
+        mid = 0.5 * (a + b)
+        nm = count_below(mid, p)
+        sa[top] = mid
+        sb[top] = b
+        sna[top] = nm
+        snb[top] = nb
+        sa[top + 1] = a
+        sb[top + 1] = mid
+        sna[top + 1] = na
+        snb[top + 1] = nm
+        top += 2
+    return k
+
+
+@njit(cache=True)
+def lowest(p, modes, out):
+    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
+
+    Scan of the stable function on a grid uniform in beta with Brent on each
+    sign change; then the band is cut midway between the roots found and the
+    count must give exactly one root per piece; a piece that holds more (double
+    or close roots) is searched by bisection on the count. Returns False only
+    when the scan cannot start (a root below the lowest grid node) or the
+    bisection overflows: the caller then runs the full search.
+    """
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    scale = math.sqrt(EI / mbar) / (L * L)  # omega = scale * beta^2
+    k = 0
+    while k < RIGID_BODY_MODES and k < modes:
+        out[k] = 0.0
+        k += 1
+    if k >= modes:
+        return True
+    b_hi = (modes + 1.5) * math.pi
+    c_hi = count_below(scale * b_hi * b_hi, p)
+    while c_hi < modes:
+        b_hi *= 1.5
+        c_hi = count_below(scale * b_hi * b_hi, p)
+    w_hi = scale * b_hi * b_hi
+    b_lo = 1e-3
+    w_lo = scale * b_lo * b_lo
+    c_lo = count_below(w_lo, p)
+    if c_lo != RIGID_BODY_MODES:
+        return False
+    cand = np.empty(modes)
+    nc = 0
+    w_prev = w_lo
+    m_prev = delta_stable(w_prev, p)[0]
+    nodes = int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1
+    for j in range(1, nodes):
+        b = b_lo + (b_hi - b_lo) * j / (nodes - 1)
+        w = scale * b * b
+        m = delta_stable(w, p)[0]
+        if m == 0.0:
+            w *= 1.0 + 4.4e-16
+            m = delta_stable(w, p)[0]
+        if (m > 0.0) != (m_prev > 0.0):
+            root, its, ok = refine_stable(w_prev, w, p, 0.0, 200)
+            cand[nc] = root
+            nc += 1
+            if nc == modes - k:
+                break
+        w_prev = w
+        m_prev = m
+    a = w_lo
+    na = c_lo
+    for i in range(nc):
+        if i + 1 < nc:
+            b = 0.5 * (cand[i] + cand[i + 1])
+            nb = count_below(b, p)
+        else:
+            b = w_hi
+            nb = c_hi
+        if nb - na == 1 and a < cand[i] < b:
+            out[k] = cand[i]
+            k += 1
+        else:
+            k = isolate(a, b, na, nb, p, out, k, modes)
+            if k < 0:
+                return False
+        if k >= modes:
+            return True
+        a = b
+        na = nb
+    if nc == 0:
+        k = isolate(w_lo, w_hi, c_lo, c_hi, p, out, k, modes)
+    return k >= modes
+
+
+@njit(cache=True, parallel=True)
+def sweep_lowest(P, modes, out, certified):
+    """``lowest`` for every parameter vector (row of P), in parallel over the rows."""
+    for i in prange(P.shape[0]):
+        certified[i] = lowest(P[i], modes, out[i])

@@ -63,11 +63,22 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--modes", type=_positive_int, help="the N lowest frequencies (default 10)")
     g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
     s.add_argument("--format", choices=("table", "json", "csv"), default="table")
-    s.add_argument("--formulation", choices=tuple(FORMULATIONS), default="stable")
+    s.add_argument("--formulation", choices=FORMULATIONS, default="stable")
     s.add_argument("--shapes", action="store_true", help="include mode shapes in JSON")
     d = sub.add_parser("derive", help="write the kernel of a scene's topology, print where")
     d.add_argument("scene")
     d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
+    v = sub.add_parser("sweep", help="lowest frequencies over a parameter study (all cores)")
+    v.add_argument("scene")
+    v.add_argument(
+        "--vary",
+        action="append",
+        required=True,
+        metavar="PATH=RANGE",
+        help="e.g. attachments[2].k=LOG:1e3:1e9:200, beam.EI=LIN:1e4:1e5:50 or a list 1,2,3",
+    )
+    v.add_argument("--modes", type=_positive_int, default=5)
+    v.add_argument("--out", type=Path, help="CSV file (default: standard output)")
     w = sub.add_parser("show", help="print the symbolic U_bar of a scene (and det when small)")
     w.add_argument("scene")
     return ap
@@ -107,9 +118,45 @@ def _solve(args) -> int:
             flag = "" if c else "  NOT CONVERGED"
             print(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
         t = sol.timings
-        print(f"time: load {t['load']:.3f} s, scan+refine {t['scan_refine'] * 1e3:.2f} ms")
+        print(
+            f"time: load {t['load']:.3f} s, compile {t['compile']:.3f} s, "
+            f"scan+refine {t['scan_refine'] * 1e3:.2f} ms, count checked: {sol.count_checked}"
+        )
     for warning in sol.warnings:
         print(f"mstmm: warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _sweep(args) -> int:
+    import os
+    import tempfile
+
+    from .sweep import parse_range, sweep
+
+    scene = _scene(args.scene)
+    vary = {}
+    for item in args.vary:
+        path, sep, spec = item.partition("=")
+        if not sep:
+            raise SceneError("<command line>", "--vary", "expected PATH=RANGE", item)
+        try:
+            vary[path] = parse_range(spec)
+        except ValueError:
+            raise SceneError("<command line>", f"--vary {path}", "bad range", spec) from None
+    omega = sweep(scene, vary, modes=args.modes)
+    buf = io.StringIO()
+    wr = csv.writer(buf, lineterminator="\n")
+    wr.writerow([*vary, *(f"omega_{i + 1}" for i in range(args.modes))])
+    for j in range(omega.shape[0]):
+        wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, omega[j].tolist())])
+    if args.out is None:
+        sys.stdout.write(buf.getvalue())
+        return 0
+    fd, tmp = tempfile.mkstemp(dir=args.out.parent or ".", prefix=".tmp-sweep-")
+    with os.fdopen(fd, "w") as fh:
+        fh.write(buf.getvalue())
+    os.replace(tmp, args.out)
+    print(args.out)
     return 0
 
 
@@ -150,7 +197,8 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
     args = build_parser().parse_args(argv)
     try:
-        return {"solve": _solve, "derive": _derive, "show": _show}[args.command](args)
+        commands = {"solve": _solve, "sweep": _sweep, "derive": _derive, "show": _show}
+        return commands[args.command](args)
     except SceneError as exc:
         print(f"mstmm: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT

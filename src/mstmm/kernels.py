@@ -35,9 +35,8 @@ from .topology import Topology
 #: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
 KERNEL_FORMAT = 1
 
-PAPER = 0
-STABLE = 1
-FORMULATIONS = {"paper": PAPER, "stable": STABLE}
+#: Characteristic functions every kernel carries (``evaluate_<name>``, ``refine_<name>``).
+FORMULATIONS = ("stable", "paper")
 
 
 class KernelError(RuntimeError):
@@ -166,7 +165,7 @@ class Kernel:
         omegas = np.ascontiguousarray(omegas, dtype=np.float64)
         mant = np.empty_like(omegas)
         logs = np.empty_like(omegas)
-        self.module.evaluate(omegas, _params(p), FORMULATIONS[formulation], mant, logs)
+        self._entry("evaluate", formulation)(omegas, _params(p), mant, logs)
         return mant, logs
 
     def delta(
@@ -186,10 +185,32 @@ class Kernel:
         maxiter: int = 200,
     ) -> tuple[float, int, bool]:
         """Root in a sign-change bracket ``[a, b]``: ``(omega, iterations, converged)``."""
-        root, its, ok = self.module.refine(
-            float(a), float(b), _params(p), FORMULATIONS[formulation], float(rtol), int(maxiter)
-        )
+        refine = self._entry("refine", formulation)
+        root, its, ok = refine(float(a), float(b), _params(p), float(rtol), int(maxiter))
         return float(root), int(its), bool(ok)
+
+    def _entry(self, kind: str, formulation: str):
+        if formulation not in FORMULATIONS:
+            raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
+        return getattr(self.module, f"{kind}_{formulation}")
+
+    def lowest(self, p: np.ndarray, modes: int) -> tuple[np.ndarray, bool]:
+        """The lowest ``modes`` frequencies by the kernel's own certified scan.
+
+        Returns ``(omega, certified)``; when the count does not confirm the scan
+        (double or very close roots), use :func:`mstmm.scan.find_roots`.
+        """
+        out = np.zeros(int(modes))
+        ok = self.module.lowest(_params(p), int(modes), out)
+        return out, bool(ok)
+
+    def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`lowest` for every row of ``P``, in parallel on all cores (numba prange)."""
+        P = np.ascontiguousarray(P, dtype=np.float64)
+        out = np.zeros((P.shape[0], int(modes)))
+        certified = np.zeros(P.shape[0], dtype=np.bool_)
+        self.module.sweep_lowest(P, int(modes), out, certified)
+        return out, certified
 
     def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
         """Number of natural frequencies below each ``omega`` (Wittrick-Williams)."""

@@ -285,6 +285,18 @@ def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root
     return _isolate(search, a, mid, na, nm) + _isolate(search, mid, b, nm, nb)
 
 
+def simple_roots(omega: np.ndarray, rigid: int) -> list[Root]:
+    """Roots from an ascending array repeated by multiplicity (zeros: the rigid-body modes)."""
+    roots: list[Root] = []
+    for w in omega:
+        if roots and roots[-1].omega == w:
+            last = roots[-1]
+            roots[-1] = Root(last.omega, last.multiplicity + 1, True, last.how)
+        else:
+            roots.append(Root(float(w), 1, True, "rigid" if w == 0.0 else "sign"))
+    return roots
+
+
 def _floor(p, osc) -> float:
     """Lowest scanned frequency: below every beam mode and every oscillator."""
     w = float(omega_of(1e-3, p))

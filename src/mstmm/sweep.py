@@ -1,0 +1,111 @@
+"""Parameter studies: one compiled kernel, many parameter vectors, all cores.
+
+``sweep(scene, {"attachments[2].k": values, ...}, modes=N)`` varies the named
+fields together (equal-length arrays, point by point) and returns the lowest
+``N`` frequencies of every point, an ``(n_points, N)`` array. The kernel's
+certified scan runs over the points with numba ``prange``; a point it cannot
+certify (double or very close roots) goes through the full search
+(:func:`mstmm.scan.find_roots`); a point even that cannot certify is NaN, with
+a warning, never a silent guess.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from collections.abc import Mapping
+
+import numpy as np
+
+from .kernels import Kernel, load_kernel
+from .scan import find_roots
+from .scene import Scene, SceneError
+from .topology import ATTACHMENT_PARAMETERS, parameter_vector, topology_of
+
+_BEAM_FIELDS = {"length": 0, "EI": 1, "mass_per_length": 2}
+_ATTACHMENT = re.compile(r"attachments\[(\d+)\]\.(\w+)$")
+SOURCE = "<sweep>"
+
+
+def column(scene: Scene, path: str) -> int:
+    """Index in the parameter vector of a field path like ``beam.EI`` or ``attachments[2].k``."""
+    if path.startswith("beam.") and path[5:] in _BEAM_FIELDS:
+        return _BEAM_FIELDS[path[5:]]
+    match = _ATTACHMENT.match(path)
+    if match:
+        i, name = int(match.group(1)), match.group(2)
+        if i >= len(scene.attachments):
+            raise SceneError(SOURCE, path, f"the scene has {len(scene.attachments)} attachments", i)
+        fields = ATTACHMENT_PARAMETERS[scene.attachments[i].kind]
+        if name in fields:
+            return 3 + 3 * i + fields.index(name)
+    raise SceneError(
+        SOURCE, path, "not a parameter (beam.length|EI|mass_per_length, attachments[i].x|k|m)", path
+    )
+
+
+def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray:
+    """One parameter vector per point, attachments re-sorted by ``x`` where ``x`` varies."""
+    values = {path: np.atleast_1d(np.asarray(v, dtype=float)) for path, v in vary.items()}
+    sizes = {v.shape[0] for v in values.values()}
+    if len(sizes) != 1:
+        raise SceneError(SOURCE, ",".join(values), "varied arrays differ in length", sorted(sizes))
+    n = sizes.pop()
+    P = np.tile(parameter_vector(scene), (n, 1))
+    for path, v in values.items():
+        bad = ~np.isfinite(v) | (v <= 0.0 if not path.endswith(".x") else v < 0.0)
+        if bad.any():
+            raise SceneError(SOURCE, path, "values must be finite and > 0", float(v[bad][0]))
+        P[:, column(scene, path)] = v
+    if len(scene.attachments):
+        rec = P[:, 3:].reshape(n, -1, 3)
+        outside = rec[:, :, 0] > P[:, :1]
+        if outside.any():
+            i, j = np.argwhere(outside)[0]
+            raise SceneError(SOURCE, f"attachments[{j}].x", "must lie in [0, length]", rec[i, j, 0])
+        order = np.argsort(rec[:, :, 0], axis=1, kind="stable")
+        P[:, 3:] = np.take_along_axis(rec, order[:, :, None], axis=1).reshape(n, -1)
+    return P
+
+
+def sweep(
+    scene: Scene,
+    vary: Mapping[str, np.ndarray],
+    modes: int = 5,
+    *,
+    kernel: Kernel | None = None,
+) -> np.ndarray:
+    """Lowest ``modes`` frequencies (rad/s) at every point of a parameter study."""
+    if kernel is None:
+        kernel = load_kernel(topology_of(scene))
+    P = parameter_matrix(scene, vary)
+    out, certified = kernel.sweep(P, modes)
+    unsure = 0
+    for i in np.flatnonzero(~certified):
+        found = find_roots(kernel, P[i], modes=modes)
+        omega = [r.omega for r in found.roots for _ in range(r.multiplicity)]
+        if found.count_checked and len(omega) == modes:
+            out[i] = omega
+        else:
+            out[i] = math.nan
+            unsure += 1
+    if unsure:
+        warnings.warn(
+            f"{unsure} of {len(P)} points could not be certified by the root count: set to NaN",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return out
+
+
+def parse_range(text: str) -> np.ndarray:
+    """``LOG:lo:hi:n``, ``LIN:lo:hi:n`` or a comma-separated list of values."""
+    kind, _, rest = text.partition(":")
+    if kind.upper() in ("LOG", "LIN"):
+        lo, hi, n = rest.split(":")
+        lo_f, hi_f, n_i = float(lo), float(hi), int(n)
+        if kind.upper() == "LOG":
+            return np.logspace(math.log10(lo_f), math.log10(hi_f), n_i)
+        return np.linspace(lo_f, hi_f, n_i)
+    return np.array([float(v) for v in text.split(",")])
