@@ -112,3 +112,19 @@ def test_cli_sweep_bad_path_exits_2(tmp_path, data_dir):
     assert res.returncode == 2
     assert res.stderr.count("\n") == 1 and "attachments[7].k" in res.stderr
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_sweep_on_a_dask_cluster_matches_local():
+    """The same call on a distributed.LocalCluster started here (two worker processes)."""
+    import distributed
+    scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+    ks = np.logspace(3, 9, 9)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as lc:
+        remote = sweep(
+            scene, {"attachments[2].k": ks}, modes=4, scheduler=lc.scheduler_address, chunk=4
+        )
+    for k, row in zip(ks[::4], remote[::4]):
+        atts = list(scene.attachments)
+        atts[2] = {"type": "spring_mass", "x": atts[2].x, "k": float(k), "m": atts[2].m}
+        exact = np.array(ref.frequencies(scene.replace(attachments=atts), 4, dps=30), float)
+        assert np.max(np.abs(row - exact) / exact) < 1e-13

@@ -79,6 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     v.add_argument("--modes", type=_positive_int, default=5)
     v.add_argument("--out", type=Path, help="CSV file (default: standard output)")
+    v.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://HOST:8786")
     w = sub.add_parser("show", help="print the symbolic U_bar of a scene (and det when small)")
     w.add_argument("scene")
     return ap
@@ -143,7 +144,7 @@ def _sweep(args) -> int:
             vary[path] = parse_range(spec)
         except ValueError:
             raise SceneError("<command line>", f"--vary {path}", "bad range", spec) from None
-    omega = sweep(scene, vary, modes=args.modes)
+    omega = sweep(scene, vary, modes=args.modes, scheduler=args.scheduler)
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
     wr.writerow([*vary, *(f"omega_{i + 1}" for i in range(args.modes))])

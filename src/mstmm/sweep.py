@@ -75,12 +75,25 @@ def sweep(
     modes: int = 5,
     *,
     kernel: Kernel | None = None,
+    scheduler: str | None = None,
+    chunk: int = 2000,
 ) -> np.ndarray:
-    """Lowest ``modes`` frequencies (rad/s) at every point of a parameter study."""
-    if kernel is None:
-        kernel = load_kernel(topology_of(scene))
+    """Lowest ``modes`` frequencies (rad/s) at every point of a parameter study.
+
+    ``scheduler`` (e.g. ``"tcp://host:8786"``, or a ``distributed.Client``) runs the
+    points in chunks of ``chunk`` on an existing Dask cluster (extra ``mstmm[dask]``);
+    each worker loads (or derives) the same kernel and sweeps its chunk on all its cores.
+    """
     P = parameter_matrix(scene, vary)
-    out, certified = kernel.sweep(P, modes)
+    topology = topology_of(scene)
+    if scheduler is not None:
+        out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk)
+        if kernel is None and not certified.all():
+            kernel = load_kernel(topology)
+    else:
+        if kernel is None:
+            kernel = load_kernel(topology)
+        out, certified = kernel.sweep(P, modes)
     unsure = 0
     for i in np.flatnonzero(~certified):
         found = find_roots(kernel, P[i], modes=modes)
@@ -97,6 +110,29 @@ def sweep(
             stacklevel=2,
         )
     return out
+
+
+def sweep_chunk(key: str, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
+    """One chunk of a sweep on a worker: the kernel of topology ``key`` over the rows of P."""
+    from .topology import Topology
+
+    return load_kernel(Topology.from_key(key)).sweep(P, modes)
+
+
+def _dask_sweep(scheduler, key: str, P: np.ndarray, modes: int, chunk: int):
+    try:
+        from distributed import Client
+    except ImportError as exc:  # pragma: no cover - depends on the installation
+        raise RuntimeError("a Dask scheduler needs the extra: pip install 'mstmm[dask]'") from exc
+    client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+    try:
+        pieces = [P[i : i + chunk] for i in range(0, len(P), chunk)]
+        futures = client.map(sweep_chunk, [key] * len(pieces), pieces, [modes] * len(pieces))
+        results = client.gather(futures)
+    finally:
+        if client is not scheduler:
+            client.close()
+    return np.concatenate([r[0] for r in results]), np.concatenate([r[1] for r in results])
 
 
 def parse_range(text: str) -> np.ndarray:
