@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "4c93708179d3b78963d738c17486a0cc3dc2db65"
+SIGNATURE = "aa7b496ad17731ec55886733d04f03ccf1f5a61e"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -648,7 +648,7 @@ def isolate(a, b, na, nb, p, out, k, modes):
     """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
     by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
     width is a multiple root. Writes out[k:] (with multiplicity, up to modes); returns
-    the new k, or -1 if the bisection stack overflows."""
+    the new k, or -1 if the bisection stack overflows or Brent does not converge."""
     cap = 256
     sa = np.empty(cap)
     sb = np.empty(cap)
@@ -678,6 +678,8 @@ def isolate(a, b, na, nb, p, out, k, modes):
             mb = delta_stable(b, p)[0]
             if (ma > 0.0) != (mb > 0.0):
                 root, its, ok = refine_stable(a, b, p, 0.0, 200)
+                if not ok:
+                    return -1
                 out[k] = root
                 k += 1
                 continue
@@ -743,6 +745,8 @@ def lowest(p, modes, out):
             m = delta_stable(w, p)[0]
         if (m > 0.0) != (m_prev > 0.0):
             root, its, ok = refine_stable(w_prev, w, p, 0.0, 200)
+            if not ok:
+                return False
             cand[nc] = root
             nc += 1
             if nc == modes - k:

@@ -56,6 +56,7 @@ class _Parser(argparse.ArgumentParser):
 
 def build_parser() -> argparse.ArgumentParser:
     ap = _Parser(prog="mstmm", description="Natural frequencies of beams by MSTMM.")
+    ap.add_argument("--debug", action="store_true", help="show tracebacks of unexpected errors")
     sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
     s = sub.add_parser("solve", help="natural frequencies and mode shapes of a scene")
     s.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
@@ -205,4 +206,14 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BAD_INPUT
     except KernelError as exc:
         print(f"mstmm: error: {exc}", file=sys.stderr)
+        return EXIT_FAILURE
+    except ImportError as exc:
+        if args.debug:
+            raise
+        print(f"mstmm: error: a dependency is missing: {exc}", file=sys.stderr)
+        return EXIT_FAILURE
+    except Exception as exc:  # one line for the user, the traceback with --debug
+        if args.debug:
+            raise
+        print(f"mstmm: error: {type(exc).__name__}: {exc} (--debug shows where)", file=sys.stderr)
         return EXIT_FAILURE
