@@ -2,19 +2,24 @@
 
 from __future__ import annotations
 
-import math
-
+import mpmath
 import numpy as np
 
 import mstmm
 
 
-def cantilever_mode(beta_L: float, xi: np.ndarray) -> np.ndarray:
-    """phi = cosh - cos - sigma (sinh - sin), sigma = (cosh b + cos b)/(sinh b + sin b)."""
-    b = beta_L
-    s = (math.cosh(b) + math.cos(b)) / (math.sinh(b) + math.sin(b))
-    z = b * xi
-    return np.cosh(z) - np.cos(z) - s * (np.sinh(z) - np.sin(z))
+def cantilever_mode(omega: float, beam, xi: np.ndarray) -> np.ndarray:
+    """phi = cosh - cos - sigma (sinh - sin), sigma = (cosh b + cos b)/(sinh b + sin b),
+    b the root of 1 + cos b cosh b nearest lam L, all in 60-digit arithmetic."""
+    mpmath.mp.dps = 60
+    guess = beam.length * (beam.mass_per_length * omega**2 / beam.EI) ** 0.25
+    b = mpmath.findroot(lambda z: 1 + mpmath.cos(z) * mpmath.cosh(z), mpmath.mpf(guess))
+    s = (mpmath.cosh(b) + mpmath.cos(b)) / (mpmath.sinh(b) + mpmath.sin(b))
+    phi = [
+        mpmath.cosh(b * z) - mpmath.cos(b * z) - s * (mpmath.sinh(b * z) - mpmath.sin(b * z))
+        for z in (mpmath.mpf(float(v)) for v in xi)
+    ]
+    return np.array([float(v) for v in phi])
 
 
 def normalised(y: np.ndarray) -> np.ndarray:
@@ -22,15 +27,15 @@ def normalised(y: np.ndarray) -> np.ndarray:
     return y / y[k]
 
 
-def test_bare_cantilever_shapes_match_closed_form():
+def test_bare_cantilever_shapes_match_closed_form_up_to_mode_20():
+    """The paper's SVD of U_bar loses a digit per pi of lam L; the march keeps ~1e-10."""
     scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
-    sol = mstmm.solve(scene, modes=4)
-    beam = scene.beam
-    for shape in sol.shapes:
-        b = beam.length * (beam.mass_per_length * shape.omega**2 / beam.EI) ** 0.25
-        exact = normalised(cantilever_mode(b, shape.x / beam.length))
-        assert np.max(np.abs(normalised(shape.Y) - exact)) < 1e-9
-        assert shape.singular_ratio < 1e-12
+    sol = mstmm.solve(scene, modes=20)
+    for n, shape in enumerate(sol.shapes, start=1):
+        exact = normalised(cantilever_mode(shape.omega, scene.beam, shape.x / scene.beam.length))
+        err = np.max(np.abs(normalised(shape.Y) - exact))
+        assert err < (1e-12 if n <= 4 else 1e-9), (n, err)
+        assert shape.singular_ratio < 1e-6  # the end matrix is singular at omega_n
 
 
 def test_hanging_masses_obey_their_equation_of_motion():
