@@ -10,7 +10,7 @@ import pytest
 import reference_model as ref
 
 import mstmm
-from mstmm.sweep import parameter_matrix, parse_range, sweep
+from mstmm.study import parameter_matrix, parse_range, sweep
 
 
 def test_sweep_matches_reference_at_every_point():

@@ -19,6 +19,7 @@ from pathlib import Path
 from .kernels import Kernel, load_kernel
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 from .solve import Solution, solve
+from .study import sweep
 from .topology import Topology, parameter_vector, topology_of
 
 __all__ = [
@@ -34,6 +35,7 @@ __all__ = [
     "parameter_vector",
     "scene_from_dict",
     "solve",
+    "sweep",
     "topology_of",
 ]
 

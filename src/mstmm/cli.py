@@ -133,7 +133,7 @@ def _sweep(args) -> int:
     import os
     import tempfile
 
-    from .sweep import parse_range, sweep
+    from .study import parse_range, sweep
 
     scene = _scene(args.scene)
     vary = {}
