@@ -145,7 +145,9 @@ def _sweep(args) -> int:
             vary[path] = parse_range(spec)
         except ValueError:
             raise SceneError("<command line>", f"--vary {path}", "bad range", spec) from None
-    omega = sweep(scene, vary, modes=args.modes, scheduler=args.scheduler)
+    omega = sweep(
+        scene, vary, modes=args.modes, scheduler=args.scheduler, progress=sys.stderr.isatty()
+    )
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
     wr.writerow([*vary, *(f"omega_{i + 1}" for i in range(args.modes))])

@@ -77,12 +77,14 @@ def sweep(
     kernel: Kernel | None = None,
     scheduler: str | None = None,
     chunk: int = 2000,
+    progress: bool = False,
 ) -> np.ndarray:
     """Lowest ``modes`` frequencies (rad/s) at every point of a parameter study.
 
     ``scheduler`` (e.g. ``"tcp://host:8786"``, or a ``distributed.Client``) runs the
     points in chunks of ``chunk`` on an existing Dask cluster (extra ``mstmm[dask]``);
     each worker loads (or derives) the same kernel and sweeps its chunk on all its cores.
+    ``progress`` draws a bar on standard error (the command line does so on a terminal).
     """
     P = parameter_matrix(scene, vary)
     topology = topology_of(scene)
@@ -93,7 +95,7 @@ def sweep(
     else:
         if kernel is None:
             kernel = load_kernel(topology)
-        out, certified = kernel.sweep(P, modes)
+        out, certified = _local_sweep(kernel, P, modes, progress)
     unsure = 0
     for i in np.flatnonzero(~certified):
         found = find_roots(kernel, P[i], modes=modes)
@@ -110,6 +112,24 @@ def sweep(
             stacklevel=2,
         )
     return out
+
+
+def _local_sweep(kernel: Kernel, P: np.ndarray, modes: int, progress: bool):
+    if not progress or len(P) < 100:
+        return kernel.sweep(P, modes)
+    import sys
+
+    parts = np.array_split(np.arange(len(P)), 40)
+    outs, certs = [], []
+    for i, idx in enumerate(parts, start=1):
+        o, c = kernel.sweep(P[idx], modes)
+        outs.append(o)
+        certs.append(c)
+        bar = "#" * i + "." * (len(parts) - i)
+        sys.stderr.write(f"\rsweep [{bar}] {idx[-1] + 1}/{len(P)}")
+        sys.stderr.flush()
+    sys.stderr.write("\n")
+    return np.concatenate(outs), np.concatenate(certs)
 
 
 def sweep_chunk(key: str, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,419 @@
+"""Plots: the characteristic function and the mode shapes (paper Fig. 2), veering diagrams.
+
+Needs matplotlib (``pip install "mstmm[plot]"``); it is imported here only, never by
+``import mstmm``. Without a display (and without ``MPLBACKEND``) the Agg backend is
+selected. Figures are built with the object-oriented API (no pyplot state, nothing
+left open) unless pyplot is already imported, in which case they are pyplot figures
+so that ``plt.show()`` sees them. Every function returns the
+:class:`matplotlib.figure.Figure`, draws into ``ax`` when one is given, and writes
+the figure to ``path`` when one is given (format from the suffix, atomically).
+
+>>> import mstmm, mstmm.plot
+>>> scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+>>> fig = mstmm.plot.figure2(scene, "fig2.png")                      # doctest: +SKIP
+
+Artists carry a ``gid`` so that a figure can be inspected: ``"delta"`` (the curve of
+``log10|Delta|``), ``"roots"`` (one marker per root, repeated by multiplicity),
+``"root-line"`` (one vertical line per distinct root), ``"mode"`` (a mode-shape or
+veering curve), ``"mass"`` / ``"spring"`` (hanging masses of one mode and their
+springs), ``"attachment"`` (attachment points on the beam axis), ``"axis"`` (the
+beam axis), ``"uncoupled"`` (``sqrt(k/m)`` of a varied attachment).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import sys
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+
+from .kernels import load_kernel
+from .scene import Scene
+from .solve import Solution, solve
+from .topology import parameter_vector, topology_of
+
+
+def _headless() -> bool:
+    if os.environ.get("MPLBACKEND"):
+        return False
+    if sys.platform.startswith(("linux", "freebsd", "openbsd", "netbsd")):
+        return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+    return False
+
+
+if _headless() and "matplotlib.pyplot" not in sys.modules:
+    matplotlib.use("Agg")
+
+from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+__all__ = ["characteristic", "figure2", "formats", "mode_shapes", "save", "veering"]
+
+PathLike = str | os.PathLike[str]
+
+#: Resolution of written raster images (dots per inch).
+DPI = 150
+#: The plotted band extends this far beyond the highest root when only ``modes`` is given.
+MARGIN = 1.08
+
+_TWO_PI = 2.0 * math.pi
+_ATTACHMENT_FIELD = re.compile(r"attachments\[(\d+)\]\.(k|m)$")
+
+
+def _to_hz(w):
+    return np.asarray(w) / _TWO_PI
+
+
+def _to_rad(f):
+    return np.asarray(f) * _TWO_PI
+
+
+def _new_figure(ncols: int = 1, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, list]:
+    if "matplotlib.pyplot" in sys.modules:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=size, layout="constrained")
+    else:
+        fig = Figure(figsize=size, layout="constrained")
+    return fig, list(np.atleast_1d(fig.subplots(1, ncols)))
+
+
+def _axes(ax: Axes | None, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, Axes]:
+    if ax is not None:
+        return ax.get_figure(), ax
+    fig, (new,) = _new_figure(1, size)
+    return fig, new
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def formats() -> dict[str, str]:
+    """Image formats :func:`save` can write: suffix (no dot) -> description."""
+    return Figure().canvas.get_supported_filetypes()
+
+
+def save(fig: Figure, path: PathLike, dpi: int = DPI) -> Path:
+    """Write ``fig`` to ``path`` (format from the suffix; default PNG), atomically."""
+    path = Path(path)
+    fmt = path.suffix[1:].lower() or "png"
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise ValueError(
+            f"{path}: unsupported image format {fmt!r} (choose from {', '.join(sorted(supported))})"
+        )
+    directory = path.parent if str(path.parent) else Path(".")
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-plot-", suffix=f".{fmt}")
+    os.close(fd)
+    try:
+        fig.savefig(tmp, format=fmt, dpi=dpi)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it 0600
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def _finish(fig: Figure, path: PathLike | None) -> Figure:
+    if path is not None:
+        save(fig, path)
+    return fig
+
+
+def _distinct(sol: Solution) -> list[tuple[int, float, int]]:
+    """``(mode number from 1, omega, multiplicity)`` of each distinct root of ``sol``."""
+    out, i = [], 0
+    while i < len(sol.omega):
+        m = max(int(sol.multiplicity[i]), 1)
+        out.append((i + 1, float(sol.omega[i]), m))
+        i += m
+    return out
+
+
+def _modes_below(scene: Scene, omega: float) -> int:
+    """How many natural frequencies lie below ``omega`` (numbers the modes of a band)."""
+    if omega <= 0.0:
+        return 0
+    kernel = load_kernel(topology_of(scene))
+    return int(kernel.count_below(np.array([omega]), parameter_vector(scene))[0])
+
+
+def _band_solution(
+    scene: Scene, band: tuple[float, float] | None, modes: int | None, formulation: str
+) -> tuple[Solution, float, float]:
+    """Solve for the roots and return them with the band to plot."""
+    if band is not None:
+        lo, hi = float(band[0]), float(band[1])
+        if not (0.0 <= lo < hi and math.isfinite(hi)):
+            raise ValueError(f"band must satisfy 0 <= lo < hi < inf (got {band!r})")
+        return solve(scene, band=(lo, hi), formulation=formulation), lo, hi
+    lowest = solve(scene, modes=modes or 10, formulation=formulation, shapes=False)
+    top = float(np.max(lowest.omega)) if len(lowest.omega) else 0.0
+    if top <= 0.0:  # only rigid-body modes asked for: show up to the first elastic one
+        first = solve(scene, modes=topology_of(scene).rigid_body_modes + 1, shapes=False)
+        top = float(first.omega[-1])
+    # every root in the plotted band is marked, not only the lowest ``modes``
+    hi = MARGIN * top
+    return solve(scene, band=(0.0, hi), formulation=formulation), 0.0, hi
+
+
+def _draw_characteristic(
+    ax: Axes, scene: Scene, sol: Solution, lo: float, hi: float, formulation: str, n: int
+) -> None:
+    kernel = load_kernel(topology_of(scene))
+    p = parameter_vector(scene)
+    start = lo if lo > 0.0 else hi * 1e-4  # Delta(0) vanishes with rigid-body modes
+    # uniform in sqrt(omega), i.e. in beta = lam L: beam modes about evenly spaced
+    omegas = np.linspace(math.sqrt(start), math.sqrt(hi), int(n)) ** 2
+    mant, logs = kernel.evaluate(omegas, p, formulation)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y = (np.log(np.abs(mant)) + logs) / math.log(10.0)
+    y[~np.isfinite(y)] = np.nan
+    ax.plot(omegas, y, color="C0", lw=1.0, gid="delta", label=r"$\log_{10}|\Delta(\omega)|$")
+    roots = _distinct(sol)
+    for _number, w, m in roots:
+        ax.axvline(w, color="C3", lw=0.7, ls="--", alpha=0.6, gid="root-line")
+        if m > 1:
+            ax.annotate(
+                f"x{m}",
+                (w, 1.0),
+                xycoords=ax.get_xaxis_transform(),
+                fontsize=7,
+                ha="left",
+                va="top",
+                color="C3",
+                xytext=(2, -2),
+                textcoords="offset points",
+            )
+    ax.plot(
+        sol.omega,
+        np.zeros(len(sol.omega)),
+        ls="none",
+        marker="^",
+        ms=6,
+        color="C3",
+        transform=ax.get_xaxis_transform(),
+        clip_on=False,
+        gid="roots",
+        label=f"roots ({len(sol.omega)}, {len(roots)} distinct)",
+    )
+    ax.set_xlim(lo, hi)
+    ax.set_xlabel(r"$\omega$ [rad/s]")
+    ax.set_ylabel(r"$\log_{10}|\Delta(\omega)|$")
+    ax.set_title(f"{scene.name}: characteristic function ({formulation})", fontsize=10)
+    sec = ax.secondary_xaxis("top", functions=(_to_hz, _to_rad))
+    sec.set_xlabel("f [Hz]")
+    ax.legend(loc="best", fontsize=8)
+
+
+def characteristic(
+    scene: Scene,
+    band: tuple[float, float] | None = None,
+    modes: int | None = None,
+    formulation: str = "stable",
+    n: int = 2000,
+    ax: Axes | None = None,
+    path: PathLike | None = None,
+) -> Figure:
+    """``log10|Delta(omega)|`` with the natural frequencies marked: the paper's Fig. 2(a).
+
+    ``band=(lo, hi)`` (rad/s) plots that band and marks every root
+    :func:`mstmm.solve` finds in it; otherwise the lowest ``modes`` (default 10)
+    are found, the band runs from 0 to 8 % past the highest, and every root in it
+    is marked (a cluster may add a few above the ``modes``-th). ``Delta`` is the
+    ``formulation``'s characteristic function (``"stable"``: the second-compound
+    chain; ``"paper"``: ``det U_bar`` of paper Eq. (4)) on ``n`` points uniform
+    in ``sqrt(omega)``. Roots are drawn as dashed vertical lines (one per distinct
+    root, ``xm`` written beside a root of multiplicity ``m``) and as triangles on
+    the omega axis (one per root, repeated by multiplicity); the top axis is in Hz.
+    """
+    fig, ax = _axes(ax)
+    sol, lo, hi = _band_solution(scene, band, modes, formulation)
+    _draw_characteristic(ax, scene, sol, lo, hi, formulation, n)
+    return _finish(fig, path)
+
+
+def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
+    if sol.shapes is None:
+        raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
+    scene = sol.scene
+    elastic = [r for r in _distinct(sol) if r[1] > 0.0]
+    shapes = sol.shapes[: max(int(modes), 0)]
+    for i, (shape, (number, w, m)) in enumerate(zip(shapes, elastic)):
+        color = f"C{i % 10}"
+        mult = f", x{m}" if m > 1 else ""
+        ax.plot(
+            shape.x,
+            shape.Y,
+            color=color,
+            lw=1.4,
+            gid="mode",
+            label=f"mode {first_mode + number}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz{mult}",
+        )
+        if len(shape.mass_x):
+            at_beam = np.interp(shape.mass_x, shape.x, shape.Y)
+            nan = np.full_like(at_beam, np.nan)
+            sx = np.column_stack([shape.mass_x, shape.mass_x, nan]).ravel()
+            sy = np.column_stack([at_beam, shape.mass_Y, nan]).ravel()
+            ax.plot(sx, sy, color=color, lw=0.6, alpha=0.7, gid="spring")
+            ax.plot(
+                shape.mass_x,
+                shape.mass_Y,
+                ls="none",
+                marker="o",
+                ms=5,
+                mfc="white",
+                mec=color,
+                gid="mass",
+            )
+    ax.axhline(0.0, color="0.4", lw=0.8, gid="axis")
+    xs = np.array([a.x for a in scene.attachments], dtype=float)
+    if len(xs):
+        ax.plot(
+            xs,
+            np.zeros_like(xs),
+            ls="none",
+            marker="^",
+            ms=7,
+            color="k",
+            clip_on=False,
+            gid="attachment",
+            label=f"attachment points ({len(xs)})",
+        )
+    L = scene.beam.length
+    ax.set_xlim(-0.02 * L, 1.02 * L)
+    ax.set_xlabel(f"x [m]   ({scene.beam.left} - {scene.beam.right})")
+    ax.set_ylabel("Y (max |Y| = 1; circles: hanging masses)")
+    ax.set_title(f"{scene.name}: mode shapes", fontsize=10)
+    ax.legend(loc="best", fontsize=8)
+
+
+def mode_shapes(
+    solution_or_scene: Solution | Scene,
+    modes: int = 4,
+    ax: Axes | None = None,
+    path: PathLike | None = None,
+) -> Figure:
+    """The first ``modes`` elastic mode shapes along the beam: the paper's Fig. 2(b).
+
+    Given a :class:`~mstmm.scene.Scene`, it is solved for its rigid-body modes
+    plus ``modes``; a :class:`~mstmm.solve.Solution` (with shapes) is drawn as is.
+    Each mode is a curve ``Y(x)`` (paper Eq. (5), normalised to max ``|Y|`` = 1
+    over the beam and the masses); the attachment points are triangles on the
+    beam axis, each hanging mass a circle at its own displacement above its
+    attachment point, joined to the beam by a thin line (its spring). The legend
+    gives each frequency in rad/s and Hz, numbered as ``mstmm solve`` numbers them.
+    """
+    fig, ax = _axes(ax)
+    if isinstance(solution_or_scene, Solution):
+        sol = solution_or_scene
+    else:
+        nrigid = topology_of(solution_or_scene).rigid_body_modes
+        sol = solve(solution_or_scene, modes=nrigid + int(modes))
+    _draw_mode_shapes(ax, sol, modes)
+    return _finish(fig, path)
+
+
+def figure2(
+    scene: Scene,
+    path: PathLike | None = None,
+    modes: int = 4,
+    band: tuple[float, float] | None = None,
+    formulation: str = "stable",
+    n: int = 2000,
+) -> Figure:
+    """The paper's Fig. 2 for ``scene``: (a) ``log10|Delta|`` with its roots, (b) mode shapes.
+
+    Without ``band`` panel (a) spans the lowest ``modes`` elastic modes (plus any
+    rigid-body modes) and 8 % beyond, as :func:`characteristic`; with ``band`` it
+    spans that band. Panel (b) shows the first ``modes`` elastic modes of panel (a).
+    """
+    fig, (ax_a, ax_b) = _new_figure(2, (13.0, 4.8))
+    first = 0
+    if band is None:
+        nrigid = topology_of(scene).rigid_body_modes
+        sol, lo, hi = _band_solution(scene, None, nrigid + int(modes), formulation)
+    else:
+        sol, lo, hi = _band_solution(scene, band, None, formulation)
+        first = _modes_below(scene, lo)
+    _draw_characteristic(ax_a, scene, sol, lo, hi, formulation, n)
+    _draw_mode_shapes(ax_b, sol, modes, first)
+    ax_a.set_title(f"(a) {ax_a.get_title()}", fontsize=10)
+    ax_b.set_title(f"(b) {ax_b.get_title()}", fontsize=10)
+    return _finish(fig, path)
+
+
+def veering(
+    scene: Scene,
+    path_name: str,
+    values: Sequence[float] | np.ndarray,
+    modes: int = 5,
+    ax: Axes | None = None,
+    path: PathLike | None = None,
+    uncoupled: bool = True,
+) -> Figure:
+    """Natural frequencies against one parameter: a veering diagram.
+
+    ``path_name`` is a field path of :func:`mstmm.sweep` (``beam.EI``,
+    ``attachments[2].k``, ...) and ``values`` the values it takes; the lowest
+    ``modes`` elastic frequencies at every value are drawn, one line per mode
+    index (rigid-body zeros left out; a point the sweep cannot certify is a gap).
+    The x axis is logarithmic when the values span more than two decades, the
+    y axis when the frequencies do. When ``path_name`` is an attachment's ``k``
+    or ``m`` and ``uncoupled``, that oscillator's ``sqrt(k/m)`` is drawn dashed:
+    the curves veer where it crosses them.
+    """
+    from .study import sweep
+
+    values = np.asarray(values, dtype=float).ravel()
+    nrigid = topology_of(scene).rigid_body_modes
+    omega = sweep(scene, {path_name: values}, modes=nrigid + int(modes))[:, nrigid:]
+    fig, ax = _axes(ax)
+    order = np.argsort(values, kind="stable")
+    v, omega = values[order], omega[order]
+    for j in range(omega.shape[1]):
+        ax.plot(
+            v, omega[:, j], color=f"C{j % 10}", lw=1.4, gid="mode", label=f"mode {nrigid + j + 1}"
+        )
+    finite = omega[np.isfinite(omega) & (omega > 0)]
+    top = float(finite.max()) if finite.size else 1.0
+    bottom = float(finite.min()) if finite.size else 0.0
+    match = _ATTACHMENT_FIELD.match(path_name)
+    if uncoupled and match:
+        a = scene.attachments[int(match.group(1))]
+        k = v if match.group(2) == "k" else np.full_like(v, a.k)
+        m = v if match.group(2) == "m" else np.full_like(v, a.m)
+        ax.plot(
+            v,
+            np.sqrt(k / m),
+            color="k",
+            lw=0.9,
+            ls="--",
+            gid="uncoupled",
+            label=f"sqrt(k/m) of attachments[{match.group(1)}]",
+        )
+    if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
+        ax.set_xscale("log")
+    if bottom > 0 and top / bottom > 100.0:
+        ax.set_yscale("log")
+        ax.set_ylim(bottom / 1.3, top * 1.3)
+    else:
+        ax.set_ylim(0.0, top * 1.05)
+    ax.set_xlabel(path_name)
+    ax.set_ylabel(r"$\omega$ [rad/s]")
+    ax.set_title(f"{scene.name}: natural frequencies against {path_name}", fontsize=10)
+    sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
+    sec.set_ylabel("f [Hz]")
+    ax.legend(loc="best", fontsize=8)
+    return _finish(fig, path)
