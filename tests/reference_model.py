@@ -321,6 +321,13 @@ def _sparse_det(rows: list, ncols: int):
 
 def _global_det(model: _Model, beta):
     """Determinant of the global system at dimensionless frequency beta > 0 (current mp)."""
+    rows, ncol, _w_rows, _mass_cols = _global_rows(model, beta)
+    return _sparse_det(rows, ncol)
+
+
+def _global_rows(model: _Model, beta):
+    """Rows of the global system, the column count, the deflection row at each node and
+    the mass columns of each node."""
     nseg = len(model.seg)
     trig = []
     for ell in model.seg:
@@ -375,7 +382,8 @@ def _global_det(model: _Model, beta):
             _add(row, w_row, -k / scale)
             row[uc] = (k - m * b4) / scale
             rows.append(row)
-    return _sparse_det(rows, ncol)
+    w_rows = [_scaled_row(*node_point(j), 0, trig, cols) for j in range(nseg + 1)]
+    return rows, ncol, w_rows, mass_cols
 
 
 # ------------------------------------------------------ Wittrick-Williams counting
@@ -744,6 +752,29 @@ def count_below(scene, w, dps: int = 40) -> int:
         if not beta > 0:
             raise ValueError("count_below needs w > 0")
         return solver.count(beta)
+
+
+def mode_at_attachments(scene, w, dps: int = 40):
+    """Mode shape at a natural frequency ``w``: the beam's deflection at each attachment and
+    each mass's displacement (attachments sorted by x), from the null vector (SVD) of the
+    global matrix. Arbitrary scale; floats."""
+    with mp.workdps(dps + _GUARD_DPS):
+        model = _build(scene)
+        beta = _beta_of(model, _num(w))
+        rows, ncol, w_rows, mass_cols = _global_rows(model, beta)
+        A = mpmath.matrix(len(rows), ncol)
+        for r, row in enumerate(rows):
+            for col, val in row.items():
+                A[r, col] = val
+        _u, _s, V = mpmath.svd_r(A)
+        v = [V[V.rows - 1, i] for i in range(ncol)]
+        beam, masses = [], []
+        for j, cols in enumerate(mass_cols):
+            deflection = sum(val * v[col] for col, val in w_rows[j].items())
+            for col in cols:
+                beam.append(float(deflection))
+                masses.append(float(v[col]))
+    return beam, masses
 
 
 def global_determinant(scene, w, dps: int = 40):

@@ -81,6 +81,22 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--modes", type=_positive_int, default=5)
     v.add_argument("--out", type=Path, help="CSV file (default: standard output)")
     v.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://HOST:8786")
+    q = sub.add_parser(
+        "plot", help="paper Fig. 2 (log|Delta| and mode shapes) or a veering diagram"
+    )
+    q.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
+    q.add_argument(
+        "-o", "--out", type=Path, required=True, help="image file; format from the suffix"
+    )
+    g = q.add_mutually_exclusive_group()
+    g.add_argument("--modes", type=_positive_int, help="elastic modes shown (default 4; sweep 5)")
+    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
+    q.add_argument(
+        "--sweep",
+        metavar="PATH=RANGE",
+        help="veering diagram, e.g. attachments[2].k=LOG:1e3:1e9:200",
+    )
+    q.add_argument("--formulation", choices=FORMULATIONS, default="stable")
     w = sub.add_parser("show", help="print the symbolic U_bar of a scene (and det when small)")
     w.add_argument("scene")
     return ap
@@ -133,18 +149,10 @@ def _sweep(args) -> int:
     import os
     import tempfile
 
-    from .study import parse_range, sweep
+    from .study import sweep
 
     scene = _scene(args.scene)
-    vary = {}
-    for item in args.vary:
-        path, sep, spec = item.partition("=")
-        if not sep:
-            raise SceneError("<command line>", "--vary", "expected PATH=RANGE", item)
-        try:
-            vary[path] = parse_range(spec)
-        except ValueError:
-            raise SceneError("<command line>", f"--vary {path}", "bad range", spec) from None
+    vary = dict(_vary_item(item, "--vary") for item in args.vary)
     omega = sweep(
         scene, vary, modes=args.modes, scheduler=args.scheduler, progress=sys.stderr.isatty()
     )
@@ -160,6 +168,54 @@ def _sweep(args) -> int:
     with os.fdopen(fd, "w") as fh:
         fh.write(buf.getvalue())
     os.replace(tmp, args.out)
+    print(args.out)
+    return 0
+
+
+def _vary_item(item: str, option: str) -> tuple[str, object]:
+    """``PATH=RANGE`` of --vary / --sweep."""
+    from .study import parse_range
+
+    path, sep, spec = item.partition("=")
+    if not sep:
+        raise SceneError("<command line>", option, "expected PATH=RANGE", item)
+    try:
+        return path, parse_range(spec)
+    except ValueError:
+        raise SceneError("<command line>", f"{option} {path}", "bad range", spec) from None
+
+
+def _plot(args) -> int:
+    try:
+        from . import plot
+    except ModuleNotFoundError as exc:
+        if (exc.name or "").split(".")[0] != "matplotlib":
+            raise
+        print("mstmm: error: plotting needs matplotlib: pip install 'mstmm[plot]'", file=sys.stderr)
+        return EXIT_FAILURE
+    where = "<command line>"
+    if args.out.suffix[1:].lower() not in plot.formats():
+        raise SceneError(
+            where,
+            "--out",
+            f"unknown image format; use one of {sorted(plot.formats())}",
+            str(args.out),
+        )
+    if not (args.out.parent if str(args.out.parent) else Path(".")).is_dir():
+        raise SceneError(where, "--out", "directory does not exist", str(args.out.parent))
+    scene = _scene(args.scene)
+    if args.sweep is not None:
+        if args.band is not None:
+            raise SceneError(where, "--band", "not with --sweep", list(args.band))
+        path, values = _vary_item(args.sweep, "--sweep")
+        plot.veering(scene, path, values, modes=args.modes or 5, path=args.out)
+    else:
+        band = tuple(args.band) if args.band else None
+        if band is not None and band[1] <= band[0]:
+            raise SceneError(where, "--band", "HI must exceed LO", list(band))
+        plot.figure2(
+            scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
+        )
     print(args.out)
     return 0
 
@@ -201,7 +257,13 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
     args = build_parser().parse_args(argv)
     try:
-        commands = {"solve": _solve, "sweep": _sweep, "derive": _derive, "show": _show}
+        commands = {
+            "solve": _solve,
+            "sweep": _sweep,
+            "plot": _plot,
+            "derive": _derive,
+            "show": _show,
+        }
         return commands[args.command](args)
     except SceneError as exc:
         print(f"mstmm: error: {exc}", file=sys.stderr)

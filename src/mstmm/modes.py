@@ -14,7 +14,8 @@ cantilever mode). Here the same null vector is found without that growth
    spring-mass enters pole-free: ``B00 I + B10 e_Q e_Y^T``, paper Eqs. (2)-(3));
 2. at ``x = L`` the right end's conditions give a 2x2 matrix, singular at a
    natural frequency; its null vector (SVD, Eq. (5)) is ``c_K``;
-3. back along the beam ``c_k = R_{k+1}^{-1} c_{k+1}`` and the state at node k is
+3. back along the beam ``c_k = R_{k+1}^{-1} c_{k+1}`` (times ``B00`` across a branch,
+   whose pole-free matrix is ``B00`` times the true jump) and the state at node k is
    ``W_k c_k``; the hanging mass moves by ``Y_m = Y / B00``.
 """
 
@@ -67,6 +68,7 @@ def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = 201)
     W[list(unknown(kernel.topology.left)), [0, 1]] = 1.0
     frames = [W]  # W_k at every node (after its attachments)
     Rs = []  # R factors, one per step (pieces and attachments)
+    scales = []  # factor each step's matrix carries beyond the true transfer (B00 at a branch)
     steps_at = []  # index of the node each step arrives at
     j = 0
     for k, x in enumerate(nodes):
@@ -74,6 +76,7 @@ def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = 201)
             U = kernel.beam_transfer(lam, x - nodes[k - 1], EI) * D[:, None] / D[None, :]
             W, R = np.linalg.qr(U @ W)
             Rs.append(R)
+            scales.append(1.0)
             steps_at.append(k)
         while j < len(rec) and rec[j, 0] <= x:
             B00 = 1.0 - rec[j, 2] * omega**2 / rec[j, 1]
@@ -82,6 +85,7 @@ def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = 201)
             P[3, 0] += B10
             W, R = np.linalg.qr(P @ W)
             Rs.append(R)
+            scales.append(B00)  # P = B00 x (the condensed jump): pole-free
             steps_at.append(k)
             j += 1
         frames.append(W) if k > 0 else frames.__setitem__(0, W)
@@ -95,12 +99,12 @@ def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = 201)
     for k in range(len(nodes) - 1, 0, -1):
         # undo the steps arriving at node k (attachments, then the piece), back to node k-1
         while s >= 0 and steps_at[s] == k:
-            c = np.linalg.solve(Rs[s], c)
+            c = scales[s] * np.linalg.solve(Rs[s], c)
             s -= 1
         states[k - 1] = frames[k - 1] @ c
         # attachments at node k-1 were applied after its frame: their R's come first below
         while s >= 0 and steps_at[s] == k - 1:
-            c = np.linalg.solve(Rs[s], c)
+            c = scales[s] * np.linalg.solve(Rs[s], c)
             s -= 1
     return _shape(omega, L, nodes, states, rec, sample, ratio)
 

@@ -1,0 +1,56 @@
+"""Every scene in examples/ solves, certified, and matches the independent reference model."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reference_model import frequencies
+
+import mstmm
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+SCENES = sorted(EXAMPLES.glob("*.toml"))
+MODES = 10
+
+
+def test_the_examples_are_there_and_described():
+    names = {p.name for p in SCENES}
+    assert {"wu_chou_1998.toml", "launch_vehicle.toml", "absorbers.toml"} <= names
+    readme = (EXAMPLES / "README.md").read_text()
+    for name in names:
+        assert f"`{name}`" in readme, name
+
+
+def test_the_paper_example_is_the_bundled_scene():
+    copy = mstmm.load_scene(EXAMPLES / "wu_chou_1998.toml")
+    assert copy == mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+
+
+@pytest.mark.parametrize("path", SCENES, ids=[p.stem for p in SCENES])
+def test_example_matches_reference(path):
+    scene = mstmm.load_scene(path)
+    sol = mstmm.solve(scene, modes=MODES)
+    assert sol.count_checked, sol.warnings
+    assert not sol.warnings
+    assert sol.converged.all()
+    assert len(sol.omega) == MODES
+    exact = np.array(frequencies(scene, MODES, dps=30), dtype=float)
+    zero = exact == 0.0
+    assert zero.sum() == mstmm.topology_of(scene).rigid_body_modes
+    np.testing.assert_array_equal(sol.omega[zero], 0.0)
+    rel = np.abs(sol.omega[~zero] - exact[~zero]) / exact[~zero]
+    assert rel.max() < 1e-12, (path.stem, rel.max())
+    assert sol.shapes is not None and len(sol.shapes) == (~zero).sum()
+
+
+def test_absorbers_scene_is_a_tight_cluster():
+    """36 TMDs: the lowest ten frequencies all sit within 15 % of the bare first mode."""
+    scene = mstmm.load_scene(EXAMPLES / "absorbers.toml")
+    assert len(scene.attachments) == 36
+    beam = scene.beam
+    bare = np.pi**2 * np.sqrt(beam.EI / beam.mass_per_length) / beam.length**2
+    omega = mstmm.solve(scene, modes=MODES, shapes=False).omega
+    assert np.all(np.abs(omega / bare - 1.0) < 0.15)
+    assert np.all(np.diff(omega) > 0)

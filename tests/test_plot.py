@@ -1,0 +1,194 @@
+"""Plots (paper Fig. 2, veering): images are written, and the figures hold what they claim."""
+
+from __future__ import annotations
+
+import os
+import stat
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mstmm
+
+pytest.importorskip("matplotlib")
+
+from mstmm import plot  # noqa: E402
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+
+
+@pytest.fixture(scope="module")
+def free_free():
+    return mstmm.load_scene(EXAMPLES / "launch_vehicle.toml")
+
+
+def png_size(path: Path) -> tuple[int, int]:
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return struct.unpack(">II", data[16:24])
+
+
+def lines(fig, gid: str, ax: int = 0) -> list:
+    return [line for line in fig.axes[ax].get_lines() if line.get_gid() == gid]
+
+
+def test_import_mstmm_does_not_import_matplotlib():
+    code = "import sys, mstmm; mstmm.solve; assert 'matplotlib' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
+
+
+def test_agg_backend_without_a_display():
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env.pop("MPLBACKEND", None)
+    code = "import matplotlib, mstmm.plot; print(matplotlib.get_backend())"
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 0, out.stderr
+    if sys.platform.startswith("linux"):
+        assert out.stdout.strip().lower() == "agg"
+
+
+def test_figure2_writes_both_panels(scene, tmp_path):
+    path = tmp_path / "fig2.png"
+    fig = plot.figure2(scene, path, modes=4)
+    assert path.is_file() and path.stat().st_size > 50_000
+    assert png_size(path) == (13 * plot.DPI, round(4.8 * plot.DPI))
+    assert stat.S_IMODE(path.stat().st_mode) & 0o044  # not left 0600 by the temporary file
+    assert not list(tmp_path.glob(".tmp-*"))
+    assert len(fig.axes) == 2
+    sol = mstmm.solve(scene, band=fig.axes[0].get_xlim())
+    assert len(lines(fig, "roots")[0].get_xdata()) == len(sol.omega) >= 4
+    assert len(lines(fig, "mode", ax=1)) == 4
+
+
+def test_characteristic_marks_every_root_in_the_band(scene, tmp_path):
+    path = tmp_path / "delta.png"
+    fig = plot.characteristic(scene, modes=5, path=path)
+    assert path.stat().st_size > 20_000
+    assert png_size(path) == (round(7 * plot.DPI), round(4.8 * plot.DPI))
+    lo, hi = fig.axes[0].get_xlim()
+    assert lo == 0.0
+    sol = mstmm.solve(scene, band=(lo, hi))
+    assert len(sol.omega) == 5  # 8 % past the 5th root holds no 6th here
+    (curve,) = lines(fig, "delta")
+    w, y = curve.get_xdata(), curve.get_ydata()
+    assert len(w) == 2000 and np.all(np.isfinite(y))
+    assert w[0] > 0 and w[-1] == pytest.approx(hi)
+    (roots,) = lines(fig, "roots")
+    np.testing.assert_array_equal(roots.get_xdata(), sol.omega)
+    assert [ln.get_xdata()[0] for ln in lines(fig, "root-line")] == list(sol.omega)
+    # the curve dips at every marked root, a decade below its level 3 % away
+    for r in sol.omega:
+        near, around = np.abs(w - r) < 0.005 * r, np.abs(w - r) < 0.03 * r
+        assert y[near].min() < y[around].max() - 1.0, r
+    # the top axis is in Hz
+    (sec,) = fig.axes[0].child_axes
+    assert "Hz" in sec.get_xlabel()
+
+
+def test_characteristic_band_and_paper_formulation(scene):
+    band = (150.0, 2000.0)
+    fig = plot.characteristic(scene, band=band, formulation="paper", n=500)
+    sol = mstmm.solve(scene, band=band, formulation="paper")
+    assert fig.axes[0].get_xlim() == band
+    assert len(lines(fig, "delta")[0].get_xdata()) == 500
+    np.testing.assert_array_equal(lines(fig, "roots")[0].get_xdata(), sol.omega)
+    assert len(sol.omega) == 4  # 188.7, 248.6, 349.1, 1428.0
+
+
+def test_characteristic_multiple_root_one_line_two_markers(scene):
+    """Two identical oscillators on the clamped end: sqrt(k/m) is a double root."""
+    extra = {"type": "spring_mass", "x": 0.0, "k": 1.0e6, "m": 10.0}
+    doubled = scene.replace(attachments=[*scene.attachments, extra, extra])
+    fig = plot.characteristic(doubled, band=(50.0, 500.0), n=400)
+    sol = mstmm.solve(doubled, band=(50.0, 500.0))
+    assert 2 in sol.multiplicity
+    assert len(lines(fig, "roots")[0].get_xdata()) == len(sol.omega) == 6
+    assert len(lines(fig, "root-line")) == 5
+    assert any(t.get_text() == "x2" for t in fig.axes[0].texts)
+
+
+def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
+    sol = mstmm.solve(scene, modes=6)
+    path = tmp_path / "shapes.png"
+    fig = plot.mode_shapes(sol, modes=4, path=path)
+    assert path.stat().st_size > 20_000
+    curves, masses = lines(fig, "mode"), lines(fig, "mass")
+    assert len(curves) == len(masses) == len(lines(fig, "spring")) == 4
+    assert len(lines(fig, "axis")) == 1
+    (att,) = lines(fig, "attachment")
+    np.testing.assert_array_equal(att.get_xdata(), [a.x for a in scene.attachments])
+    np.testing.assert_array_equal(att.get_ydata(), 0.0)
+    for curve, mass, shape in zip(curves, masses, sol.shapes, strict=False):
+        np.testing.assert_array_equal(curve.get_ydata(), shape.Y)
+        np.testing.assert_array_equal(mass.get_xdata(), shape.mass_x)
+        np.testing.assert_array_equal(mass.get_ydata(), shape.mass_Y)
+        assert np.max(np.abs(curve.get_ydata())) > 0.01  # a real shape, not a flat line
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    for i, w in enumerate(sol.omega[:4]):
+        assert f"{w:.6g} rad/s" in labels[i] and f"{w / (2 * np.pi):.6g} Hz" in labels[i]
+    assert "attachment points (3)" in labels
+
+
+def test_mode_shapes_of_a_free_free_scene_skip_rigid_modes(free_free):
+    fig = plot.mode_shapes(free_free, modes=3)
+    assert len(lines(fig, "mode")) == 3
+    labels = [ln.get_label() for ln in lines(fig, "mode")]
+    assert labels[0].startswith("mode 3:")  # modes 1 and 2 are the rigid-body zeros
+
+
+def test_mode_shapes_into_given_axes(scene):
+    from matplotlib.figure import Figure
+
+    mine = Figure()
+    ax = mine.add_subplot()
+    assert plot.mode_shapes(scene, modes=2, ax=ax) is mine
+    assert len(lines(mine, "mode")) == 2
+
+
+def test_veering_one_line_per_mode(scene, tmp_path):
+    ks = np.logspace(3, 9, 25)
+    path = tmp_path / "veer.png"
+    fig = plot.veering(scene, "attachments[2].k", ks, modes=5, path=path)
+    assert path.stat().st_size > 20_000
+    ax = fig.axes[0]
+    assert ax.get_xscale() == "log"
+    curves = lines(fig, "mode")
+    assert len(curves) == 5
+    omega = mstmm.sweep(scene, {"attachments[2].k": ks}, modes=5)
+    for j, curve in enumerate(curves):
+        np.testing.assert_array_equal(curve.get_xdata(), ks)
+        np.testing.assert_array_equal(curve.get_ydata(), omega[:, j])
+    (unc,) = lines(fig, "uncoupled")
+    m = scene.attachments[2].m
+    np.testing.assert_allclose(unc.get_ydata(), np.sqrt(ks / m))
+
+
+def test_veering_linear_axis_and_rigid_modes_left_out(free_free):
+    xs = np.linspace(5.0, 35.0, 7)
+    fig = plot.veering(free_free, "attachments[1].x", xs, modes=3)
+    ax = fig.axes[0]
+    assert ax.get_xscale() == "linear"
+    curves = lines(fig, "mode")
+    assert [c.get_label() for c in curves] == ["mode 3", "mode 4", "mode 5"]
+    assert all(np.all(c.get_ydata() > 0) for c in curves)
+    assert not lines(fig, "uncoupled")
+
+
+def test_unknown_image_format_writes_nothing(scene, tmp_path):
+    fig = plot.characteristic(scene, modes=2, n=50)
+    with pytest.raises(ValueError, match="unsupported image format"):
+        plot.save(fig, tmp_path / "out.xyz")
+    assert not list(tmp_path.iterdir())
+    plot.save(fig, tmp_path / "out.svg")
+    assert (tmp_path / "out.svg").read_text().lstrip().startswith("<?xml")
