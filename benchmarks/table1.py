@@ -1,4 +1,6 @@
-"""Paper Table 1 against the exact reference, with this package's line: ``python -m benchmarks.table1``.
+"""Paper Table 1 against the exact reference, with this package's line.
+
+Run: ``python -m benchmarks.table1``.
 
 Prints a Markdown table: the frequencies the paper quotes (FEM, ANCM of Wu &
 Chou 1998, the paper's MSTMM), each with its largest relative error against

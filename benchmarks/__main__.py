@@ -1,0 +1,525 @@
+"""``python -m benchmarks``: error against run time, and scaling with N; writes docs/benchmarks.md.
+
+Options: ``--quick`` (a smoke run of about half a minute, used by
+``tests/test_benchmarks.py``), ``--only workprecision|scaling``, ``--out DIR``
+(default ``docs/``; the plots go to ``DIR/img/``), ``--json FILE`` (raw results).
+
+BLAS runs single-threaded (``OPENBLAS_NUM_THREADS=1`` unless set): on this
+2-core machine a multi-threaded OpenBLAS made the dense FE solver up to 60
+times slower, and mstmm is single-threaded too.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SECTIONS = ("workprecision", "scaling")
+
+
+def _log(msg: str) -> None:
+    print(f"[benchmarks {time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
+
+
+def try_plot(fn, results, path: Path) -> tuple[str | None, str]:
+    """Draw with ``fn`` into ``path``; ``(relative image path or None, why not)``."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return None, "matplotlib is not installed: plots skipped"
+    try:
+        fn(results, path)
+    except Exception as exc:  # a broken plot must not lose the numbers
+        return None, f"plot failed: {type(exc).__name__}: {exc}"
+    return f"img/{path.name}", ""
+
+
+# ------------------------------------------------------------------ targets
+
+
+def _status(ok: bool | None) -> str:
+    return {True: "**met**", False: "**missed**", None: "not measured"}[ok]
+
+
+def targets(wp, sc) -> list[tuple[str, str, str, str, str]]:
+    """(target, goal, measured, status, what limits it / remark) rows."""
+    from .workprecision import fastest, fmt_err, fmt_time
+
+    rows = []
+    # 1. paper example, lowest 5 to 1e-13, warm
+    if wp is not None:
+        p = fastest(wp, 5, 1e-13, "mstmm-warm")
+        default = [
+            q
+            for q in wp.points
+            if q.family == "mstmm-warm"
+            and q.modes == 5
+            and q.setting == "rtol=0"
+            and q.series.endswith("stable")
+        ]
+        if p:
+            extra = ""
+            if default:
+                d = default[0]
+                extra = f"; default (stable, rtol=0): {fmt_time(d.time)}, error {fmt_err(d.error)}"
+            prof = wp.profiles.get("paper example, lowest 5, stable, rtol=0")
+            remark = _profile_remark(prof) if prof else ""
+            rows.append(
+                (
+                    "paper example, lowest 5 to 1e-13 relative, warm",
+                    "<= 0.5 ms",
+                    f"{fmt_time(p.time)} ({p.series.split(', ')[-1]}, {p.setting}, "
+                    f"error {fmt_err(p.error)}){extra}",
+                    _status(p.time <= 0.5e-3),
+                    remark,
+                )
+            )
+        else:
+            rows.append(
+                (
+                    "paper example, lowest 5 to 1e-13, warm",
+                    "<= 0.5 ms",
+                    "1e-13 not reached",
+                    _status(False),
+                    "",
+                )
+            )
+        # 2. fresh process, kernel cached
+        cold = [q for q in wp.points if q.family == "mstmm-cold" and q.modes == 5]
+        if cold:
+            c = cold[0]
+            br = wp.cold_breakdown
+            remark = ""
+            if br:
+                remark = "; ".join(f"`{k}` {fmt_time(v)}" for k, v in br.items())
+                remark = "fresh-process costs: " + remark
+            rows.append(
+                (
+                    "`mstmm solve --modes 5` in a fresh process, kernel cached",
+                    "<= 1.0 s wall",
+                    f"{fmt_time(c.time)} (median of {c.repeats}; {c.note})",
+                    _status(c.time <= 1.0),
+                    remark,
+                )
+            )
+        # 3. equal accuracy 1e-10 on the lowest 5
+        m = fastest(wp, 5, 1e-10, "mstmm-warm")
+        fe = fastest(wp, 5, 1e-10, "fe-richardson")
+        os_ = fastest(wp, 5, 1e-10, "opensees")
+        if m and fe:
+            ratio = fe.time / m.time
+            rows.append(
+                (
+                    "lowest 5 to 1e-10: mstmm (warm) vs the best FE + Richardson",
+                    ">= 20x faster",
+                    f"{ratio:.0f}x: mstmm {fmt_time(m.time)} "
+                    f"({m.setting}, {m.series.split(', ')[-1]}) "
+                    f"vs {fe.series} {fe.setting} {fmt_time(fe.time)} (error {fmt_err(fe.error)})",
+                    _status(ratio >= 20),
+                    "FE timed warm in-process too; a fresh mstmm process (cold) is slower than a "
+                    "warm FE solve, see the work-precision table",
+                )
+            )
+        elif m:
+            best = [q for q in wp.points if q.family == "fe-richardson" and q.modes == 5]
+            best = min(best, key=lambda q: q.error) if best else None
+            rows.append(
+                (
+                    "lowest 5 to 1e-10: mstmm (warm) vs the best FE + Richardson",
+                    ">= 20x faster",
+                    "FE + Richardson did not reach 1e-10 on the meshes run"
+                    + (f" (best {fmt_err(best.error)} at {best.setting})" if best else ""),
+                    _status(None),
+                    "",
+                )
+            )
+        os_pts = [q for q in wp.points if q.family == "opensees" and math.isfinite(q.error)]
+        if m and os_:
+            ratio = os_.time / m.time
+            rows.append(
+                (
+                    "lowest 5 to 1e-10: mstmm (warm) vs OpenSeesPy",
+                    ">= 20x faster",
+                    f"{ratio:.0f}x: OpenSeesPy {os_.setting} {fmt_time(os_.time)}",
+                    _status(ratio >= 20),
+                    "",
+                )
+            )
+        elif m and os_pts:
+            best = min(os_pts, key=lambda q: q.error)
+            rows.append(
+                (
+                    "lowest 5 to 1e-10: mstmm (warm) vs OpenSeesPy",
+                    ">= 20x faster",
+                    f"OpenSeesPy never reaches 1e-10: its best is {fmt_err(best.error)} "
+                    f"({best.setting}, {fmt_time(best.time)} = {best.time / m.time:.0f}x mstmm's "
+                    f"{fmt_time(m.time)})",
+                    _status(True),
+                    "OpenSees' error stops falling at about 1e-9 (round-off of eps cond(K) ~ n^4)",
+                )
+            )
+        else:
+            rows.append(
+                (
+                    "lowest 5 to 1e-10: mstmm vs OpenSeesPy",
+                    ">= 20x faster",
+                    wp.opensees or "not measured",
+                    _status(None),
+                    "",
+                )
+            )
+        # 5. derive + compile
+        der = [q for q in wp.points if q.family == "mstmm-derive" and q.modes == 5]
+        if der:
+            d = der[0]
+            split = ""
+            if sc is not None and sc.derive:
+                ok = [r for r in sc.derive if "derive" in r]
+                if ok:
+                    split = (
+                        f"; split (scaling runs, median over N): derive "
+                        f"{fmt_time(_median([r['derive'] for r in ok]))}, compile "
+                        f"{fmt_time(_median([r['compile'] for r in ok]))}"
+                    )
+            rows.append(
+                (
+                    "first run of a new topology: derive + compile (+ solve)",
+                    "<= 30 s",
+                    f"{fmt_time(d.time)} wall, whole `mstmm solve` process (median of {d.repeats})"
+                    + split,
+                    _status(d.time <= 30.0),
+                    "numba compiles every kernel function on first use; the SymPy derivation "
+                    "is the smaller part",
+                )
+            )
+    # 4. N = 1000
+    if sc is not None:
+        for family in ("in band", "stiff mounts"):
+            r = [
+                x
+                for x in sc.solve
+                if x["N"] == 1000 and x["family"] == family and x["formulation"] == "stable"
+            ]
+            if not r:
+                continue
+            r = r[0]
+            if "seconds" not in r:
+                rows.append(
+                    (
+                        f"N = 1000 ({family}): lowest 20 modes, warm",
+                        "<= 50 ms",
+                        r.get("error", "?"),
+                        _status(False),
+                        "",
+                    )
+                )
+                continue
+            remark = (
+                _profile_remark(r["profile"], n=1000, family=family) if r.get("profile") else ""
+            )
+            rows.append(
+                (
+                    f"N = 1000 random spring-masses ({family}): lowest 20 modes, warm",
+                    "<= 50 ms",
+                    f"{fmt_time(r['seconds'])} (median of {r['repeats']})",
+                    _status(r["seconds"] <= 0.05),
+                    remark,
+                )
+            )
+    return rows
+
+
+def _median(xs):
+    xs = sorted(xs)
+    return xs[len(xs) // 2] if xs else math.nan
+
+
+def _profile_remark(prof: dict, n: int | None = None, family: str | None = None) -> str:
+    from .workprecision import fmt_time
+
+    c = prof["calls"]
+    if "lowest" in c:
+        v = c["lowest"]
+        g = prof.get("lowest_grid") or {}
+        text = (
+            f"profile: kernel `lowest` {fmt_time(v['seconds'])} "
+            f"({'certified' if v['its'] else 'not certified, full search follows'})"
+        )
+        if g:
+            from .workprecision import lowest_split
+
+            text += ": " + lowest_split(v["seconds"], g)
+        text += f"; Python around it {fmt_time(prof['python'])}"
+        if v["its"]:
+            return text
+        text += "; then "
+    else:
+        text = ""
+    ev = c.get("evaluate", {"points": 0, "seconds": 0.0})
+    rf = c.get("refine", {"calls": 0, "its": 0, "seconds": 0.0})
+    ct = c.get("count_below", {"points": 0, "seconds": 0.0})
+    parts = [
+        f"profile: scan {ev['points']} points {fmt_time(ev['seconds'])}",
+        f"Brent {rf['calls']} roots / ~{rf['its']} evaluations {fmt_time(rf['seconds'])}",
+        f"count {ct['points']} points {fmt_time(ct['seconds'])}",
+        f"Python {fmt_time(prof['python'])}",
+    ]
+    text += ", ".join(parts)
+    if n and family == "in band":
+        try:
+            from mstmm import scan
+
+            per = len(getattr(scan, "CLUSTER", ())) or 19
+            text += (
+                f". Each oscillator frequency in the band adds {per} scan nodes "
+                f"(`CLUSTER` in src/mstmm/scan.py): with N oscillators in the band, "
+                f"O(N) nodes of O(N) each, O(N^2) per solve"
+            )
+        except ImportError:
+            pass
+    return text
+
+
+def findings(wp, sc) -> list[str]:
+    """Observations drawn from the numbers (what limits performance, where methods stop)."""
+    from .workprecision import fmt_err, fmt_time, plateau_of
+
+    out = []
+    if wp is not None:
+        for modes in (5, 20):
+            warm = [
+                p
+                for p in wp.points
+                if p.family == "mstmm-warm"
+                and p.modes == modes
+                and p.series.endswith("stable")
+                and math.isfinite(p.time)
+            ]
+            zero = [p for p in warm if p.param == 0.0]
+            other = [p for p in warm if p.param != 0.0]
+            if zero and other and min(p.time for p in other) > 1.5 * zero[0].time:
+                out.append(
+                    f"Lowest {modes}, stable: asking for less accuracy is slower. rtol = 0 takes "
+                    f"{fmt_time(zero[0].time)}, rtol = 1e-4 .. 1e-12 take "
+                    f"{fmt_time(min(p.time for p in other))} .. "
+                    f'{fmt_time(max(p.time for p in other))}: only `formulation="stable", '
+                    "rtol=0` uses the kernel's compiled `lowest` scan (src/mstmm/solve.py); "
+                    "any rtol > 0, and the paper formulation, go through the Python search of "
+                    "src/mstmm/scan.py."
+                )
+        failed = [p for p in wp.points if p.family == "mstmm-warm" and not math.isfinite(p.error)]
+        for p in failed:
+            out.append(
+                f"{p.series}, lowest {p.modes} ({p.setting}): {p.note}. The paper's det U_bar "
+                "loses about one digit per pi of lambda L, so above about the 10th mode it is "
+                "noise, and the recursive minimum search of src/mstmm/scan.py (`_Search.minimum` "
+                "-> `scan_values` -> `minimum`, up to MAX_DEPTH = 12 levels) branches on it: "
+                "every level's 17-point grid shows new sign changes and local minima, each "
+                "searched again."
+            )
+        for series in dict.fromkeys(p.series for p in wp.points if p.family in ("fe", "opensees")):
+            for modes in (5, 20):
+                pl = plateau_of([p for p in wp.points if p.series == series and p.modes == modes])
+                if not pl:
+                    continue
+                best, worst, slope = pl
+                if worst is None:
+                    out.append(
+                        f"{series}, lowest {modes}: still improving at the finest mesh "
+                        f"(n = {int(best.param)}: {fmt_err(best.error)}, {fmt_time(best.time)})."
+                    )
+                elif slope is not None:
+                    out.append(
+                        f"{series}, lowest {modes}: stops improving at n = {int(best.param)} "
+                        f"({fmt_err(best.error)}); beyond, the error grows like n^{slope:.1f} "
+                        "(round-off, eps cond(K) with cond(K) ~ n^4)."
+                    )
+                elif not math.isfinite(worst.error):
+                    out.append(
+                        f"{series}, lowest {modes}: best {fmt_err(best.error)} at n = "
+                        f"{int(best.param)}; fails at n = {int(worst.param)} ({worst.note})."
+                    )
+        br = wp.cold_breakdown
+        if br:
+            keys = list(br)
+            steps = [f"{k} {fmt_time(br[k])}" for k in keys]
+            out.append(
+                "A fresh process (cumulative wall times): " + "; ".join(steps) + ". "
+                "Most of it is Python, numpy and numba start-up and loading the cached machine "
+                "code, not the solve."
+            )
+    if sc is not None:
+        import math as _m
+
+        from .scaling import MODES, random_scene
+        from .workprecision import lowest_split
+
+        for r in sc.solve:
+            if r.get("formulation") != "stable" or r["N"] not in (1000, 10000):
+                continue
+            prof = r.get("profile") or {}
+            g = prof.get("lowest_grid")
+            low = prof.get("calls", {}).get("lowest")
+            if not g or not low or "omega_20" not in r:
+                continue
+            b = random_scene(1).beam
+            beta = b.length * (b.mass_per_length * r["omega_20"] ** 2 / b.EI) ** 0.25
+            scan_share = g["scan_seconds"] / max(low["seconds"], 1e-300)
+            text = (
+                f"N = {r['N']}, {r['family']}: the kernel's `lowest` takes "
+                f"{fmt_time(low['seconds'])}; the {MODES}th root is at lambda L = {beta:.3g}. "
+                + lowest_split(low["seconds"], g)
+                + ". "
+            )
+            if scan_share < 0.5:
+                text += (
+                    "The count dominates: the oscillator roots crowd into a few grid cells "
+                    f"(the {MODES} lowest lie below lambda L = {beta:.3g}, the grid step is "
+                    f"pi/{g['per_mode']}), the scan sees few of them as sign changes, and "
+                    "bisection on the O(N) count separates them one by one."
+                )
+            else:
+                text += (
+                    "The scan dominates: every node is an O(N) evaluation, "
+                    f"{g['per_mode']} nodes per pi of lambda L up to the {MODES}th root."
+                )
+            out.append(text)
+        slopes = {k: v for k, v in sc.slopes.items() if _m.isfinite(v)}
+        if slopes:
+            out.append(
+                "Log-log slopes against N: "
+                + "; ".join(f"{k} {v:.2f}" for k, v in slopes.items())
+                + "."
+            )
+    return out
+
+
+def targets_markdown(rows) -> str:
+    out = [
+        "| target | goal | measured | status | what limits it / remark |",
+        "|---|---|---|---|---|",
+    ]
+    for r in rows:
+        out.append("| " + " | ".join(x.replace("|", "/") for x in r) + " |")
+    return "\n".join(out) + "\n"
+
+
+# ------------------------------------------------------------------ report
+
+INTRO = """# Benchmarks: error against run time
+
+Generated by `{command}` (do not edit by hand; `--quick` is a smoke run whose
+numbers mean little). One run, one machine; every time is the **median** of
+repeated runs after a warm-up run (a run longer than 2 s is measured once, after
+everything was compiled on a small case), wall clock by `time.perf_counter`.
+"Warm" means in-process with the kernel loaded and compiled
+(`kernel=mstmm.kernel_for(scene)` reused); "cold" means a fresh Python process.
+Errors are the largest relative error over the modes, against exact values
+independent of mstmm (`tests/data/reference.json`, `tests/reference_model.py` in
+mpmath), computed in mpmath. BLAS is single-threaded for everything
+(`OPENBLAS_NUM_THREADS=1`): with two threads on this 2-core machine the dense FE
+solver was up to 60x slower. Other processes may have been running: the load
+average is recorded below.
+"""
+
+
+def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float) -> Path:
+    """Write ``out_dir/benchmarks.md`` (and the plots under ``out_dir/img``)."""
+    from . import machine, scaling, workprecision
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    parts = [INTRO.format(command=start["command"])]
+    skipped = []
+    wp_img = sc_img = None
+    if wp is not None:
+        wp_img, why = try_plot(workprecision.plot, wp, out_dir / "img" / "workprecision.png")
+        if why:
+            skipped.append(why)
+    if sc is not None:
+        sc_img, why = try_plot(scaling.plot, sc, out_dir / "img" / "scaling.png")
+        if why and why not in skipped:
+            skipped.append(why)
+    if skipped:
+        parts.append("**Plots:** " + "; ".join(skipped) + ".\n")
+    parts.append("## Machine\n")
+    parts.append(machine.markdown(start, end, elapsed) + "\n")
+    parts.append("## Targets\n")
+    parts.append("Goals of the benchmark (not timed unit tests), each with the measured figure.\n")
+    parts.append(targets_markdown(targets(wp, sc)))
+    notes = findings(wp, sc)
+    if notes:
+        parts.append("## Findings\n")
+        parts.append("\n".join(f"* {n}" for n in notes) + "\n")
+    if wp is not None:
+        parts.append("## 1. Work-precision: paper example (Wu & Chou 1998)\n")
+        parts.append(_doc(workprecision))
+        parts.append(workprecision.markdown(wp, wp_img))
+    if sc is not None:
+        parts.append("## 2. Scaling with the number of attachments N\n")
+        parts.append(_doc(scaling))
+        parts.append(scaling.markdown(sc, sc_img))
+    path = out_dir / "benchmarks.md"
+    path.write_text("\n".join(parts))
+    return path
+
+
+def _doc(module) -> str:
+    """The module docstring minus its first line: the method, in the report."""
+    lines = (module.__doc__ or "").strip().splitlines()[1:]
+    return "\n".join(lines).strip() + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m benchmarks", description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="smoke run (~30 s)")
+    ap.add_argument("--only", choices=SECTIONS, help="run one section")
+    ap.add_argument("--out", type=Path, default=ROOT / "docs", help="report directory")
+    ap.add_argument("--json", type=Path, help="also write the raw results here")
+    ap.add_argument("--render", type=Path, help="only re-render the report from a --json file")
+    args = ap.parse_args(argv)
+    # before numpy is imported (by the modules below)
+    for var in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
+
+    from . import machine, scaling, workprecision
+
+    if args.render:
+        raw = json.loads(args.render.read_text())
+        wp = workprecision.Results.from_json(raw["workprecision"]) if raw["workprecision"] else None
+        sc = scaling.Results(**raw["scaling"]) if raw["scaling"] else None
+        path = report(args.out, wp, sc, raw["machine"], raw.get("machine_end"), raw["elapsed"])
+        _log(f"re-rendered {path}")
+        return 0
+    start = machine.info(sys.argv if argv is None else ["benchmarks", *argv])
+    t0 = time.perf_counter()
+    wp = sc = None
+    if args.only in (None, "workprecision"):
+        wp = workprecision.run(quick=args.quick, log=_log)
+    if args.only in (None, "scaling"):
+        sc = scaling.run(quick=args.quick, log=_log)
+    elapsed = time.perf_counter() - t0
+    end = machine.info()
+    path = report(args.out, wp, sc, start, end, elapsed)
+    if args.json:
+        raw = {
+            "machine": start,
+            "machine_end": end,
+            "elapsed": elapsed,
+            "workprecision": wp.to_json() if wp else None,
+            "scaling": sc.to_json() if sc else None,
+        }
+        args.json.write_text(json.dumps(raw, indent=1, default=str))
+    _log(f"wrote {path} ({elapsed:.0f} s)")
+    for row in targets(wp, sc):
+        _log(f"target: {row[0]}: {row[2]} -> {row[3]}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
