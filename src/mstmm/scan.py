@@ -40,6 +40,17 @@ CLUSTER = np.concatenate([-np.logspace(-1, -9, 9), [0.0], np.logspace(-9, -1, 9)
 MAX_DEPTH = 12
 #: A minimum counts as a double root when |Delta| falls this far below its neighbours.
 DOUBLE_ROOT_DROP = 1e-12
+#: Evaluations the recursive search may spend per grid node. A characteristic
+#: function that has lost its digits (the paper's, at high modes) is noise with
+#: a sign change and a local minimum in every cell; without a budget the
+#: recursion would branch without end. The count fills in what is left.
+BUDGET_PER_NODE = 64
+#: A root is trusted when the count finds a root within this relative distance
+#: (the count itself resolves roots to about 1e-9 relative up to the 100th mode)
+#: (or within the refinement tolerance, when that is looser) ...
+TRUST = 1e-8
+#: ... or when the stable characteristic function changes sign within this distance.
+STABLE_TRUST = 1e-12
 
 
 @dataclass(frozen=True)
@@ -112,8 +123,11 @@ class _Search:
     def __init__(self, kernel: Kernel, p: np.ndarray, formulation: str, rtol: float):
         self.kernel, self.p, self.formulation, self.rtol = kernel, p, formulation, rtol
         self.roots: list[Root] = []
+        self.budget = 0
+        self.exhausted = False
 
     def evaluate(self, w):
+        self.budget -= len(w)
         mant, logs = self.kernel.evaluate(w, self.p, self.formulation)
         return mant, _logabs(mant, logs)
 
@@ -122,6 +136,7 @@ class _Search:
         self.roots.append(Root(root, 1, ok, "sign"))
 
     def scan(self, w: np.ndarray) -> None:
+        self.budget += BUDGET_PER_NODE * len(w)
         mant, la = self.evaluate(w)
         self.scan_values(w, mant, la, depth=0)
 
@@ -135,6 +150,9 @@ class _Search:
 
     def minimum(self, a: float, b: float, la: float, lb: float, depth: int) -> None:
         """Recursive search of a cell around a local minimum of log|Delta|."""
+        if self.budget <= 0:
+            self.exhausted = True
+            return
         w = np.linspace(a, b, 17)
         mant, lw = self.evaluate(w)
         if _sign_brackets(w, mant) or _exact_zeros(w, mant):
@@ -209,9 +227,10 @@ def find_roots(
     osc = oscillator_frequencies(kernel, p)
     rigid = kernel.topology.rigid_body_modes
     floor = _floor(p, osc)
+    notes: list[str] = []
     if certify:  # nothing but rigid-body modes may lie below the scan
-        while int(kernel.count_below(floor, p)[0]) > rigid and floor > 1e-300:
-            floor *= 1e-3
+        floor, note = _settle_floor(kernel, p, floor, rigid)
+        notes += note
     if band is not None:
         w_lo, w_hi = float(band[0]), float(band[1])
         start = max(w_lo, floor)
@@ -228,9 +247,16 @@ def find_roots(
     if w_hi > start:
         search.scan(grid(start, w_hi, p, osc))
     roots = _merge(search.roots)
-    checked, notes = True, []
+    checked = True
     if certify and w_hi > start:
-        roots, checked, notes = _certify(search, roots, start, w_hi)
+        roots, checked, more = _certify(search, roots, start, w_hi)
+        notes += more
+        roots = verify(kernel, p, roots, rtol)
+    if search.exhausted:
+        notes.append(
+            f"the {formulation} characteristic function is noise in places: the recursive"
+            " search stopped at its evaluation budget"
+        )
     while band is None and _count(roots) < modes and not certify:
         start, w_hi = w_hi, 2.0 * w_hi  # without a count: scan further until enough
         search.roots = []
@@ -239,6 +265,32 @@ def find_roots(
     if band is None:
         roots = _truncate(roots, modes)
     return Roots(roots, checked, notes)
+
+
+def _settle_floor(kernel: Kernel, p: np.ndarray, floor: float, rigid: int):
+    """Move the bottom of the scan until the count there is exactly the rigid-body modes.
+
+    Above it the count must hold every elastic root. Lower when the count sees a
+    root below the floor; higher when it has not yet registered a rigid-body
+    mode: its ``-omega^2`` pivot drowns in round-off at very low frequency when a
+    constrained end sits next to a very short segment (an attachment 1e-6 L from
+    a pin). A count of exactly ``rigid`` at the new floor proves that no elastic
+    root lies below it.
+    """
+    n = int(kernel.count_below(floor, p)[0])
+    while n > rigid and floor > 1e-300:
+        floor *= 1e-3
+        n = int(kernel.count_below(floor, p)[0])
+    raised = floor
+    while n < rigid and raised < 1e300:
+        raised *= 2.0
+        n = int(kernel.count_below(raised, p)[0])
+    if n == rigid:
+        return raised, []
+    return floor, [
+        f"the count does not settle on the {rigid} rigid-body mode(s) near omega = {floor:.3g}:"
+        " roots there are not certified"
+    ]
 
 
 def _certify(search: _Search, roots: list[Root], lo: float, hi: float):
@@ -250,16 +302,22 @@ def _certify(search: _Search, roots: list[Root], lo: float, hi: float):
     counts = kernel.count_below(np.array(cuts), p)
     out: list[Root] = []
     notes: list[str] = []
+    dropped: list[float] = []
     for i, r in enumerate(inner):
         expected = int(counts[i + 1] - counts[i])
         if expected == 1:
             out.append(Root(r.omega, 1, r.converged, r.how))
         elif expected == 0:
-            notes.append(f"omega = {r.omega:.17g}: not a root by the count, dropped")
+            dropped.append(r.omega)
         else:
             out.extend(_isolate(search, cuts[i], cuts[i + 1], int(counts[i]), int(counts[i + 1])))
     if not inner:
         out.extend(_isolate(search, lo, hi, int(counts[0]), int(counts[-1])))
+    if dropped:
+        notes.append(
+            f"{len(dropped)} zero(s) of the characteristic function between {min(dropped):.6g}"
+            f" and {max(dropped):.6g} rad/s are not roots by the count: dropped"
+        )
     total = int(counts[-1] - counts[0])
     checked = _count(out) == total
     if not checked:
@@ -283,6 +341,41 @@ def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root
     mid = 0.5 * (a + b)
     nm = int(kernel.count_below(mid, p)[0])
     return _isolate(search, a, mid, na, nm) + _isolate(search, mid, b, nm, nb)
+
+
+def verify(kernel: Kernel, p: np.ndarray, roots: list[Root], rtol: float = 0.0) -> list[Root]:
+    """Mark as not converged every root that neither check below confirms.
+
+    A root ``omega`` of multiplicity ``m`` is confirmed when the count finds at
+    least ``m`` natural frequencies within ``max(TRUST, 4 rtol)`` relative of
+    it, or (odd ``m``: the count resolves roots only to about 1e-9, worse next
+    to a very short segment at a constrained end) when the stable characteristic
+    function, accurate to round-off (``docs/stability.md``), changes sign within
+    ``max(STABLE_TRUST, 4 rtol)`` of it. A value that Brent's method took from round-off
+    noise (the paper's formulation at high modes) fails both and is flagged
+    instead of being printed as a frequency.
+    """
+    inner = [i for i, r in enumerate(roots) if r.how != "rigid" and r.converged]
+    if not inner:
+        return roots
+    rel, rel_stable = max(TRUST, 4.0 * rtol), max(STABLE_TRUST, 4.0 * rtol)
+    w = np.array([roots[i].omega for i in inner])
+    n = kernel.count_below(np.concatenate([w * (1.0 - rel), w * (1.0 + rel)]), p)
+    out = list(roots)
+    for j, i in enumerate(inner):
+        r = roots[i]
+        if int(n[len(inner) + j]) - int(n[j]) >= r.multiplicity:
+            continue
+        if r.multiplicity % 2 == 1 and _stable_sign_change(kernel, p, r.omega, rel_stable):
+            continue
+        out[i] = Root(r.omega, r.multiplicity, False, r.how)
+    return out
+
+
+def _stable_sign_change(kernel: Kernel, p: np.ndarray, omega: float, rel: float) -> bool:
+    """Whether the stable characteristic function changes sign across ``omega (1 -+ rel)``."""
+    mant, _ = kernel.evaluate(np.array([omega * (1.0 - rel), omega * (1.0 + rel)]), p, "stable")
+    return bool(mant[0] * mant[1] < 0.0)
 
 
 def simple_roots(omega: np.ndarray, rigid: int) -> list[Root]:

@@ -10,7 +10,7 @@ import numpy as np
 
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shape
-from .scan import Roots, find_roots, simple_roots
+from .scan import TRUST, Roots, find_roots, simple_roots, verify
 from .scene import Scene
 from .topology import parameter_vector, topology_of
 
@@ -77,7 +77,12 @@ def solve(
 
     ``formulation`` is ``"stable"`` (second-compound chain, default) or
     ``"paper"`` (det U_bar of paper Eq. (4) as printed). Mode shapes follow
-    paper Eq. (5) unless ``shapes=False``.
+    paper Eq. (5) unless ``shapes=False``. ``rtol`` is the relative tolerance
+    of the refinement (0: to machine precision); the stable formulation's
+    ``modes=`` search refines to machine precision whatever ``rtol``, which
+    costs less than the general search would with a looser one. Every root is
+    checked against the Wittrick-Williams count; one it does not confirm (see
+    :func:`mstmm.scan.verify`) is marked not converged, with a warning.
     """
     if modes is None and band is None:
         modes = 10
@@ -88,8 +93,11 @@ def solve(
     p = parameter_vector(scene)
     t1 = time.perf_counter()
     timings["load"] = t1 - t0
+    if 0.0 < kernel.derive_seconds <= timings["load"]:  # derived by this call
+        timings["derive"] = kernel.derive_seconds
     # the kernel's own certified scan serves the common case; the full search the rest
-    fast = modes is not None and formulation == "stable" and rtol == 0.0
+    # (it refines to machine precision: a looser rtol would not make it faster)
+    fast = modes is not None and formulation == "stable"
     if fast:
         kernel.lowest(p, 1)  # compile, or load from numba's cache, before timing
     else:
@@ -101,7 +109,8 @@ def solve(
     if fast:
         w, certified = kernel.lowest(p, modes)
         if certified:
-            found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
+            rigid = kernel.topology.rigid_body_modes
+            found = Roots(verify(kernel, p, simple_roots(w, rigid)), True, [])
     if found is None:
         found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
     roots = found.roots
@@ -111,7 +120,9 @@ def solve(
     mult = np.array([r.multiplicity for r in roots for _ in range(r.multiplicity)], dtype=int)
     conv = np.array([r.converged for r in roots for _ in range(r.multiplicity)], dtype=bool)
     warnings = [
-        f"omega = {r.omega:.17g} rad/s: refinement did not converge; this value is not trusted"
+        f"omega = {r.omega:.17g} rad/s: refinement did not converge, or neither the count"
+        f" nor the stable function confirms a root within {max(TRUST, 4.0 * rtol):.0e}"
+        " of it; this value is not trusted"
         for r in roots
         if not r.converged
     ] + found.notes
