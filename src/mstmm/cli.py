@@ -10,7 +10,9 @@ import argparse
 import csv
 import io
 import json
+import os
 import sys
+import time
 from pathlib import Path
 
 from .kernels import FORMULATIONS, KernelError
@@ -57,6 +59,9 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     ap = _Parser(prog="mstmm", description="Natural frequencies of beams by MSTMM.")
     ap.add_argument("--debug", action="store_true", help="show tracebacks of unexpected errors")
+    ap.add_argument(
+        "--verbose", action="store_true", help="print where the time went (on standard error)"
+    )
     sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
     s = sub.add_parser("solve", help="natural frequencies and mode shapes of a scene")
     s.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
@@ -116,6 +121,12 @@ def _solve(args) -> int:
         formulation=args.formulation,
         shapes=args.shapes and args.format == "json",
     )
+    if band is not None and not sol.omega.size:
+        raise NoRoots(
+            f"no natural frequency in the band [{band[0]:.6g}, {band[1]:.6g}] rad/s"
+            + (" (the count confirms it)" if sol.count_checked else "")
+        )
+    _phase(args, "solve", **sol.timings)
     if args.format == "json":
         print(json.dumps(sol.to_dict(shapes=args.shapes)))
     elif args.format == "csv":
@@ -133,7 +144,7 @@ def _solve(args) -> int:
         for i, (w, f, m, c) in enumerate(
             zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
         ):
-            flag = "" if c else "  NOT CONVERGED"
+            flag = "" if c else "  NOT TRUSTED"
             print(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
         t = sol.timings
         print(
@@ -145,6 +156,44 @@ def _solve(args) -> int:
     return 0
 
 
+class NoRoots(RuntimeError):
+    """A band asked for holds no natural frequency."""
+
+
+def _seconds_since_process_start() -> float | None:
+    """Wall time since this process started (Linux ``/proc``), for ``--verbose``."""
+    try:
+        with open("/proc/self/stat") as fh:
+            start_ticks = float(fh.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime") as fh:
+            uptime = float(fh.read().split()[0])
+        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+_LABELS = {
+    "startup": "start-up (Python, numpy, numba, mstmm imports)",
+    "load": "scene and kernel module",
+    "derive": "of which SymPy derivation",
+    "compile": "machine code (numba cache load or compile)",
+    "scan_refine": "root search, refinement, count",
+    "shapes": "mode shapes",
+    "sweep": "parameter study",
+    "output": "output",
+    "total": "total",
+}
+
+
+def _phase(args, what: str, **seconds: float) -> None:
+    """With ``--verbose``: one line per phase on standard error."""
+    if not args.verbose:
+        return
+    for key, value in seconds.items():
+        label = _LABELS.get(key, key)
+        print(f"mstmm: time: {what}: {label}: {value:.6f} s", file=sys.stderr)
+
+
 def _sweep(args) -> int:
     import os
     import tempfile
@@ -153,9 +202,11 @@ def _sweep(args) -> int:
 
     scene = _scene(args.scene)
     vary = dict(_vary_item(item, "--vary") for item in args.vary)
+    t0 = time.perf_counter()
     omega = sweep(
         scene, vary, modes=args.modes, scheduler=args.scheduler, progress=sys.stderr.isatty()
     )
+    _phase(args, "sweep", sweep=time.perf_counter() - t0)
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
     wr.writerow([*vary, *(f"omega_{i + 1}" for i in range(args.modes))])
@@ -255,6 +306,8 @@ def _show(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
+    started = _seconds_since_process_start() if argv is None else None
+    t0 = time.perf_counter()
     args = build_parser().parse_args(argv)
     try:
         commands = {
@@ -264,7 +317,16 @@ def main(argv: list[str] | None = None) -> int:
             "derive": _derive,
             "show": _show,
         }
-        return commands[args.command](args)
+        status = commands[args.command](args)
+        total = time.perf_counter() - t0
+        if started is not None:
+            _phase(args, args.command, startup=started, total=started + total)
+        else:
+            _phase(args, args.command, total=total)
+        return status
+    except NoRoots as exc:
+        print(f"mstmm: error: {exc}", file=sys.stderr)
+        return EXIT_FAILURE
     except SceneError as exc:
         print(f"mstmm: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -274,8 +336,13 @@ def main(argv: list[str] | None = None) -> int:
     except ImportError as exc:
         if args.debug:
             raise
-        print(f"mstmm: error: a dependency is missing: {exc}", file=sys.stderr)
+        name = (exc.name or "").split(".")[0]
+        hint = f"the package {name!r} cannot be imported; reinstall it" if name else str(exc)
+        print(f"mstmm: error: a dependency is missing: {hint} ({exc})", file=sys.stderr)
         return EXIT_FAILURE
+    except BrokenPipeError:  # `mstmm solve | head`: the reader left, nothing to report
+        sys.stdout = open(os.devnull, "w")  # noqa: SIM115 (keep the interpreter's flush quiet)
+        return 0
     except Exception as exc:  # one line for the user, the traceback with --debug
         if args.debug:
             raise

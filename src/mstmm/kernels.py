@@ -24,6 +24,7 @@ import importlib.util
 import os
 import sys
 import tempfile
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -107,7 +108,9 @@ def _bundled(topology: Topology, sig: str) -> ModuleType | None:
     name = f"mstmm.generated.{topology.key}"
     try:
         module = importlib.import_module(name)
-    except ModuleNotFoundError:
+    except ModuleNotFoundError as exc:
+        if exc.name != name:  # numba (or numpy) missing: not a kernel that is absent
+            raise
         return None
     return module if getattr(module, "SIGNATURE", None) == sig else None
 
@@ -131,23 +134,30 @@ def write_kernel(topology: Topology, directory: Path, name: str | None = None) -
     return path
 
 
-def kernel_module(topology: Topology) -> tuple[ModuleType, str]:
-    """The kernel module of ``topology`` and where it came from (a path or package name)."""
+def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
+    """The kernel module of ``topology``, where it came from, and the seconds spent deriving it.
+
+    The origin is a package name (bundled) or a path (user cache); the derive
+    time is 0 unless SymPy had to write the kernel now.
+    """
     sig = signature(topology)
     module = _bundled(topology, sig)
     if module is not None:
-        return module, module.__name__
+        return module, module.__name__, 0.0
     directory = cache_dir()
     path = directory / f"{topology.key}_{sig[:16]}.py"
+    derived = 0.0
     if not path.exists():
+        t0 = time.perf_counter()
         try:
             write_kernel(topology, directory)
         except OSError as exc:
             raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
+        derived = time.perf_counter() - t0
     module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
     if module_name in sys.modules:
-        return sys.modules[module_name], str(path)
-    return _load_file(path, module_name), str(path)
+        return sys.modules[module_name], str(path), derived
+    return _load_file(path, module_name), str(path), derived
 
 
 @dataclass
@@ -157,6 +167,8 @@ class Kernel:
     topology: Topology
     module: ModuleType
     origin: str
+    #: Seconds SymPy spent writing this kernel in this process (0: it existed).
+    derive_seconds: float = 0.0
 
     def evaluate(
         self, omegas: np.ndarray, p: np.ndarray, formulation: str = "stable"
@@ -241,7 +253,7 @@ def load_kernel(topology: Topology) -> Kernel:
     """The kernel of ``topology`` (memoised per process)."""
     kernel = _LOADED.get(topology.key)
     if kernel is None:
-        module, origin = kernel_module(topology)
-        kernel = Kernel(topology, module, origin)
+        module, origin, derived = kernel_module(topology)
+        kernel = Kernel(topology, module, origin, derived)
         _LOADED[topology.key] = kernel
     return kernel
