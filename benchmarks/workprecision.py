@@ -371,7 +371,12 @@ def measure_mstmm_warm(
                         ),
                         budget,
                     )
-                    note = "; ".join(sol.warnings)
+                    flagged = int(np.count_nonzero(~sol.converged))
+                    note = (
+                        f"{flagged} of {sol.omega.size} roots flagged NOT TRUSTED by the solver"
+                        if flagged
+                        else ""
+                    )
                     emit((rtol, t, max_rel_error(sol.omega, refs[m]), n, note))
 
             items, why = in_child(group, group_budget)

@@ -25,7 +25,7 @@ import os
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
 
@@ -169,6 +169,18 @@ class Kernel:
     origin: str
     #: Seconds SymPy spent writing this kernel in this process (0: it existed).
     derive_seconds: float = 0.0
+    #: Entry points already compiled or loaded from numba's cache in this process.
+    warmed: set = field(default_factory=set)
+
+    def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
+        """Compile (or load from numba's cache) what a solve calls, once per process."""
+        if formulation in self.warmed:
+            return
+        if formulation == "stable":
+            self.lowest(p, 1)
+        self.delta(1.0, p, formulation)
+        self.count_below(1.0, p)
+        self.warmed.add(formulation)
 
     def evaluate(
         self, omegas: np.ndarray, p: np.ndarray, formulation: str = "stable"

@@ -9,6 +9,7 @@ attachments instead of unrolling them (DESIGN.md, "Scale of the symbolic step").
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -66,7 +67,7 @@ class Topology:
         left, right = ends.split("_")
         return cls(left, right, tuple(kinds))
 
-    @property
+    @cached_property
     def rigid_body_modes(self) -> int:
         """Number of zero natural frequencies: rigid motions ``Y = a + b x`` the ends allow.
 
