@@ -378,6 +378,8 @@ class Comparison:
     converged: bool
     seconds: float
     problems: list[str] = field(default_factory=list)
+    #: Largest error over the modes the solver did not flag as untrusted.
+    max_trusted_error: float = math.nan
 
     @property
     def passed(self) -> bool:
@@ -410,6 +412,20 @@ class Comparison:
                     f"{mp.nstr(self.reference.omega[i], 20)}, rel error {self.rel_err[i]:.3e}"
                 )
         return "\n".join(lines)
+
+
+def _mode_ranges(modes: list[int]) -> str:
+    """``[10, 11, 12, 15]`` -> ``"modes 10-12, 15"``."""
+    parts: list[str] = []
+    start = prev = modes[0]
+    for m in [*modes[1:], None]:
+        if m is not None and m == prev + 1:
+            prev = m
+            continue
+        parts.append(f"{start}" if start == prev else f"{start}-{prev}")
+        if m is not None:
+            start = prev = m
+    return ("mode " if len(modes) == 1 else "modes ") + ", ".join(parts)
 
 
 _REFERENCES: dict[str, Reference] = {}
@@ -531,7 +547,9 @@ def compare(case: Case, formulation: str = "stable") -> Comparison:
         )
     if not np.all(sol.converged):
         bad = [i + 1 for i, ok in enumerate(sol.converged) if not ok]
-        problems.append(f"refinement did not converge for mode(s) {bad}")
+        problems.append(f"flagged NOT TRUSTED by the solver: {_mode_ranges(bad)}")
+    trusted = np.asarray(sol.converged[: err.size], dtype=bool)
+    max_trusted = float(err[trusted].max()) if trusted.any() else math.nan
     max_err = math.inf if missing or not err.size else float(err.max())
     comp = Comparison(
         case,
@@ -545,6 +563,7 @@ def compare(case: Case, formulation: str = "stable") -> Comparison:
         bool(np.all(sol.converged)),
         seconds,
         problems,
+        max_trusted,
     )
     _COMPARISONS[key] = comp
     return comp

@@ -131,3 +131,40 @@ def test_verbose_in_a_fresh_process_reports_start_up():
     result = _run("--verbose", "solve", "--modes", "2")
     assert result.returncode == 0, result.stderr
     assert "start-up (Python, numpy, numba, mstmm imports)" in result.stderr
+
+
+def test_progress_draws_only_when_enabled(capsys, monkeypatch):
+    """Status lines and bars go to standard error, and only when enabled (a terminal)."""
+    from mstmm import progress
+
+    monkeypatch.setattr(progress, "enabled", False)
+    with progress.status("deriving"):
+        pass
+    bar = progress.Bar(3, "sweep")
+    bar.update(3)
+    bar.close()
+    assert capsys.readouterr() == ("", "")
+    monkeypatch.setattr(progress, "enabled", True)
+    monkeypatch.setattr(progress, "KEEP_AFTER", 0.0)
+    with progress.status("deriving the kernel"):
+        pass
+    bar = progress.Bar(4, "sweep")
+    bar.update(4)
+    bar.close()
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert "mstmm: deriving the kernel: " in err
+    assert "[" + "#" * 40 + "] 4/4" in err
+
+
+def test_sweep_progress_bar_counts_every_point(capsys):
+    scene = mstmm.load_scene(mstmm.example_path())
+    omega = mstmm.sweep(
+        scene,
+        {"attachments[2].k": [1e5 * (1 + i / 200) for i in range(200)]},
+        modes=2,
+        progress=True,
+    )
+    assert omega.shape == (200, 2)
+    err = capsys.readouterr().err
+    assert "200/200" in err

@@ -117,6 +117,7 @@ def test_cli_sweep_bad_path_exits_2(tmp_path, data_dir):
 def test_sweep_on_a_dask_cluster_matches_local():
     """The same call on a distributed.LocalCluster started here (two worker processes)."""
     import distributed
+
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     ks = np.logspace(3, 9, 9)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as lc:

@@ -15,6 +15,7 @@ import sys
 import time
 from pathlib import Path
 
+from . import progress
 from .kernels import FORMULATIONS, KernelError
 from .scene import Scene, SceneError, load_scene
 
@@ -204,7 +205,7 @@ def _sweep(args) -> int:
     vary = dict(_vary_item(item, "--vary") for item in args.vary)
     t0 = time.perf_counter()
     omega = sweep(
-        scene, vary, modes=args.modes, scheduler=args.scheduler, progress=sys.stderr.isatty()
+        scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
     )
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
     buf = io.StringIO()
@@ -309,6 +310,7 @@ def main(argv: list[str] | None = None) -> int:
     started = _seconds_since_process_start() if argv is None else None
     t0 = time.perf_counter()
     args = build_parser().parse_args(argv)
+    progress.enabled = sys.stderr.isatty() and getattr(args, "format", None) != "json"
     try:
         commands = {
             "solve": _solve,

@@ -31,6 +31,7 @@ from types import ModuleType
 
 import numpy as np
 
+from . import progress
 from .topology import Topology
 
 #: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
@@ -150,7 +151,8 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
     if not path.exists():
         t0 = time.perf_counter()
         try:
-            write_kernel(topology, directory)
+            with progress.status(f"deriving the {topology.key} kernel with SymPy"):
+                write_kernel(topology, directory)
         except OSError as exc:
             raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
         derived = time.perf_counter() - t0
@@ -172,15 +174,23 @@ class Kernel:
     #: Entry points already compiled or loaded from numba's cache in this process.
     warmed: set = field(default_factory=set)
 
-    def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
-        """Compile (or load from numba's cache) what a solve calls, once per process."""
-        if formulation in self.warmed:
+    def warm_up(self, p: np.ndarray, what: str = "stable") -> None:
+        """Compile (or load from numba's cache) what a solve calls, once per process.
+
+        ``what``: ``"lowest"`` (the kernel's own scan, all a ``modes=`` solve of
+        the stable formulation needs), or a formulation name (its evaluation and
+        refinement, and the count: the general search). Each compiled function
+        loaded costs a fresh process tens of milliseconds, so only these.
+        """
+        if what in self.warmed:
             return
-        if formulation == "stable":
-            self.lowest(p, 1)
-        self.delta(1.0, p, formulation)
-        self.count_below(1.0, p)
-        self.warmed.add(formulation)
+        with progress.status(f"compiling the {self.topology.key} kernel (numba caches it)"):
+            if what == "lowest":
+                self.lowest(p, 1)
+            else:
+                self.delta(1.0, p, what)
+                self.count_below(1.0, p)
+        self.warmed.add(what)
 
     def evaluate(
         self, omegas: np.ndarray, p: np.ndarray, formulation: str = "stable"

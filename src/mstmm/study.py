@@ -19,6 +19,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from .kernels import Kernel, load_kernel
+from .progress import Bar
 from .scan import find_roots
 from .scene import Scene, SceneError
 from .topology import ATTACHMENT_PARAMETERS, parameter_vector, topology_of
@@ -89,7 +90,7 @@ def sweep(
     P = parameter_matrix(scene, vary)
     topology = topology_of(scene)
     if scheduler is not None:
-        out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk)
+        out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk, progress)
         if kernel is None and not certified.all():
             kernel = load_kernel(topology)
     else:
@@ -114,21 +115,18 @@ def sweep(
     return out
 
 
-def _local_sweep(kernel: Kernel, P: np.ndarray, modes: int, progress: bool):
-    if not progress or len(P) < 100:
+def _local_sweep(kernel: Kernel, P: np.ndarray, modes: int, show: bool):
+    if not show or len(P) < 100:
         return kernel.sweep(P, modes)
-    import sys
-
     parts = np.array_split(np.arange(len(P)), 40)
+    bar = Bar(len(P), "sweep", show=True)
     outs, certs = [], []
-    for i, idx in enumerate(parts, start=1):
+    for idx in parts:
         o, c = kernel.sweep(P[idx], modes)
         outs.append(o)
         certs.append(c)
-        bar = "#" * i + "." * (len(parts) - i)
-        sys.stderr.write(f"\rsweep [{bar}] {idx[-1] + 1}/{len(P)}")
-        sys.stderr.flush()
-    sys.stderr.write("\n")
+        bar.update(len(idx))
+    bar.close()
     return np.concatenate(outs), np.concatenate(certs)
 
 
@@ -139,15 +137,19 @@ def sweep_chunk(key: str, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.nda
     return load_kernel(Topology.from_key(key)).sweep(P, modes)
 
 
-def _dask_sweep(scheduler, key: str, P: np.ndarray, modes: int, chunk: int):
+def _dask_sweep(scheduler, key: str, P: np.ndarray, modes: int, chunk: int, show: bool):
     try:
-        from distributed import Client
+        from distributed import Client, as_completed
     except ImportError as exc:  # pragma: no cover - depends on the installation
         raise RuntimeError("a Dask scheduler needs the extra: pip install 'mstmm[dask]'") from exc
     client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
     try:
         pieces = [P[i : i + chunk] for i in range(0, len(P), chunk)]
         futures = client.map(sweep_chunk, [key] * len(pieces), pieces, [modes] * len(pieces))
+        bar = Bar(len(P), "sweep on the Dask cluster", show=show)
+        for future in as_completed(futures):
+            bar.update(len(pieces[futures.index(future)]))
+        bar.close()
         results = client.gather(futures)
     finally:
         if client is not scheduler:
