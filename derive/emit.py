@@ -132,6 +132,15 @@ for i in range(n):
     spring_mass_compound_step(v, beta, kappa, mu)
     log += renormalise(v)"""
 
+#: Body of ``oscillator_frequencies(p)``: where the kernel's ``lowest`` puts extra scan nodes.
+SPRING_MASS_OSCILLATORS = """\
+n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+out = np.empty(n)
+for i in range(n):
+    q = 3 + ATTACHMENT_STRIDE * i
+    out[i] = math.sqrt(p[q + 1] / p[q + 2])
+return np.sort(out)"""
+
 SPRING_MASS_PAPER_LOOP = """\
 for i in range(n):
     q = 3 + ATTACHMENT_STRIDE * i
@@ -256,6 +265,9 @@ def kernel_source(topology: Topology) -> str:
         left_penalty=_indent(_penalty_lines(topology.left), 4),
         right_penalty=_indent(_penalty_lines(topology.right), 4),
         count_attachment_loop=_indent(SPRING_MASS_COUNT_LOOP.splitlines(), 4) if has_sm else "",
+        oscillators=_indent(
+            SPRING_MASS_OSCILLATORS.splitlines() if has_sm else ["return np.empty(0)"], 4
+        ),
         beam_compound=_indent(_compound_step(C_beam), 4),
         attachment_functions=_spring_mass_functions() if has_sm else "",
         stable_attachment_loop=_indent(SPRING_MASS_STABLE_LOOP.splitlines(), 4) if has_sm else "",

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "aa7b496ad17731ec55886733d04f03ccf1f5a61e"
+SIGNATURE = "43bb8a9b36f36be93a5b752b89452b908d75fb61"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -700,6 +700,12 @@ def isolate(a, b, na, nb, p, out, k, modes):
 
 
 @njit(cache=True)
+def oscillator_frequencies(p):
+    """sqrt(k/m) of every attached oscillator, ascending: roots crowd around them."""
+    return np.empty(0)
+
+
+@njit(cache=True)
 def lowest(p, modes, out):
     """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
 
@@ -736,9 +742,20 @@ def lowest(p, modes, out):
     w_prev = w_lo
     m_prev = delta_stable(w_prev, p)[0]
     nodes = int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1
+    grid = np.empty(nodes - 1)
     for j in range(1, nodes):
         b = b_lo + (b_hi - b_lo) * j / (nodes - 1)
-        w = scale * b * b
+        grid[j - 1] = scale * b * b
+    # a node at every oscillator frequency in the band: the roots near a cluster of
+    # oscillators fall into separate cells instead of costing a count bisection each
+    osc = oscillator_frequencies(p)
+    osc = osc[(osc > w_lo) & (osc < w_hi)]
+    if osc.shape[0] > 0:
+        grid = np.sort(np.concatenate((grid, osc)))
+    for j in range(grid.shape[0]):
+        w = grid[j]
+        if w <= w_prev:
+            continue
         m = delta_stable(w, p)[0]
         if m == 0.0:
             w *= 1.0 + 4.4e-16

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "a8b6bd6699d5c950ff8b0aa2305313d0885fa843"
+SIGNATURE = "deb134e15b47d192bdfcf53916b94da131729222"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -775,6 +775,17 @@ def isolate(a, b, na, nb, p, out, k, modes):
 
 
 @njit(cache=True)
+def oscillator_frequencies(p):
+    """sqrt(k/m) of every attached oscillator, ascending: roots crowd around them."""
+    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
+    out = np.empty(n)
+    for i in range(n):
+        q = 3 + ATTACHMENT_STRIDE * i
+        out[i] = math.sqrt(p[q + 1] / p[q + 2])
+    return np.sort(out)
+
+
+@njit(cache=True)
 def lowest(p, modes, out):
     """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
 
@@ -811,9 +822,20 @@ def lowest(p, modes, out):
     w_prev = w_lo
     m_prev = delta_stable(w_prev, p)[0]
     nodes = int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1
+    grid = np.empty(nodes - 1)
     for j in range(1, nodes):
         b = b_lo + (b_hi - b_lo) * j / (nodes - 1)
-        w = scale * b * b
+        grid[j - 1] = scale * b * b
+    # a node at every oscillator frequency in the band: the roots near a cluster of
+    # oscillators fall into separate cells instead of costing a count bisection each
+    osc = oscillator_frequencies(p)
+    osc = osc[(osc > w_lo) & (osc < w_hi)]
+    if osc.shape[0] > 0:
+        grid = np.sort(np.concatenate((grid, osc)))
+    for j in range(grid.shape[0]):
+        w = grid[j]
+        if w <= w_prev:
+            continue
         m = delta_stable(w, p)[0]
         if m == 0.0:
             w *= 1.0 + 4.4e-16
