@@ -225,6 +225,7 @@ def measure_derive(res: Results, ns, log) -> None:
             path.write_text(scene_toml(scene, scene.name))
             env = dict(os.environ)
             env["MSTMM_CACHE"] = str(Path(tmp) / f"cache-{n}")
+            env["MSTMM_INTERPRET_BUDGET"] = "0"  # compiled: what is measured here
             t = time.perf_counter()
             proc = subprocess.run(
                 [sys.executable, "-c", _DERIVE_CODE, str(path)],

@@ -410,26 +410,46 @@ def measure_mstmm_warm(
         )
 
 
+#: Fresh-process series: label, family, ``MSTMM_INTERPRET_BUDGET`` (None: the default).
+COLD_SERIES = (
+    ("mstmm cold: fresh process, kernel cached", "mstmm-cold", None),
+    ("mstmm cold, compiled only (MSTMM_INTERPRET_BUDGET=0)", "mstmm-cold-jit", "0"),
+)
+
+
+def _env(budget: str | None) -> dict:
+    """This environment with ``MSTMM_INTERPRET_BUDGET`` set to ``budget`` (None: unset)."""
+    env = {k: v for k, v in os.environ.items() if k != "MSTMM_INTERPRET_BUDGET"}
+    if budget is not None:
+        env["MSTMM_INTERPRET_BUDGET"] = budget
+    return env
+
+
 def measure_mstmm_cold(res: Results, refs: dict, repeats: int, breakdown: bool) -> None:
-    """Fresh ``python -m mstmm solve`` processes, the bundled kernel in numba's cache."""
-    for modes in MODES:
-        _cli(SCENE, modes)  # warm numba's on-disk cache
-        runs = [_cli(SCENE, modes) for _ in range(repeats)]
-        t = statistics.median(r[0] for r in runs)
-        out = runs[0][1]
-        res.points.append(
-            Point(
-                "mstmm cold: fresh process, kernel cached",
-                "mstmm-cold",
-                modes,
-                "python -m mstmm solve",
-                t,
-                max_rel_error(out["omega"], refs[modes]),
-                repeats,
-                note=f"in-process load {out['timings']['load']:.3f} s, "
-                f"scan+refine {out['timings']['scan_refine'] * 1e3:.2f} ms",
+    """Fresh ``python -m mstmm solve`` processes, the bundled kernel in numba's cache.
+
+    By default such a small solve runs the kernel as Python (``mstmm.interpret``);
+    the second series forces the compiled kernel, as before that tier existed.
+    """
+    for label, family, budget in COLD_SERIES:
+        for modes in MODES:
+            _cli(SCENE, modes, _env("0"))  # warm numba's on-disk cache
+            runs = [_cli(SCENE, modes, _env(budget)) for _ in range(repeats)]
+            t = statistics.median(r[0] for r in runs)
+            out = runs[0][1]
+            res.points.append(
+                Point(
+                    label,
+                    family,
+                    modes,
+                    f"python -m mstmm solve ({out['kernel_mode']})",
+                    t,
+                    max_rel_error(out["omega"], refs[modes]),
+                    repeats,
+                    note=f"in-process load {out['timings']['load']:.3f} s, "
+                    f"scan+refine {out['timings']['scan_refine'] * 1e3:.2f} ms",
+                )
             )
-        )
     if breakdown:
         parts = {
             "python -c pass": "pass",
@@ -439,8 +459,13 @@ def measure_mstmm_cold(res: Results, refs: dict, repeats: int, breakdown: bool) 
             "+ load_scene, kernel_for (module, no machine code yet)": (
                 "import mstmm; s = mstmm.load_scene(mstmm.example_path()); k = mstmm.kernel_for(s)"
             ),
-            "+ mstmm.solve(s, modes=5, shapes=False) (numba cache load + solve)": (
+            "+ mstmm.solve(s, modes=5, shapes=False) (default: run as Python)": (
                 "import mstmm; s = mstmm.load_scene(mstmm.example_path()); "
+                "k = mstmm.kernel_for(s); mstmm.solve(s, modes=5, shapes=False)"
+            ),
+            "+ the same compiled only (numba cache load + solve)": (
+                "import mstmm; mstmm.interpret.set_budget(0); "
+                "s = mstmm.load_scene(mstmm.example_path()); "
                 "k = mstmm.kernel_for(s); mstmm.solve(s, modes=5, shapes=False)"
             ),
         }
@@ -470,7 +495,7 @@ def measure_first_derive(res: Results, scene, repeats: int) -> None:
             ref = exact(variant, modes)
             runs = []
             for i in range(repeats if modes == 5 else 1):
-                env = dict(os.environ)
+                env = _env("0")  # compiled: what this point measures
                 env["MSTMM_CACHE"] = str(Path(tmp) / f"cache-{modes}-{i}")
                 runs.append(_cli(path, modes, env))
             t = statistics.median(r[0] for r in runs)
@@ -697,6 +722,9 @@ STYLE = {
     "mstmm warm, stable": dict(color="C0", marker="o", lw=2),
     "mstmm warm, paper": dict(color="C1", marker="s", lw=2),
     "mstmm cold: fresh process, kernel cached": dict(color="C0", marker="P", ms=10, ls=""),
+    "mstmm cold, compiled only (MSTMM_INTERPRET_BUDGET=0)": dict(
+        color="C9", marker="P", ms=10, ls=""
+    ),
     "mstmm cold: first run of a new topology (derive + compile)": dict(
         color="C0", marker="X", ms=10, ls=""
     ),
@@ -883,6 +911,7 @@ def markdown(res: Results, img: str | None) -> str:
     groups = [
         ("mstmm warm", "mstmm-warm", None),
         ("mstmm cold, kernel cached", "mstmm-cold", None),
+        ("mstmm cold, compiled only", "mstmm-cold-jit", None),
         ("FE (dense or sparse)", "fe", None),
         ("FE + Richardson", "fe-richardson", None),
         ("OpenSeesPy", "opensees", None),

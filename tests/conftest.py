@@ -27,6 +27,30 @@ def data_dir() -> Path:
     return DATA
 
 
+@pytest.fixture
+def fresh_process(monkeypatch):
+    """mstmm.interpret's state as in a process that has loaded no machine code yet."""
+    from mstmm import interpret, kernels
+
+    monkeypatch.setattr(interpret._Process, "compiled", False)
+    monkeypatch.setattr(interpret._Process, "spent", 0.0)
+    monkeypatch.setattr(interpret._Process, "budget", interpret.DEFAULT_BUDGET)
+    for kernel in kernels._LOADED.values():
+        monkeypatch.setattr(kernel, "warmed", set())
+
+
+@pytest.fixture(params=["interpreted", "compiled"])
+def tier(request, monkeypatch) -> str:
+    """Run the test with the kernel's root search interpreted, then compiled."""
+    from mstmm import interpret
+
+    if request.param == "interpreted":
+        request.getfixturevalue("fresh_process")
+    else:
+        monkeypatch.setattr(interpret._Process, "compiled", True)
+    return request.param
+
+
 # Property tests: deterministic in CI (same examples every run), random locally.
 from hypothesis import settings  # noqa: E402
 

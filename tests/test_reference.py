@@ -7,6 +7,7 @@ assembly of the exact segment solutions in 50-digit mpmath, independent of MSTMM
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 
@@ -23,9 +24,16 @@ def rel_err(got, exact) -> np.ndarray:
     return np.abs(got - exact) / np.abs(exact)
 
 
+@pytest.mark.parametrize("budget,mode", [("", "interpreted"), ("0", "compiled")])
 @pytest.mark.parametrize("name", SCENES)
-def test_cli_json_ten_modes_match_reference(name, reference, data_dir):
-    """`mstmm solve SCENE --modes 10 --format json`: all within 1e-10 (we hold 1e-13)."""
+def test_cli_json_ten_modes_match_reference(name, budget, mode, reference, data_dir):
+    """`mstmm solve SCENE --modes 10 --format json`: all within 1e-10 (we hold 1e-13).
+
+    A fresh process runs this small solve as Python (mstmm.interpret) unless
+    ``MSTMM_INTERPRET_BUDGET=0``: both against the reference."""
+    env = {k: v for k, v in os.environ.items() if k != "MSTMM_INTERPRET_BUDGET"}
+    if budget:
+        env["MSTMM_INTERPRET_BUDGET"] = budget
     out = subprocess.run(
         [
             sys.executable,
@@ -41,8 +49,10 @@ def test_cli_json_ten_modes_match_reference(name, reference, data_dir):
         capture_output=True,
         text=True,
         check=True,
+        env=env,
     )
     result = json.loads(out.stdout)
+    assert result["kernel_mode"] == mode
     assert len(result["omega"]) == 10
     assert np.all(np.diff(result["omega"]) > 0)
     assert rel_err(result["omega"], reference[name]).max() < 1e-13

@@ -16,6 +16,7 @@ from __future__ import annotations
 from importlib.resources import files
 from pathlib import Path
 
+from . import interpret
 from .kernels import Kernel, load_kernel
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 from .solve import Solution, solve
@@ -29,6 +30,7 @@ __all__ = [
     "Solution",
     "Topology",
     "example_path",
+    "interpret",
     "kernel_for",
     "load_kernel",
     "load_scene",

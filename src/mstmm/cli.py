@@ -148,8 +148,13 @@ def _solve(args) -> int:
             flag = "" if c else "  NOT TRUSTED"
             print(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
         t = sol.timings
+        machine = (
+            "kernel run as Python (cheaper than loading machine code)"
+            if sol.kernel_mode == "interpreted"
+            else f"compile {t['compile']:.3f} s"
+        )
         print(
-            f"time: load {t['load']:.3f} s, compile {t['compile']:.3f} s, "
+            f"time: load {t['load']:.3f} s, {machine}, "
             f"scan+refine {t['scan_refine'] * 1e3:.2f} ms, count checked: {sol.count_checked}"
         )
     for warning in sol.warnings:

@@ -31,7 +31,7 @@ from types import ModuleType
 
 import numpy as np
 
-from . import progress
+from . import interpret, progress
 from .topology import Topology
 
 #: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
@@ -173,6 +173,8 @@ class Kernel:
     derive_seconds: float = 0.0
     #: Entry points already compiled or loaded from numba's cache in this process.
     warmed: set = field(default_factory=set)
+    #: The module's functions as plain Python, built on first use (:mod:`mstmm.interpret`).
+    _python: dict | None = field(default=None, repr=False)
 
     def warm_up(self, p: np.ndarray, what: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve calls, once per process.
@@ -184,6 +186,7 @@ class Kernel:
         """
         if what in self.warmed:
             return
+        interpret.mark_compiled()
         with progress.status(f"compiling the {self.topology.key} kernel (numba caches it)"):
             if what == "lowest":
                 self.lowest(p, 1)
@@ -226,7 +229,19 @@ class Kernel:
     def _entry(self, kind: str, formulation: str):
         if formulation not in FORMULATIONS:
             raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
-        return getattr(self.module, f"{kind}_{formulation}")
+        return self._compiled(f"{kind}_{formulation}")
+
+    def _compiled(self, name: str):
+        interpret.mark_compiled()
+        return getattr(self.module, name)
+
+    def attachments(self, p: np.ndarray) -> int:
+        """Number of attachments a parameter vector describes."""
+        return (len(p) - 3) // self.module.ATTACHMENT_STRIDE
+
+    def interprets(self, p: np.ndarray, modes: int) -> bool:
+        """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`)."""
+        return "lowest" not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
 
     def lowest(self, p: np.ndarray, modes: int) -> tuple[np.ndarray, bool]:
         """The lowest ``modes`` frequencies by the kernel's own certified scan.
@@ -235,7 +250,13 @@ class Kernel:
         (double or very close roots), use :func:`mstmm.scan.find_roots`.
         """
         out = np.zeros(int(modes))
-        ok = self.module.lowest(_params(p), int(modes), out)
+        p = _params(p)
+        if self.interprets(p, modes):
+            if self._python is None:
+                self._python = interpret.python_copy(self.module)
+            ok = interpret.timed_call(self._python["lowest"], p, int(modes), out)
+        else:
+            ok = self._compiled("lowest")(p, int(modes), out)
         return out, bool(ok)
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -243,24 +264,28 @@ class Kernel:
         P = np.ascontiguousarray(P, dtype=np.float64)
         out = np.zeros((P.shape[0], int(modes)))
         certified = np.zeros(P.shape[0], dtype=np.bool_)
-        self.module.sweep_lowest(P, int(modes), out, certified)
+        self._compiled("sweep_lowest")(P, int(modes), out, certified)
         return out, certified
 
     def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
         """Number of natural frequencies below each ``omega`` (Wittrick-Williams)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.empty(omegas.shape, dtype=np.int64)
-        self.module.counts(omegas, _params(p), out)
+        self._compiled("counts")(omegas, _params(p), out)
         return out
 
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
-        return self.module.u_bar_paper(float(omega), _params(p))
+        return self._compiled("u_bar_paper")(float(omega), _params(p))
 
     def beam_transfer(self, lam: float, l: float, EI: float) -> np.ndarray:
         """Beam segment matrix of paper Eq. (1), exact for small ``lam*l``."""
         U = np.empty((4, 4))
-        self.module.beam_transfer_reduced(float(lam), float(l), float(EI), U)
+        args = (float(lam), float(l), float(EI), U)
+        if self._python is not None and interpret.worthwhile(0, 0):  # after an interpreted solve
+            interpret.timed_call(self._python["beam_transfer_reduced"], *args)
+        else:
+            self._compiled("beam_transfer_reduced")(*args)
         return U
 
 

@@ -29,6 +29,9 @@ class Solution:
     count_checked: bool = False
     shapes: list[ModeShape] | None = None
     warnings: list[str] = field(default_factory=list)
+    #: How the kernel's root search ran: ``"compiled"`` (numba) or ``"interpreted"``
+    #: (plain Python, for a small first solve: :mod:`mstmm.interpret`).
+    kernel_mode: str = "compiled"
 
     @property
     def hz(self) -> np.ndarray:
@@ -47,6 +50,7 @@ class Solution:
             "count_checked": bool(self.count_checked),
             "warnings": list(self.warnings),
             "kernel": self.kernel_origin,
+            "kernel_mode": self.kernel_mode,
             "timings": {k: float(v) for k, v in self.timings.items()},
         }
         if shapes and self.shapes is not None:
@@ -98,8 +102,11 @@ def solve(
     # the kernel's own certified scan serves the common case; the full search the rest
     # (it refines to machine precision: a looser rtol would not make it faster)
     fast = modes is not None and formulation == "stable"
+    # a small first solve runs the kernel as Python (mstmm.interpret); otherwise
     # compile, or load from numba's cache, before timing
-    kernel.warm_up(p, "lowest" if fast else formulation)
+    interpreted = fast and kernel.interprets(p, modes)
+    if not interpreted:
+        kernel.warm_up(p, "lowest" if fast else formulation)
     t2 = time.perf_counter()
     timings["compile"] = t2 - t1
     found = None
@@ -111,6 +118,9 @@ def solve(
             # already what scan.verify checks, no second pass needed
             found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
     if found is None:
+        if interpreted:  # the general search runs compiled
+            kernel.warm_up(p, formulation)
+            interpreted = False
         found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
     roots = found.roots
     t3 = time.perf_counter()
@@ -142,4 +152,5 @@ def solve(
         found.count_checked,
         shape_list,
         warnings,
+        "interpreted" if interpreted else "compiled",
     )

@@ -1,0 +1,97 @@
+"""Run a kernel's ``lowest`` as plain Python when that is cheaper than loading its machine code.
+
+A fresh process pays numba a fixed price before the first compiled call, even
+from numba's on-disk cache: about 0.5 s on the 2-core machines measured (a
+trivial cached ``@njit`` function costs the same; see docs/benchmarks.md, "A
+fresh process, piece by piece"). The paper's example needs about 10 ms of
+plain-Python work for its lowest five frequencies. So the first solves of a
+process run the very same generated functions uncompiled (each numba
+dispatcher keeps its Python function as ``py_func``), until the Python time
+spent would have paid for the compiled kernel: a tiered JIT, rent before you
+buy. A problem estimated to cost more than what is left of the budget, and any
+process that has already loaded machine code for a kernel, runs compiled.
+
+The arithmetic is the same IEEE double arithmetic either way (numba does not
+reassociate without ``fastmath``); the two agree to the last bit or two.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+import types
+from types import ModuleType
+
+#: Seconds of plain-Python kernel work a process may spend before it loads machine
+#: code instead: about what that load costs a fresh process (0.5 - 0.7 s measured),
+#: halved so that a run which turns out to need the compiled kernel loses little.
+#: ``MSTMM_INTERPRET_BUDGET`` overrides it; 0 turns interpretation off.
+DEFAULT_BUDGET = 0.3
+
+#: Cost model of the interpreted ``lowest``, seconds per mode: ``A + B * attachments``
+#: (fitted on the clamped-free spring-mass kernel, 1 .. 30 attachments, 5 .. 60 modes,
+#: with a margin; the run is timed, the model only decides whether to start it).
+COST_PER_MODE = 2.5e-3
+COST_PER_MODE_PER_ATTACHMENT = 0.25e-3
+
+
+def _budget_from_env() -> float:
+    raw = os.environ.get("MSTMM_INTERPRET_BUDGET", "")
+    try:
+        return max(0.0, float(raw)) if raw else DEFAULT_BUDGET
+    except ValueError:
+        return DEFAULT_BUDGET
+
+
+class _Process:
+    """What this process has spent and loaded (shared by every kernel)."""
+
+    budget: float = _budget_from_env()
+    spent: float = 0.0
+    #: True once any kernel ran compiled here: numba is initialised, loads are cheap.
+    compiled: bool = False
+
+
+def mark_compiled() -> None:
+    """Record that machine code was loaded in this process."""
+    _Process.compiled = True
+
+
+def set_budget(seconds: float) -> None:
+    """Seconds of interpreted kernel work allowed in this process (0: always compiled)."""
+    _Process.budget = max(0.0, float(seconds))
+
+
+def estimated_cost(modes: int, attachments: int) -> float:
+    """Seconds the interpreted ``lowest`` is expected to take."""
+    return modes * (COST_PER_MODE + COST_PER_MODE_PER_ATTACHMENT * attachments)
+
+
+def worthwhile(modes: int, attachments: int) -> bool:
+    """Whether ``lowest`` should run as Python: no machine code yet and it fits the budget."""
+    if _Process.compiled:
+        return False
+    return _Process.spent + estimated_cost(modes, attachments) <= _Process.budget
+
+
+def python_copy(module: ModuleType) -> dict:
+    """The kernel module's namespace with every numba dispatcher replaced by its Python function.
+
+    The functions are rebound to the copy, so a call stays in Python all the way
+    down; nothing is compiled.
+    """
+    ns = dict(vars(module))
+    for name, obj in vars(module).items():
+        f = getattr(obj, "py_func", None)
+        if isinstance(f, types.FunctionType):
+            ns[name] = types.FunctionType(f.__code__, ns, f.__name__, f.__defaults__, f.__closure__)
+    return ns
+
+
+def timed_call(fn, *args):
+    """``fn(*args)``, its duration charged to this process's budget."""
+    t0 = time.perf_counter()
+    try:
+        return fn(*args)
+    finally:
+        _Process.spent += time.perf_counter() - t0

@@ -1,0 +1,72 @@
+"""The interpreted tier (mstmm.interpret): same answers as the references, used only when cheap.
+
+The kernels' ``lowest`` run as plain Python is checked against the independent
+mpmath model of ``tests/reference_model.py`` on every pair of end conditions;
+the tier's decisions are checked on the process state that drives them.
+The fresh-process command line (interpreted by default, compiled with
+``MSTMM_INTERPRET_BUDGET=0``) is checked against the shared references in
+``tests/test_reference.py``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import reference_model as ref
+from test_roots import make, rel
+
+import mstmm
+from mstmm import interpret
+from mstmm.scene import BOUNDARY_KINDS
+
+PAIRS = [(a, b) for a in BOUNDARY_KINDS for b in BOUNDARY_KINDS]
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_interpreted_solve_matches_reference(fresh_process, left, right):
+    rng = np.random.default_rng([BOUNDARY_KINDS.index(left), BOUNDARY_KINDS.index(right)])
+    draws = rng.uniform(0.05, 1.0, (3, 3)) * [1.0, 500.0, 1.0]
+    atts = [(float(x), float(k), float(m)) for x, k, m in draws]
+    atts.append((1.0, 50.0, 0.2))  # one at the right end
+    scene = make(left, right, atts)
+    modes = 6
+    sol = mstmm.solve(scene, modes=modes, shapes=False)
+    assert sol.kernel_mode == "interpreted"
+    assert sol.count_checked and sol.converged.all(), sol.warnings
+    exact = ref.frequencies(scene, modes, dps=30)
+    for got, want in zip(sol.omega, exact, strict=True):
+        if want == 0:
+            assert got == 0.0
+        else:
+            assert rel(got, want) < 1e-12, (got, want)
+
+
+def test_tier_runs_compiled_once_machine_code_is_loaded(fresh_process, data_dir):
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    interpret.mark_compiled()
+    assert mstmm.solve(scene, modes=5, shapes=False).kernel_mode == "compiled"
+
+
+def test_tier_runs_compiled_when_the_budget_is_spent(fresh_process, data_dir):
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    interpret._Process.spent = interpret.DEFAULT_BUDGET - 1e-3
+    assert mstmm.solve(scene, modes=5, shapes=False).kernel_mode == "compiled"
+
+
+def test_tier_runs_compiled_when_the_problem_is_large(fresh_process, data_dir):
+    """An estimate over the budget (many modes, many attachments) goes straight to numba."""
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    modes = int(interpret.DEFAULT_BUDGET / interpret.COST_PER_MODE) + 1
+    assert mstmm.solve(scene, modes=modes, shapes=False).kernel_mode == "compiled"
+
+
+def test_budget_zero_turns_interpretation_off(fresh_process, data_dir):
+    interpret.set_budget(0.0)
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    assert mstmm.solve(scene, modes=1, shapes=False).kernel_mode == "compiled"
+
+
+def test_the_budget_is_charged(fresh_process, data_dir):
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    assert mstmm.solve(scene, modes=3, shapes=False).kernel_mode == "interpreted"
+    assert interpret._Process.spent > 0.0
