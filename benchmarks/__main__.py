@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-SECTIONS = ("workprecision", "scaling")
+SECTIONS = ("workprecision", "scaling", "study")
 
 
 def _log(msg: str) -> None:
@@ -47,11 +47,26 @@ def _status(ok: bool | None) -> str:
     return {True: "**met**", False: "**missed**", None: "not measured"}[ok]
 
 
-def targets(wp, sc) -> list[tuple[str, str, str, str, str]]:
+def targets(wp, sc, st=None) -> list[tuple[str, str, str, str, str]]:
     """(target, goal, measured, status, what limits it / remark) rows."""
     from .workprecision import fastest, fmt_err, fmt_time
 
     rows = []
+    if st is not None:
+        from .study import speedup
+
+        one, every = st.threads.values()
+        rows.append(
+            (
+                f"parameter study: {st.points} points of the paper example, lowest {st.modes}",
+                "uses both cores",
+                f"{fmt_time(every)} on {st.cores} threads vs {fmt_time(one)} on one "
+                f"({speedup(st):.2f}x); {st.uncertified} uncertified; error "
+                f"{st.max_error:.1e} on {st.checked} points checked",
+                _status(st.cores >= 2 and speedup(st) > 1.3),
+                "numba prange over the points; the kernel's lowest per point",
+            )
+        )
     # 1. paper example, lowest 5 to 1e-13, warm
     if wp is not None:
         p = fastest(wp, 5, 1e-13, "mstmm-warm")
@@ -99,6 +114,12 @@ def targets(wp, sc) -> list[tuple[str, str, str, str, str]]:
             if br:
                 remark = "; ".join(f"`{k}` {fmt_time(v)}" for k, v in br.items())
                 remark = "fresh-process costs: " + remark
+            jit = [q for q in wp.points if q.family == "mstmm-cold-jit" and q.modes == 5]
+            if jit and c.setting.endswith("(interpreted)"):
+                remark = (
+                    "the kernel runs as Python for so small a first solve (mstmm.interpret); "
+                    f"forced compiled it takes {fmt_time(jit[0].time)}. " + remark
+                )
             rows.append(
                 (
                     "`mstmm solve --modes 5` in a fresh process, kernel cached",
@@ -429,9 +450,9 @@ average is recorded below.
 """
 
 
-def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float) -> Path:
+def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=None) -> Path:
     """Write ``out_dir/benchmarks.md`` (and the plots under ``out_dir/img``)."""
-    from . import machine, scaling, workprecision
+    from . import machine, scaling, study, workprecision
 
     out_dir.mkdir(parents=True, exist_ok=True)
     parts = [INTRO.format(command=start["command"])]
@@ -451,7 +472,7 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float) -> Pat
     parts.append(machine.markdown(start, end, elapsed) + "\n")
     parts.append("## Targets\n")
     parts.append("Goals of the benchmark (not timed unit tests), each with the measured figure.\n")
-    parts.append(targets_markdown(targets(wp, sc)))
+    parts.append(targets_markdown(targets(wp, sc, st)))
     notes = findings(wp, sc)
     if notes:
         parts.append("## Findings\n")
@@ -464,6 +485,10 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float) -> Pat
         parts.append("## 2. Scaling with the number of attachments N\n")
         parts.append(_doc(scaling))
         parts.append(scaling.markdown(sc, sc_img))
+    if st is not None:
+        parts.append("## 3. Parameter study on all cores\n")
+        parts.append(_doc(study))
+        parts.append(study.markdown(st))
     path = out_dir / "benchmarks.md"
     path.write_text("\n".join(parts))
     return path
@@ -487,25 +512,31 @@ def main(argv: list[str] | None = None) -> int:
     for var in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS"):
         os.environ.setdefault(var, "1")
 
-    from . import machine, scaling, workprecision
+    from . import machine, scaling, study, workprecision
 
     if args.render:
         raw = json.loads(args.render.read_text())
         wp = workprecision.Results.from_json(raw["workprecision"]) if raw["workprecision"] else None
         sc = scaling.Results(**raw["scaling"]) if raw["scaling"] else None
-        path = report(args.out, wp, sc, raw["machine"], raw.get("machine_end"), raw["elapsed"])
+        st = study.Results(**raw["study"]) if raw.get("study") else None
+        path = report(
+            args.out, wp, sc, raw["machine"], raw.get("machine_end"), raw["elapsed"], st
+        )
         _log(f"re-rendered {path}")
         return 0
     start = machine.info(sys.argv if argv is None else ["benchmarks", *argv])
     t0 = time.perf_counter()
-    wp = sc = None
+    wp = sc = st = None
     if args.only in (None, "workprecision"):
         wp = workprecision.run(quick=args.quick, log=_log)
     if args.only in (None, "scaling"):
         sc = scaling.run(quick=args.quick, log=_log)
+    if args.only in (None, "study"):
+        _log("parameter study")
+        st = study.run(quick=args.quick, log=_log)
     elapsed = time.perf_counter() - t0
     end = machine.info()
-    path = report(args.out, wp, sc, start, end, elapsed)
+    path = report(args.out, wp, sc, start, end, elapsed, st)
     if args.json:
         raw = {
             "machine": start,
@@ -513,10 +544,11 @@ def main(argv: list[str] | None = None) -> int:
             "elapsed": elapsed,
             "workprecision": wp.to_json() if wp else None,
             "scaling": sc.to_json() if sc else None,
+            "study": st.to_json() if st else None,
         }
         args.json.write_text(json.dumps(raw, indent=1, default=str))
     _log(f"wrote {path} ({elapsed:.0f} s)")
-    for row in targets(wp, sc):
+    for row in targets(wp, sc, st):
         _log(f"target: {row[0]}: {row[2]} -> {row[3]}")
     return 0
 

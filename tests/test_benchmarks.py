@@ -36,7 +36,8 @@ def quick_report(tmp_path_factory) -> Path:
 
 def test_quick_run_writes_the_report(quick_report: Path) -> None:
     text = (quick_report / "benchmarks.md").read_text()
-    for heading in ("## Machine", "## Targets", "## 1. Work-precision", "## 2. Scaling"):
+    headings = ("## Machine", "## Targets", "## 1. Work-precision", "## 2. Scaling", "## 3. Param")
+    for heading in headings:
         assert heading in text
     assert "python -m benchmarks --quick" in text  # the command is recorded
     assert "mstmm warm, stable" in text
@@ -44,6 +45,8 @@ def test_quick_run_writes_the_report(quick_report: Path) -> None:
     assert "paper Table 1" in text  # quoted points, marked as such
     assert "quoted, not measured" in text
     assert "Log-log slopes" in text
+    assert "Speed-up on all cores" in text
+    assert "mstmm cold, compiled only" in text  # both tiers of a fresh process
 
 
 @pytest.mark.skipif(not HAVE_MPL, reason="matplotlib is not installed")
