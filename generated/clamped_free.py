@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "43bb8a9b36f36be93a5b752b89452b908d75fb61"
+SIGNATURE = "1cf91dfbaa7c2e9b6def9cc0a3a1c2ab88d0cc8c"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -40,7 +40,7 @@ MERGE_LENGTH = 1e-15
 #: Longest piece (in lam*l) carried by one Riccati step of the count.
 RICCATI_STEP = 1.0
 #: Scan nodes per pi of beta = lam L in ``lowest`` (beam modes are about pi apart).
-NODES_PER_MODE = 24
+NODES_PER_MODE = 8
 
 
 @njit(cache=True)
