@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "1cf91dfbaa7c2e9b6def9cc0a3a1c2ab88d0cc8c"
+SIGNATURE = "98f25408aca7b075d0d4829d22df85f9f4752dc0"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -647,7 +647,8 @@ def refine_paper(a, b, p, rtol, maxiter):
 def isolate(a, b, na, nb, p, out, k, modes):
     """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
     by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
-    width is a multiple root. Writes out[k:] (with multiplicity, up to modes); returns
+    width is a multiple root. The count at a midpoint is clamped into [na, nb], so that
+    a count off by one at round-off distance from a root cannot add or lose a root. Writes out[k:] (with multiplicity, up to modes); returns
     the new k, or -1 if the bisection stack overflows or Brent does not converge."""
     cap = 256
     sa = np.empty(cap)
@@ -686,7 +687,9 @@ def isolate(a, b, na, nb, p, out, k, modes):
         if top + 2 > cap:
             return -1
         mid = 0.5 * (a + b)
-        nm = count_below(mid, p)
+        # the count may dip or jump by one within an ulp or so of an oscillator
+        # frequency (k - m w^2 at round-off); clamped, the piece keeps its total
+        nm = min(max(count_below(mid, p), na), nb)
         sa[top] = mid
         sb[top] = b
         sna[top] = nm
@@ -775,7 +778,7 @@ def lowest(p, modes, out):
     for i in range(nc):
         if i + 1 < nc:
             b = 0.5 * (cand[i] + cand[i + 1])
-            nb = count_below(b, p)
+            nb = min(max(count_below(b, p), na), c_hi)
         else:
             b = w_hi
             nb = c_hi

@@ -339,7 +339,9 @@ def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root
             root, _its, ok = kernel.refine(a, b, p, search.formulation, search.rtol)
             return [Root(root, 1, ok, "count")]
     mid = 0.5 * (a + b)
-    nm = int(kernel.count_below(mid, p)[0])
+    # clamped as in the kernel's isolate: a count off by one at round-off distance
+    # from a root must not add or lose one
+    nm = min(max(int(kernel.count_below(mid, p)[0]), na), nb)
     return _isolate(search, a, mid, na, nm) + _isolate(search, mid, b, nm, nb)
 
 
