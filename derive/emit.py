@@ -111,13 +111,19 @@ n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
 for i in range(n):
     q = 3 + ATTACHMENT_STRIDE * i
     rho = (p[q] - pos) / L
+    if paired and started and pos >= PAIR_LENGTH * L:
+        pair_stiffness(Zc, S)
+        paired = False
     if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
-        count += segment_count(S, U, beta, rho)
+        count += segment_count(S, Zc, U, beta, rho, started, paired)
+        started = True
     pos = p[q]
     pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
     if pivot < 0.0:
         count += 1
-    S[0, 0] += added"""
+    S[0, 0] += added
+    if paired:
+        add_node_stiffness(Zc, added)"""
 
 SPRING_MASS_STABLE_LOOP = """\
 n = (p.shape[0] - 3) // ATTACHMENT_STRIDE

@@ -173,3 +173,35 @@ def test_count_dip_next_to_an_oscillator_frequency_adds_no_root(tier):
     atts = [(4.5e-05, *kinds[c]) for c in order]
     atts[15] = (4.5e-05, 10.0, 0.10000000000000003)
     check_lowest_20(make("clamped", "pinned", atts))
+
+
+@pytest.mark.parametrize("right", BOUNDARY_KINDS)
+@pytest.mark.parametrize("x", [1e-12, 1e-9, 1e-6])
+@pytest.mark.parametrize("k, m", [(10.0, 0.1), (1e5, 1.0)])
+def test_spring_mass_next_to_a_pinned_left_end(right, x, k, m):
+    """Found by a wider property run: a spring-mass within 1e-9 L of a pinned left end.
+    The condensed stiffness after that segment is huge and near-singular (rotation about
+    the pin; det Xd ~ x^3): a Riccati step on it, and then an orthonormalised basis of
+    the state subspace (Gram-Schmidt mixing an O(1) column into the one that carries
+    det Xd), gave a count with no digit left: spurious roots, missed ones. The count now
+    carries the subspace by its 2x2 minors; every frequency must match the reference
+    and be certified."""
+    sc = make("pinned", right, [(x, k, m)])
+    sol = mstmm.solve(sc, modes=6, shapes=False)
+    exact = ref.frequencies(sc, 6, dps=30)
+    assert sol.count_checked and sol.converged.all(), sol.warnings
+    assert len(sol.omega) == 6
+    for got, want in zip(sol.omega, exact):
+        assert (got == 0.0) if want == 0 else rel(got, want) < 1e-12, (list(sol.omega), exact)
+
+
+@pytest.mark.parametrize("left", BOUNDARY_KINDS)
+def test_count_next_to_an_end_matches_reference_count(left):
+    """The count itself, not only the roots, on a grid through the first ten modes: a
+    stiff spring-mass 1e-12 L from the left end (pinned-sliding gave 9 for 8 here)."""
+    sc = make(left, "sliding", [(1e-12, 1e5, 1.0)])
+    kernel = mstmm.kernel_for(sc)
+    p = mstmm.parameter_vector(sc)
+    ws = np.linspace(1.0, 3000.0, 61)
+    got = kernel.count_below(ws, p)
+    assert list(got) == [ref.count_below(sc, w, dps=30) for w in ws]
