@@ -111,9 +111,7 @@ n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
 for i in range(n):
     q = 3 + ATTACHMENT_STRIDE * i
     rho = (p[q] - pos) / L
-    if paired and started and pos >= PAIR_LENGTH * L:
-        pair_stiffness(Zc, S)
-        paired = False
+    paired = leave_pairing(Zc, S, pos, L, started, paired)
     if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
         count += segment_count(S, Zc, U, beta, rho, started, paired)
         started = True

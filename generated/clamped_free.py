@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "1535bf7b219a71efcf4dfd0f8e23b1526640123a"
+SIGNATURE = "9564e4a3419e6231702fb68566b38253eed78ceb"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -433,8 +433,18 @@ def segment_count(S, Zc, U, beta, rho, started, paired):
 
 
 @njit(cache=True)
+def det_symmetric(S):
+    """det of the symmetric part of the 2x2 matrix S."""
+    s01 = 0.5 * (S[0, 1] + S[1, 0])
+    return S[0, 0] * S[1, 1] - s01 * s01
+
+
+@njit(cache=True)
 def pair_stiffness(Zc, S):
-    """S = PI_RIGHT^-1 Xf Xd^-1 from the minors of Z = [Xd; Xf] (Cramer's rule)."""
+    """S = PI_RIGHT^-1 Xf Xd^-1 from the minors of Z = [Xd; Xf] (Cramer's rule); returns
+    det S = (Zc(1,3) Zc(0,2) - Zc(0,3) Zc(1,2)) / Zc(0,1)^2 = Zc(2,3) / Zc(0,1) by the
+    Pluecker relation: no cancellation when S is near-singular (a rigid-body rotation
+    about a pin next to a short segment, its pivot -I omega^2)."""
     detXd = Zc[0]
     if detXd == 0.0:
         detXd = 5e-324  # exactly at a frequency of the node clamped: take one side
@@ -442,6 +452,19 @@ def pair_stiffness(Zc, S):
     S[0, 1] = -Zc[2] / detXd
     S[1, 0] = -Zc[3] / detXd
     S[1, 1] = Zc[1] / detXd
+    if Zc[0] != 0.0:
+        return Zc[5] / Zc[0]
+    return det_symmetric(S)
+
+
+@njit(cache=True)
+def leave_pairing(Zc, S, pos, L, started, paired):
+    """At a node PAIR_LENGTH or more from the left end the count goes on with S, formed
+    once from the minors; returns the new ``paired``."""
+    if paired and started and pos >= PAIR_LENGTH * L:
+        pair_stiffness(Zc, S)
+        return False
+    return paired
 
 
 @njit(cache=True)
@@ -470,21 +493,11 @@ def count_below(omega, p):
     paired = True
 
     rho = (L - pos) / L
-    if paired and started and pos >= PAIR_LENGTH * L:
-        pair_stiffness(Zc, S)
-        paired = False
+    paired = leave_pairing(Zc, S, pos, L, started, paired)
     if rho > 0.0:
         count += segment_count(S, Zc, U, beta, rho, started, paired)
         started = True
-    s01 = 0.5 * (S[0, 1] + S[1, 0])
-    detS = S[0, 0] * S[1, 1] - s01 * s01
-    if paired and started:
-        pair_stiffness(Zc, S)
-        s01 = 0.5 * (S[0, 1] + S[1, 0])
-        # det S = (Zc(1,3) Zc(0,2) - Zc(0,3) Zc(1,2)) / Zc(0,1)^2 = Zc(2,3) / Zc(0,1) by
-        # the Pluecker relation: no cancellation when S is near-singular (a rigid-body
-        # rotation about a pin next to a short segment, its pivot -I omega^2)
-        detS = Zc[5] / Zc[0] if Zc[0] != 0.0 else S[0, 0] * S[1, 1] - s01 * s01
+    detS = pair_stiffness(Zc, S) if paired and started else det_symmetric(S)
     s00 = S[0, 0]
     s11 = S[1, 1]
 
