@@ -25,6 +25,9 @@ from .printer import assignments, code
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 FORMULATION_TEMPLATE = TEMPLATE.with_name("formulation.py.tmpl")
+SHAPES_TEMPLATE = TEMPLATE.with_name("shapes.py.tmpl")
+#: Gauss-Legendre points of the mode shapes' mass integrals.
+GAUSS_POINTS = 8
 #: Formulations emitted into every kernel (``delta_<name>`` in the kernel template).
 FORMULATIONS = ("stable", "paper")
 
@@ -179,6 +182,72 @@ def _spring_mass_functions() -> str:
     )
 
 
+SHAPE_EVENT = '''
+
+@njit(cache=True)
+def event_position(p, i):
+    """x (SI) of the i-th point component, sorted by x."""
+    return p[3 + ATTACHMENT_STRIDE * i]
+
+
+@njit(cache=True)
+def shape_event(p, i, beta, Cz, Cq, B, qmass):
+    """The i-th point component in descriptor form for the mode-shape march (units
+    L = EI = 1): its geometric equation H_I1 Z = B00 Y_m (paper Eq. (3), B00 = 1 - m w^2/k)
+    as Cz Z + Cq q = 0, and the shear its mass puts into the beam, U_I2 B e_Y Y_m
+    (paper Eq. (2)), as Z+ = Z + B q; q = [Y_m / L], of mass qmass = [mu] (units
+    mbar L). Returns (constraints, unknowns)."""
+    q = 3 + ATTACHMENT_STRIDE * i
+    L = p[0]
+    kappa = p[q + 1] * L**3 / p[1]
+    mu = p[q + 2] / (p[2] * L)
+    qmass[0] = mu
+$descriptor
+    return 1, 1
+'''
+
+NO_SHAPE_EVENT = '''
+
+@njit(cache=True)
+def event_position(p, i):
+    """This topology has no point components."""
+    return p[0]
+
+
+@njit(cache=True)
+def shape_event(p, i, beta, Cz, Cq, B, qmass):
+    """This topology has no point components."""
+    return 0, 0
+'''
+
+
+def _shape_event(has_sm: bool) -> str:
+    """The per-kind descriptor functions of the mode-shape march."""
+    if not has_sm:
+        return NO_SHAPE_EVENT
+    col = spring_mass.tip_column(S.kappa, S.mu, S.beta**2)
+    B00, B10 = col[0], col[1]
+    H = rigid_body.H_I1()
+    jump = rigid_body.U_I2()[:, 1] * B10  # the branch's shear, per unit tip displacement
+    targets = [f"Cz[0, {j}]" for j in range(4)] + ["Cq[0, 0]"] + [f"B[{r}, 0]" for r in range(4)]
+    exprs = [H[0, j] for j in range(4)] + [-B00] + list(jump)
+    lines = assignments(targets, exprs, indent="")
+    return Template(SHAPE_EVENT).substitute(descriptor=_indent(lines, 4))
+
+
+def _shape_functions(topology: Topology, has_sm: bool) -> str:
+    import numpy as np
+
+    gx, gw = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+    return _shape_event(has_sm) + Template(SHAPES_TEMPLATE.read_text()).substitute(
+        max_q=1 if has_sm else 0,
+        right_known=repr(KNOWN_ZERO[topology.right]),
+        n_events="(p.shape[0] - 3) // ATTACHMENT_STRIDE" if has_sm else "0",
+        gauss_x=repr([float(v) for v in 0.5 * (gx + 1.0)]),
+        gauss_w=repr([float(v) for v in 0.5 * gw]),
+    )
+
+
 def _riccati_lines() -> list[str]:
     Us = sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"U{i}{j}"))
     s00, s01, s11 = sp.symbols("s00 s01 s11")
@@ -276,6 +345,7 @@ def kernel_source(topology: Topology) -> str:
         attachment_functions=_spring_mass_functions() if has_sm else "",
         stable_attachment_loop=_indent(SPRING_MASS_STABLE_LOOP.splitlines(), 4) if has_sm else "",
         paper_attachment_loop=_indent(SPRING_MASS_PAPER_LOOP.splitlines(), 4) if has_sm else "",
+        shape_functions=_shape_functions(topology, has_sm),
     )
     text = Template(TEMPLATE.read_text()).substitute(values)
     return "\n".join(line.rstrip() for line in text.splitlines()) + "\n"

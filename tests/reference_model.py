@@ -791,3 +791,69 @@ def global_determinant(scene, w, dps: int = 40):
         det = solver.det(beta)
     with mp.workdps(dps):
         return +det
+
+
+def eigenspace(scene, w, m: int, xs, dps: int = 40):
+    """Basis of the eigenspace at a natural frequency ``w`` (rad/s) of multiplicity ``m``:
+    the right singular vectors of the global matrix for its ``m`` smallest singular values,
+    each evaluated as ``[W(x) for x in xs] + [u_i for every mass]`` (masses sorted by x as
+    the scene's attachments; deflections in the units of the scene). Floats, arbitrary
+    basis and scale; independent of any transfer matrix. For ``w = 0`` pass the rigid-body
+    count as ``m``: the basis is that of the rigid motions ``a + b x`` allowed by the ends.
+    """
+    with mp.workdps(dps + _GUARD_DPS):
+        model = _build(scene)
+        length = _num(_get(_get(scene, "beam"), "length"))
+        masses = sum(len(g) for g in model.masses)
+        if _num(w) == 0:
+            return _rigid_space(scene, m, xs, masses)
+        beta = _beta_of(model, _num(w))
+        rows, ncol, _w_rows, mass_cols = _global_rows(model, beta)
+        A = mpmath.matrix(len(rows), ncol)
+        for r, row in enumerate(rows):
+            for col, val in row.items():
+                A[r, col] = val
+        _u, s, V = mpmath.svd_r(A)
+        order = sorted(range(ncol), key=lambda i: s[i])[:m]
+        nodes = [mpf(0)]
+        for ell in model.seg:
+            nodes.append(nodes[-1] + ell)
+        out = []
+        for i in order:
+            v = [V[i, c] for c in range(ncol)]
+            row = []
+            for x in xs:
+                xi = _num(x) / length
+                j = min(max(k for k in range(len(model.seg)) if nodes[k] <= xi), len(model.seg) - 1)
+                sloc = xi - nodes[j]
+                base = 4 * j + sum(len(g) for g in model.masses[: j + 1])
+                basis = (
+                    mpmath.cos(beta * sloc),
+                    mpmath.sin(beta * sloc),
+                    mpmath.exp(-beta * sloc),
+                    mpmath.exp(beta * (sloc - model.seg[j])),
+                )
+                row.append(float(sum(b * v[base + t] for t, b in enumerate(basis))))
+            row += [float(v[c]) for cols in mass_cols for c in cols]
+            out.append(row)
+    return out
+
+
+def _rigid_space(scene, m, xs, masses):
+    """The rigid motions a + b x (masses moving with the beam point) the ends allow."""
+    beam = _get(scene, "beam")
+    length = float(_num(_get(beam, "length")))
+    left, right = _end(_get(beam, "left")), _end(_get(beam, "right"))
+    atts = sorted(float(_num(_get(a, "x"))) for a in _get(scene, "attachments"))
+    basis = []
+    if left not in ("clamped", "pinned") and right not in ("clamped", "pinned"):
+        basis.append(lambda x: 1.0)  # translation
+    if (left, right) in (("free", "free"),):
+        basis.append(lambda x: x / length - 0.5)  # rotation about the middle
+    if left == "pinned" and right in ("free",):
+        basis.append(lambda x: x / length)
+    if right == "pinned" and left in ("free",):
+        basis.append(lambda x: 1.0 - x / length)
+    if len(basis) != m:
+        raise ValueError(f"{m} rigid-body modes asked for, the ends allow {len(basis)}")
+    return [[f(float(x)) for x in xs] + [f(x) for x in atts] for f in basis]

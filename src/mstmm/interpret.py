@@ -33,6 +33,8 @@ DEFAULT_BUDGET = 0.3
 #: with a margin; the run is timed, the model only decides whether to start it).
 COST_PER_MODE = 2.5e-3
 COST_PER_MODE_PER_ATTACHMENT = 0.25e-3
+#: An interpreted mode shape costs about this many modes of ``lowest`` (``estimated_cost``).
+SHAPE_COST_FACTOR = 4
 
 
 def _budget_from_env() -> float:

@@ -274,6 +274,41 @@ class Kernel:
         self._compiled("counts")(omegas, _params(p), out)
         return out
 
+    def event_positions(self, p: np.ndarray) -> np.ndarray:
+        """x (m) of every point component of a parameter vector, sorted by x."""
+        stride = self.module.ATTACHMENT_STRIDE
+        return np.array(p[3 : 3 + self.attachments(p) * stride : stride])
+
+    def mode_shapes(self, omega: float, p: np.ndarray, m: int, xs: np.ndarray):
+        """The kernel's ``mode_shapes`` at ``omega`` for an ``m``-dimensional eigenspace.
+
+        Returns ``(Z, q, gram, part, ratio)`` in units ``L = EI = mbar = 1``: the states
+        ``[Y, theta, M, Q]`` at ``xs`` (m, len(xs), 4), every point component's unknowns
+        (m, n_q), the mass Gram matrix, the mass-weighted integrals of Y, and each shape's
+        singular value over the end matrix's largest (see :mod:`mstmm.modes`).
+        """
+        p = _params(p)
+        xs = np.ascontiguousarray(xs, dtype=np.float64)
+        m = int(m)
+        nq = self.attachments(p) * self.module.MAX_Q
+        Z = np.zeros((m, xs.shape[0], 4))
+        q = np.zeros((m, nq))
+        gram = np.zeros((m, m))
+        part = np.zeros(m)
+        ratio = np.zeros(m)
+        args = (float(omega), p, m, xs, Z, q, gram, part, ratio)
+        if "mode_shapes" not in self.warmed and interpret.worthwhile(
+            m * interpret.SHAPE_COST_FACTOR, self.attachments(p)
+        ):
+            if self._python is None:
+                self._python = interpret.python_copy(self.module)
+            interpret.timed_call(self._python["mode_shapes"], *args)
+        else:
+            interpret.mark_compiled()
+            self.module.mode_shapes(*args)
+            self.warmed.add("mode_shapes")
+        return Z, q, gram, part, ratio
+
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
         return self._compiled("u_bar_paper")(float(omega), _params(p))

@@ -1,123 +1,195 @@
-"""Mode shapes: the null vector of paper Eq. (5), found by a stabilised march along the beam.
+"""Mode shapes: the null space of paper Eq. (5), from the kernel's orthonormalisation march.
 
 The paper takes the right singular vector of ``U_bar(omega_n)`` for the smallest
 singular value (Eq. (5)). Built from whole-segment transfer matrices, ``U_bar``
 carries ``cosh(lam l)``: its null vector, and the state carried from ``Z_1``
-along the beam, lose a digit per ``pi`` of ``lam L`` (garbage beyond the 12th
-cantilever mode). Here the same null vector is found without that growth
-(orthonormalisation march, Godunov/Conte):
+along the beam, lose a digit per ``pi`` of ``lam L``. The kernel's
+``mode_shapes`` finds the same null space without that growth (see the comment
+at the head of its mode-shape section): the states admitted from the left end
+are carried through pieces with ``lam l <= 1`` and re-orthonormalised; every
+attached unknown (the displacement of a hanging mass) is kept as an unknown
+with its geometric equation (paper Eqs. (2)-(3)), so nothing is divided by
+``B00 = 1 - m w^2 / k``: at a branch's own frequency the beam point is held and
+the mass moves. The end's conditions give the null space; the shapes are walked
+back by multiplications only.
 
-1. the two-dimensional space of states allowed by the left end,
-   ``W_0 = [e_i, e_j]`` (its unknowns), is carried node to node through pieces
-   with ``lam l <= 1``, in units ``L = EI = 1``, and re-orthonormalised (QR,
-   ``U W_k = W_{k+1} R_{k+1}``) after every piece and every attachment (the
-   spring-mass enters pole-free: ``B00 I + B10 e_Q e_Y^T``, paper Eqs. (2)-(3));
-2. at ``x = L`` the right end's conditions give a 2x2 matrix, singular at a
-   natural frequency; its null vector (SVD, Eq. (5)) is ``c_K``;
-3. back along the beam ``c_k = R_{k+1}^{-1} c_{k+1}`` (times ``B00`` across a branch,
-   whose pole-free matrix is ``B00`` times the true jump) and the state at node k is
-   ``W_k c_k``; the hanging mass moves by ``Y_m = Y / B00``.
+A root of multiplicity ``m``, or a cluster of ``m`` roots closer (relatively)
+than :data:`CLUSTER`, which no float64 computation can tell apart, gets ``m``
+shapes: the ``m`` smallest right singular vectors of the end matrix (at the
+cluster's centre or at one of its roots, wherever it is most singular on ``m``
+directions), made orthonormal in the mass inner product
+``int mbar Y_i Y_j dx + sum m Y_mi Y_mj``. Shapes are then scaled to
+``max |Y| = 1`` over the beam and the masses (largest entry positive);
+:meth:`ModeShape.mass_normalised` gives unit modal mass instead.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from .kernels import Kernel
-from .topology import KNOWN_ZERO, unknown
 
-#: Longest piece (in lam*l) carried in one step of the march.
-MARCH_STEP = 1.0
+#: Sample points along the beam (uniform; the attachment points are added).
+SAMPLES = 201
+#: Roots whose relative distance is below this share one eigenspace for the shapes: the
+#: end matrix cannot tell their null vectors apart, and a point component this close to its
+#: own frequency counts as at it (the kernel's ``DEGENERATE``, same value).
+CLUSTER = 1e-8
 
 
 @dataclass(frozen=True)
 class ModeShape:
-    """Transverse displacement of the beam and of each hanging mass, max |Y| = 1."""
+    """One mode shape: the beam's state along x and the displacement of each carried mass.
+
+    ``Y``, ``theta``, ``M``, ``Q`` (m, rad, N m, N) are sampled at ``x`` (right limits at an
+    attachment: after its shear jump); the scaling is ``max |Y| = 1`` over the beam and the
+    masses unless the shape came from :meth:`mass_normalised`.
+    """
 
     omega: float
     x: np.ndarray
     Y: np.ndarray
+    theta: np.ndarray
+    M: np.ndarray
+    Q: np.ndarray
     mass_x: np.ndarray
     mass_Y: np.ndarray
-    #: smallest over largest singular value of the end's 2x2 matrix: how singular at omega
+    #: Singular value of this shape over the largest of the end matrix (0 for a clean root).
     singular_ratio: float
+    #: ``int mbar Y^2 dx + sum m Y_m^2`` (kg m^2 for Y in m), for this scaling.
+    modal_mass: float
+    #: Base-translation participation factor ``(int mbar Y dx + sum m Y_m) / modal_mass``.
+    participation: float
+    #: ``participation^2 modal_mass`` (kg): summed over all modes, the total mass that a
+    #: translation of the supports moves.
+    effective_mass: float
+    #: Dimension of the eigenspace (root multiplicity or cluster size) this shape belongs to.
+    multiplicity: int = 1
+
+    @property
+    def hz(self) -> float:
+        """Frequency in Hz."""
+        return self.omega / (2.0 * math.pi)
+
+    def scaled(self, factor: float) -> ModeShape:
+        """The same shape multiplied by ``factor``."""
+        f = float(factor)
+        return dataclasses.replace(
+            self,
+            Y=self.Y * f,
+            theta=self.theta * f,
+            M=self.M * f,
+            Q=self.Q * f,
+            mass_Y=self.mass_Y * f,
+            modal_mass=self.modal_mass * f * f,
+            participation=self.participation / f,
+        )
+
+    def mass_normalised(self) -> ModeShape:
+        """The shape scaled to unit modal mass."""
+        return self.scaled(1.0 / math.sqrt(self.modal_mass))
 
 
-def _nodes(L: float, lam: float, xs: np.ndarray, sample: np.ndarray) -> np.ndarray:
-    """Sample points, attachment points and enough points that every piece has lam*l <= 1."""
-    base = np.unique(np.concatenate([[0.0, L], xs, sample]))
-    pieces = [base[:1]]
-    for a, b in zip(base[:-1], base[1:]):
-        n = max(1, int(np.ceil(lam * (b - a) / MARCH_STEP)))
-        pieces.append(np.linspace(a, b, n + 1)[1:])
-    return np.concatenate(pieces)
+def clusters(omega: np.ndarray) -> list[tuple[int, int]]:
+    """``[start, stop)`` index ranges of ``omega`` (ascending, repeated by multiplicity)
+    whose consecutive relative distance is below :data:`CLUSTER`; zeros only with zeros."""
+    out: list[tuple[int, int]] = []
+    start = 0
+    for i in range(1, len(omega) + 1):
+        if i < len(omega):
+            a, b = float(omega[i - 1]), float(omega[i])
+            same = a == b or (a > 0.0 and b - a <= CLUSTER * b)
+            if same:
+                continue
+        out.append((start, i))
+        start = i
+    return out
 
 
-def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = 201) -> ModeShape:
-    """The mode shape of the natural frequency ``omega`` (rad/s)."""
+def sample_points(p: np.ndarray, kernel: Kernel, n_points: int = SAMPLES) -> np.ndarray:
+    """Uniform samples of ``[0, L]`` plus every attachment point."""
+    L = float(p[0])
+    return np.unique(np.concatenate([np.linspace(0.0, L, n_points), kernel.event_positions(p)]))
+
+
+def mode_shapes(
+    kernel: Kernel, p: np.ndarray, omega: np.ndarray, n_points: int = SAMPLES
+) -> list[ModeShape]:
+    """One :class:`ModeShape` per entry of ``omega`` (rad/s, ascending, repeated by
+    multiplicity; zeros included: their shapes are rigid motions)."""
     p = np.ascontiguousarray(p, dtype=np.float64)
-    L, EI, mbar = p[0], p[1], p[2]
-    rec = p[3:].reshape(-1, 3) if kernel.topology.kinds else np.empty((0, 3))
-    lam = (mbar * omega**2 / EI) ** 0.25
-    D = np.array([1.0 / L, 1.0, L / EI, L**2 / EI])  # units L = EI = 1
-    sample = np.linspace(0.0, L, n_points)
-    nodes = _nodes(L, lam, rec[:, 0], sample)
-    W = np.zeros((4, 2))
-    W[list(unknown(kernel.topology.left)), [0, 1]] = 1.0
-    frames = [W]  # W_k at every node (after its attachments)
-    Rs = []  # R factors, one per step (pieces and attachments)
-    scales = []  # factor each step's matrix carries beyond the true transfer (B00 at a branch)
-    steps_at = []  # index of the node each step arrives at
-    j = 0
-    for k, x in enumerate(nodes):
-        if k > 0:
-            U = kernel.beam_transfer(lam, x - nodes[k - 1], EI) * D[:, None] / D[None, :]
-            W, R = np.linalg.qr(U @ W)
-            Rs.append(R)
-            scales.append(1.0)
-            steps_at.append(k)
-        while j < len(rec) and rec[j, 0] <= x:
-            B00 = 1.0 - rec[j, 2] * omega**2 / rec[j, 1]
-            B10 = rec[j, 2] * omega**2 * L**3 / EI  # nondimensional shear per unit Y
-            P = B00 * np.eye(4)
-            P[3, 0] += B10
-            W, R = np.linalg.qr(P @ W)
-            Rs.append(R)
-            scales.append(B00)  # P = B00 x (the condensed jump): pole-free
-            steps_at.append(k)
-            j += 1
-        frames.append(W) if k > 0 else frames.__setitem__(0, W)
-    end = W[list(KNOWN_ZERO[kernel.topology.right]), :]
-    _u, sv, vt = np.linalg.svd(end)
-    ratio = float(sv[-1] / sv[0]) if sv[0] > 0 else 0.0
-    c = vt[-1]
-    states = np.empty((len(nodes), 4))
-    states[-1] = W @ c
-    s = len(Rs) - 1
-    for k in range(len(nodes) - 1, 0, -1):
-        # undo the steps arriving at node k (attachments, then the piece), back to node k-1
-        while s >= 0 and steps_at[s] == k:
-            c = scales[s] * np.linalg.solve(Rs[s], c)
-            s -= 1
-        states[k - 1] = frames[k - 1] @ c
-        # attachments at node k-1 were applied after its frame: their R's come first below
-        while s >= 0 and steps_at[s] == k - 1:
-            c = scales[s] * np.linalg.solve(Rs[s], c)
-            s -= 1
-    return _shape(omega, L, nodes, states, rec, sample, ratio)
+    omega = np.asarray(omega, dtype=np.float64)
+    xs = sample_points(p, kernel, n_points)
+    shapes: list[ModeShape] = []
+    for start, stop in clusters(omega):
+        shapes.extend(_cluster_shapes(kernel, p, omega[start:stop], xs))
+    return shapes
 
 
-def _shape(omega, L, nodes, states, rec, sample, ratio) -> ModeShape:
-    Y_nodes = states[:, 0] * L
-    Y = np.interp(sample, nodes, Y_nodes)  # sample points are nodes: exact values
-    idx = np.searchsorted(nodes, rec[:, 0])
-    B00 = 1.0 - rec[:, 2] * omega**2 / rec[:, 1]
-    mass_Y = Y_nodes[idx] / B00 if len(rec) else np.empty(0)
-    scale = max(np.max(np.abs(Y)), np.max(np.abs(mass_Y)) if len(rec) else 0.0)
-    if scale > 0:
-        both = np.concatenate([Y, mass_Y])
-        sign = np.sign(both[np.argmax(np.abs(both))]) or 1.0
-        Y, mass_Y = Y * sign / scale, mass_Y * sign / scale
-    return ModeShape(float(omega), sample, Y, rec[:, 0].copy(), mass_Y, ratio)
+def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = SAMPLES) -> ModeShape:
+    """The mode shape of a simple natural frequency ``omega`` (rad/s)."""
+    return mode_shapes(kernel, p, np.array([float(omega)]), n_points)[0]
+
+
+def _eigenspace(kernel, p, omegas, xs):
+    """The kernel's ``m`` null directions for a cluster of ``m`` roots, taken where the end
+    matrix is most singular on ``m`` directions: at the cluster's centre or at one of its
+    roots (next to a hanging mass's own frequency the end matrix changes so fast with
+    omega that 1e-12 away from a root it is no longer singular on its shape)."""
+    m = len(omegas)
+    trials = np.unique(np.append(omegas, np.mean(omegas))) if m > 1 else omegas[:1]
+    best = None
+    for w in trials:
+        got = kernel.mode_shapes(float(w), p, m, xs)
+        if best is None or np.max(got[4]) < np.max(best[4]):
+            best = got
+    return best
+
+
+def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
+    L, EI, mbar = float(p[0]), float(p[1]), float(p[2])
+    m = len(omegas)
+    Z, q, gram, part, ratio = _eigenspace(kernel, p, omegas, xs)
+    # mass-orthonormal basis of the cluster's space: C^T gram C = I (gram is m x m)
+    lam, vec = np.linalg.eigh(0.5 * (gram + gram.T))
+    lam = np.maximum(lam, np.finfo(float).tiny)
+    C = vec / np.sqrt(lam) if m > 1 else np.array([[1.0 / math.sqrt(lam[0])]])
+    Z = np.einsum("kj,knr->jnr", C, Z)
+    q = C.T @ q
+    part = C.T @ part
+    # how singular the end matrix is on the whole space (the worst of its m directions)
+    worst = float(np.max(ratio))
+    units = np.array([L, 1.0, EI / L, EI / L**2])
+    mass_x = kernel.event_positions(p)
+    out = []
+    for j in range(m):
+        Y = Z[j, :, 0] * L
+        mass_Y = q[j, : len(mass_x)] * L
+        big = np.concatenate([Y, mass_Y])
+        k = int(np.argmax(np.abs(big)))
+        scale = 1.0 / big[k] if big[k] != 0.0 else 1.0
+        state = Z[j] * units * scale
+        modal = mbar * L**3 * scale**2  # the basis vector has unit nondimensional modal mass
+        numerator = mbar * L**2 * part[j] * scale
+        out.append(
+            ModeShape(
+                omega=float(omegas[j]),
+                x=xs.copy(),
+                Y=state[:, 0],
+                theta=state[:, 1],
+                M=state[:, 2],
+                Q=state[:, 3],
+                mass_x=mass_x.copy(),
+                mass_Y=mass_Y * scale,
+                singular_ratio=worst,
+                modal_mass=float(modal),
+                participation=float(numerator / modal),
+                effective_mass=float(numerator**2 / modal),
+                multiplicity=m,
+            )
+        )
+    return out

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .kernels import Kernel, load_kernel
-from .modes import ModeShape, mode_shape
+from .modes import ModeShape, mode_shapes
 from .scan import TRUST, Roots, find_roots, simple_roots
 from .scene import Scene
 from .topology import parameter_vector, topology_of
@@ -81,7 +81,9 @@ def solve(
 
     ``formulation`` is ``"stable"`` (second-compound chain, default) or
     ``"paper"`` (det U_bar of paper Eq. (4) as printed). Mode shapes follow
-    paper Eq. (5) unless ``shapes=False``. ``rtol`` is the relative tolerance
+    paper Eq. (5) unless ``shapes=False``: one per entry of ``omega``, rigid-body zeros
+    included, a mass-orthonormal basis of the eigenspace of a multiple root or of a
+    cluster of roots too close to separate (:mod:`mstmm.modes`). ``rtol`` is the relative tolerance
     of the refinement (0: to machine precision); the stable formulation's
     ``modes=`` search refines to machine precision whatever ``rtol``, which
     costs less than the general search would with a looser one. Every root is
@@ -139,7 +141,7 @@ def solve(
         warnings.append("the roots disagree with the Wittrick-Williams count: some may be missing")
     shape_list = None
     if shapes:
-        shape_list = [mode_shape(kernel, p, r.omega) for r in roots if r.omega > 0]
+        shape_list = mode_shapes(kernel, p, omega)
         timings["shapes"] = time.perf_counter() - t3
     return Solution(
         scene,
