@@ -293,7 +293,6 @@ def kernel_source(topology: Topology) -> str:
     has_sm = "spring_mass" in kinds
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
-    U_red = beam.transfer_matrix_reduced(S.lam, S.l, S.EI, S.K)
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
     left_unknown = unknown(topology.left)
     right_unknown = unknown(topology.right)
@@ -330,7 +329,6 @@ def kernel_source(topology: Topology) -> str:
         compound_series=_indent(_series_lines(special.COMPOUND), 8),
         compound_closed=_indent(_closed_lines(special.COMPOUND, scaled=True), 8),
         beam_transfer=_indent(_matrix_fill(U_paper, "U"), 4),
-        beam_transfer_reduced=_indent(_matrix_fill(U_red, "U"), 4),
         krylov_scaled=_indent(_closed_lines(special.KRYLOV, scaled=True), 4),
         beam_transfer_scaled=_indent(_matrix_fill(U_nd, "U"), 4),
         clamped_clamped=_indent(_clamped_clamped_lines(), 4),

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "e11162595192d524aa415f1693484f6e69e6912c"
+SIGNATURE = "c3cbf1c4c52ea81ea42537e1e252e3380400725a"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -137,38 +137,6 @@ def beam_transfer(lam, l, EI, U):
     U[3, 1] = t15
     U[3, 2] = t14
     U[3, 3] = t3
-
-
-@njit(cache=True)
-def beam_transfer_reduced(lam, l, EI, U):
-    """Paper Eq. (1) with the reduced Krylov functions: exact for lam*l -> 0."""
-    x = lam * l
-    K0, K1, K2, K3 = krylov(x)
-    t0 = K1*l
-    t1 = 1.0/EI
-    t2 = K2*l**2
-    t3 = t1*t2
-    t4 = K3*l**3
-    t5 = lam**4
-    t6 = t4*t5
-    t7 = EI*t5
-    t8 = t2*t7
-    U[0, 0] = K0
-    U[0, 1] = t0
-    U[0, 2] = t3
-    U[0, 3] = t1*t4
-    U[1, 0] = t6
-    U[1, 1] = K0
-    U[1, 2] = t0*t1
-    U[1, 3] = t3
-    U[2, 0] = t8
-    U[2, 1] = EI*t6
-    U[2, 2] = K0
-    U[2, 3] = t0
-    U[3, 0] = t0*t7
-    U[3, 1] = t8
-    U[3, 2] = t6
-    U[3, 3] = K0
 
 
 @njit(cache=True)

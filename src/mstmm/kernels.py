@@ -313,16 +313,6 @@ class Kernel:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
         return self._compiled("u_bar_paper")(float(omega), _params(p))
 
-    def beam_transfer(self, lam: float, l: float, EI: float) -> np.ndarray:
-        """Beam segment matrix of paper Eq. (1), exact for small ``lam*l``."""
-        U = np.empty((4, 4))
-        args = (float(lam), float(l), float(EI), U)
-        if self._python is not None and interpret.worthwhile(0, 0):  # after an interpreted solve
-            interpret.timed_call(self._python["beam_transfer_reduced"], *args)
-        else:
-            self._compiled("beam_transfer_reduced")(*args)
-        return U
-
 
 def _params(p) -> np.ndarray:
     return np.ascontiguousarray(p, dtype=np.float64)
