@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "9564e4a3419e6231702fb68566b38253eed78ceb"
+SIGNATURE = "15729622d169c29530684c4da92d861b8b7e3e4f"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

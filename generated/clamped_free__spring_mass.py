@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "e968d47816481323542ca0819258f6c4154656e6"
+SIGNATURE = "6381a00c961076f7357cd3d9393976f99cc4911b"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

@@ -387,21 +387,56 @@ def _derive(args) -> int:
     return 0
 
 
+#: ``mstmm show`` prints the whole symbolic U_bar (without --full) up to this many
+#: attachments: its size grows about 16-fold per two attachments (count_ops: 631 with
+#: one, 13355 with three, 219670 with five).
+SHOW_FULL_MAX_ATTACHMENTS = 1
+
+
 def _show(args) -> int:
+    import textwrap
+
     import sympy as sp
 
-    from mstmm.derive import MAX_DETERMINANT_SIZE, symbolic
+    from mstmm.derive import MAX_DETERMINANT_SIZE, component_matrices, symbolic
 
     scene = _scene(args.scene)
+    render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
+    beam = scene.beam
+    n = len(scene.attachments)
+    print(f"{scene.name}: {beam.left} - {beam.right}, {n} spring-mass attachment(s)")
+    print("component matrices (paper Eqs. (1)-(3)); beam state [Y, theta, M, Q]:")
+    for title, matrix in component_matrices():
+        print(f"{title} =")
+        print(render(matrix))
+    der = symbolic(scene, evaluate=False)  # sizes and zero pattern only: fast for any n
+    print("chain (x = 0 to L):")
+    print(textwrap.fill(" -> ".join(der.chain()), 100, subsequent_indent="  "))
+    print(f"Z_all ({der.Z_all.rows}) =")
+    print(textwrap.fill(", ".join(map(str, der.Z_all)), 100, subsequent_indent="  "))
+    print(f"Z_bar ({der.Z_bar.rows}, the unknowns left by the boundary conditions) =")
+    print(textwrap.fill(", ".join(map(str, der.Z_bar)), 100, subsequent_indent="  "))
+    size = der.U_bar.rows
+    pattern = der.sparsity()
+    nonzero = sum(row.count("X") for row in pattern)
+    print(f"U_bar: {size}x{size}, {nonzero} of {size * size} entries nonzero (X):")
+    for row in pattern:
+        print("  " + row)
+    if n > SHOW_FULL_MAX_ATTACHMENTS and not args.full:
+        print(
+            f"(the symbolic U_bar and its determinant are not printed for more than"
+            f" {SHOW_FULL_MAX_ATTACHMENTS} attachment(s): `mstmm show --full {args.scene}`"
+            " prints U_bar, large and slow)"
+        )
+        return 0
     der = symbolic(scene)
-    print(f"{scene.name}: Z_bar = {list(der.Z_bar)}")
     print("U_bar =")
-    print(sp.pretty(der.U_bar, wrap_line=False))
-    if der.U_bar.rows <= MAX_DETERMINANT_SIZE - 1:
+    print(render(der.U_bar))
+    if size <= MAX_DETERMINANT_SIZE - 1:
         print("det U_bar =")
-        print(sp.pretty(der.determinant(), wrap_line=False))
+        print(render(der.determinant()))
     else:
-        print(f"(det U_bar not expanded: U_bar is {der.U_bar.rows}x{der.U_bar.rows})")
+        print(f"(det U_bar not expanded: U_bar is {size}x{size})")
     return 0
 
 
