@@ -425,9 +425,9 @@ def _show(args) -> int:
     if n > SHOW_FULL_MAX_ATTACHMENTS and not args.full:
         print(
             f"(the symbolic U_bar and its determinant are not printed for more than"
-            f" {SHOW_FULL_MAX_ATTACHMENTS} attachment(s): `mstmm show --full {args.scene}`"
-            " prints U_bar, large and slow)"
+            f" {SHOW_FULL_MAX_ATTACHMENTS} attachment(s); to print U_bar, large and slow:)"
         )
+        print(f"  mstmm show --full {args.scene}")
         return 0
     der = symbolic(scene)
     print("U_bar =")
