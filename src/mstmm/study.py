@@ -174,7 +174,7 @@ def parse_range(text: str) -> np.ndarray:
         except ValueError:
             raise ValueError("lo and hi must be numbers and n an integer") from None
         if n < 1:
-            raise ValueError(f"n must be at least 1 point (got {n})")
+            raise ValueError(f"n = {n}: a range needs at least 1 point")
         if not (math.isfinite(lo) and math.isfinite(hi)):
             raise ValueError("lo and hi must be finite")
         if kind.upper() == "LOG":
