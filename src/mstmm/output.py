@@ -36,6 +36,7 @@ __all__ = [
     "read_shapes_csv",
     "shapes_csv",
     "shapes_table",
+    "total_mass",
 ]
 
 SHAPE_SUMMARY_HEADER = (
