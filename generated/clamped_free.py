@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "f301e4951fd83f09cfa5be233141f15844cf5171"
+SIGNATURE = "e68d97e82a2749ec6d6d9446b66dcb3b03f8ea1e"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

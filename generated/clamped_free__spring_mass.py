@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "c3cbf1c4c52ea81ea42537e1e252e3380400725a"
+SIGNATURE = "ee7b3f50f202c19a5c1b3c3c1746be9294106eb0"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

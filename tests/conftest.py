@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -11,8 +12,17 @@ import pytest
 
 DATA = Path(__file__).parent / "data"
 
-# Tests never touch the user's kernel cache: set before mstmm resolves it.
-os.environ["MSTMM_CACHE"] = tempfile.mkdtemp(prefix="mstmm-test-cache-")
+# Tests never touch the user's kernel cache: set before mstmm resolves it. Subprocesses
+# started by the tests inherit the environment, so they use the same private cache.
+CACHE = tempfile.mkdtemp(prefix="mstmm-test-cache-")
+os.environ["MSTMM_CACHE"] = CACHE
+
+
+@pytest.fixture(scope="session", autouse=True)
+def private_kernel_cache():
+    """The session's kernel cache (``MSTMM_CACHE``), removed when the session ends."""
+    yield Path(CACHE)
+    shutil.rmtree(CACHE, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")

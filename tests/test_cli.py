@@ -168,3 +168,275 @@ def test_sweep_progress_bar_counts_every_point(capsys):
     assert omega.shape == (200, 2)
     err = capsys.readouterr().err
     assert "200/200" in err
+
+
+# ---------------------------------------------------------------------------
+# Issue 12 items 7 and 8: version, help, exit statuses, strict JSON, Ctrl-C, sweep errors
+
+
+def test_version(capsys):
+    import pytest
+
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0
+    assert capsys.readouterr().out.strip() == f"mstmm {mstmm.__version__}"
+
+
+def test_every_option_has_help_and_the_exit_statuses_are_documented():
+    import argparse
+
+    from mstmm.cli import build_parser
+
+    parser = build_parser()
+    assert "exit status" in parser.format_help() and "130" in parser.format_help()
+    (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    for name, command in sub.choices.items():
+        text = command.format_help()
+        assert "3    results written, but a root is NOT TRUSTED" in text, name
+        for action in command._actions:
+            assert action.help, (name, action.dest)
+            if action.default not in (None, False, argparse.SUPPRESS) and action.dest != "help":
+                assert "default" in action.help, (name, action.dest)
+    for name in ("solve", "plot"):  # one rule for --modes
+        (modes,) = [a for a in sub.choices[name]._actions if a.dest == "modes"]
+        assert "rigid-body zeros included" in modes.help
+
+
+def test_untrusted_roots_exit_3():
+    """The paper's determinant loses its digits past the 10th mode: flagged, status 3."""
+    result = _run("solve", "--formulation", "paper", "--modes", "14")
+    assert result.returncode == 3, result.stderr
+    assert "NOT TRUSTED" in result.stdout
+    assert "mstmm: warning: " in result.stderr and "Traceback" not in result.stderr
+
+
+def _solution_with(scene, **changes):
+    import numpy as np
+
+    from mstmm.solve import Solution
+
+    base = dict(
+        scene=scene,
+        omega=np.array([100.0, 200.0]),
+        multiplicity=np.array([1, 1]),
+        converged=np.array([True, True]),
+        formulation="stable",
+        kernel_origin="test",
+        timings={"load": 0.0, "compile": 0.0, "scan_refine": 0.0},
+        count_checked=True,
+    )
+    return Solution(**(base | changes))
+
+
+def test_json_never_holds_nan(monkeypatch, capsys):
+    """A non-finite number forced into a Solution: null in valid JSON, a warning, status 3."""
+    import sys
+
+    import numpy as np
+
+    solve_module = sys.modules["mstmm.solve"]
+    scene = mstmm.load_scene(mstmm.example_path())
+    forced = _solution_with(
+        scene,
+        omega=np.array([100.0, np.nan]),
+        converged=np.array([True, False]),
+        timings={"load": np.inf, "compile": 0.0, "scan_refine": 0.0},
+    )
+    monkeypatch.setattr(solve_module, "solve", lambda *a, **k: forced)
+    status = main(["solve", "--format", "json"])
+    out, err = capsys.readouterr()
+
+    def reject(name):
+        raise AssertionError(f"invalid JSON constant {name}")
+
+    data = json.loads(out, parse_constant=reject)
+    assert data["omega"] == [100.0, None] and data["timings"]["load"] is None
+    assert data["converged"] == [True, False]
+    assert status == 3
+    assert "3 non-finite number(s) written as null" in err and "omega[1]" in err  # and hz[1]
+
+
+def test_sigint_prints_one_line_and_exits_130():
+    """Ctrl-C during a long solve (a band of about 7000 modes): one line, status 130."""
+    import signal
+    import time
+
+    code = (
+        "import sys\n"
+        "from mstmm.cli import main\n"
+        "sys.stderr.write('ready\\n'); sys.stderr.flush()\n"
+        "raise SystemExit(main(['solve', '--band', '0', '3e10', '--format', 'csv']))\n"
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    try:
+        assert proc.stderr.readline() == "ready\n"
+        time.sleep(2.0)
+        assert proc.poll() is None, "the solve ended before it could be interrupted"
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, err
+    assert err == "mstmm: interrupted\n"
+
+
+def _sweep_error(*args: str) -> str:
+    result = _run("sweep", str(mstmm.example_path()), *args)
+    assert result.returncode == 2, result.stderr
+    assert result.stdout == ""
+    return _one_error_line(result.stderr)
+
+
+def test_sweep_zero_points_missing_directory_and_repeated_field(tmp_path):
+    line = _sweep_error("--vary", "attachments[2].k=LOG:1e3:1e9:0")
+    assert "--vary attachments[2].k" in line and "at least 1 point" in line
+    line = _sweep_error("--vary", "beam.EI=LOG:-1:1e9:3")
+    assert "lo > 0" in line
+    missing = tmp_path / "nowhere" / "out.csv"
+    line = _sweep_error("--vary", "beam.EI=1e4,2e4", "--out", str(missing))
+    assert "--out" in line and "directory does not exist" in line and str(missing.parent) in line
+    assert not missing.parent.exists()
+    line = _sweep_error("--vary", "beam.EI=1e4,2e4", "--vary", "beam.EI=3e4,4e4")
+    assert "--vary beam.EI" in line and "twice" in line
+
+
+def test_sweep_point_beyond_float64_exits_2():
+    line = _sweep_error("--vary", "attachments[1].k=1e5,5e-324")
+    assert "attachments[1].k" in line and "point 1" in line and "5e-324" in line
+
+
+# ---------------------------------------------------------------------------
+# Issue 12 item 7c: mstmm show has no size limit
+
+
+def _scene_with(tmp_path, n: int, left: str = "clamped", right: str = "free"):
+    text = (
+        f'[beam]\nlength = 1.0\nEI = 1.0\nmass_per_length = 1.0\nleft = "{left}"\n'
+        f'right = "{right}"\n'
+    )
+    for i in range(n):
+        text += (
+            f'[[attachments]]\ntype = "spring_mass"\nx = {(i + 1) / (n + 1)}\nk = 1.0\nm = 1.0\n'
+        )
+    path = tmp_path / f"n{n}.toml"
+    path.write_text(text)
+    return path
+
+
+def test_show_ten_attachments_is_quick_and_small(tmp_path):
+    import time
+
+    path = _scene_with(tmp_path, 10)
+    t0 = time.perf_counter()
+    result = _run("show", str(path))
+    assert time.perf_counter() - t0 < 60.0  # a few seconds; generous on a busy machine
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    assert len(out) < 20_000
+    assert max(len(line) for line in out.splitlines() if str(path) not in line) < 200
+    for part in ("beam segment U_B(l)", "spring U_S(k)", "lumped mass U_M(m)", "U_I1", "U_I2"):
+        assert part in out
+    assert "H_I1" in out and "H_I2" in out
+    assert "U_bar: 14x14" in out  # 4 + 2 n + 4 states, half known at the boundaries
+    assert "--full" in out and "det U_bar =" not in out
+
+
+def test_show_small_scene_prints_u_bar_and_det_in_latex(tmp_path):
+    result = _run("show", "--latex", str(_scene_with(tmp_path, 0)))
+    assert result.returncode == 0, result.stderr
+    assert "U_bar =\n\\left[\\begin{matrix}" in result.stdout
+    assert "det U_bar =" in result.stdout and "\\cosh" in result.stdout
+
+
+def test_show_pattern_is_that_of_the_evaluated_derivation():
+    """The fast (unevaluated) structure has the zero pattern of the full SymPy derivation."""
+    from mstmm.derive import symbolic
+
+    for n, (left, right) in [
+        (0, ("pinned", "free")),
+        (2, ("clamped", "free")),
+        (3, ("free", "sliding")),
+    ]:
+        scene = mstmm.scene_from_dict(
+            {
+                "beam": {
+                    "length": 1.0,
+                    "EI": 1.0,
+                    "mass_per_length": 1.0,
+                    "left": left,
+                    "right": right,
+                },
+                "attachments": [
+                    {"type": "spring_mass", "x": 0.2 * (i + 1), "k": 1.0, "m": 1.0}
+                    for i in range(n)
+                ],
+            }
+        )
+        fast, full = symbolic(scene, evaluate=False), symbolic(scene)
+        assert fast.Z_bar == full.Z_bar
+        assert fast.sparsity() == [
+            " ".join("." if e.simplify() == 0 else "X" for e in full.U_bar.row(i))
+            for i in range(full.U_bar.rows)
+        ]
+
+
+# ---------------------------------------------------------------------------
+# Issue 12 items 9-11: the package namespace, example_path, the test cache
+
+
+def test_namespace_holds_only_the_public_api_and_submodules():
+    import types
+
+    stray = [
+        name
+        for name in dir(mstmm)
+        if not name.startswith("__")
+        and name not in mstmm.__all__
+        and not isinstance(getattr(mstmm, name), types.ModuleType)
+    ]
+    assert stray == []
+
+
+def test_example_path_by_name_from_any_directory(tmp_path):
+    import pytest
+
+    code = (
+        "import mstmm\n"
+        "for name in ('wu_chou_1998', 'bare_cantilever', 'wu_chou_1998.toml'):\n"
+        "    mstmm.load_scene(mstmm.example_path(name))\n"
+        "scene = mstmm.load_scene(mstmm.example_path('wu_chou_1998'))\n"
+        "print(mstmm.solve(scene, modes=1).omega[0])\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300
+    )
+    assert result.returncode == 0, result.stderr
+    with pytest.raises(ValueError) as info:
+        mstmm.example_path("wu_chou")
+    assert "bare_cantilever, wu_chou_1998" in str(info.value)
+
+
+def test_test_session_removes_its_kernel_cache(tmp_path):
+    """A pytest session (this directory's conftest) leaves no mstmm-test-cache-* behind."""
+    here = os.path.dirname(__file__)
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pytest",
+            "-q",
+            "-p",
+            "no:cacheprovider",
+            os.path.join(here, "test_cli.py")
+            + "::test_namespace_holds_only_the_public_api_and_submodules",
+        ],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "TMPDIR": str(tmp_path)},
+        timeout=300,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert not list(tmp_path.glob("mstmm-test-cache-*"))

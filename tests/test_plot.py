@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import stat
 import struct
@@ -13,6 +14,7 @@ import numpy as np
 import pytest
 
 import mstmm
+from mstmm.modes import ModeShape
 
 pytest.importorskip("matplotlib")
 
@@ -140,8 +142,14 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     assert "attachment points (3)" in labels
 
 
+@pytest.mark.xfail(
+    "modal_mass" not in {f.name for f in dataclasses.fields(ModeShape)},
+    reason="needs the new ModeShape (one shape per natural frequency, issue 12 item 1)",
+    strict=True,
+)
 def test_mode_shapes_of_a_free_free_scene_skip_rigid_modes(free_free):
-    fig = plot.mode_shapes(free_free, modes=3)
+    """--modes counts every natural frequency: 5 of a free-free beam are 2 zeros, 3 shapes."""
+    fig = plot.mode_shapes(free_free, modes=5)
     assert len(lines(fig, "mode")) == 3
     labels = [ln.get_label() for ln in lines(fig, "mode")]
     assert labels[0].startswith("mode 3:")  # modes 1 and 2 are the rigid-body zeros
@@ -176,7 +184,7 @@ def test_veering_one_line_per_mode(scene, tmp_path):
 
 def test_veering_linear_axis_and_rigid_modes_left_out(free_free):
     xs = np.linspace(5.0, 35.0, 7)
-    fig = plot.veering(free_free, "attachments[1].x", xs, modes=3)
+    fig = plot.veering(free_free, "attachments[1].x", xs, modes=5)  # 2 zeros, 3 drawn
     ax = fig.axes[0]
     assert ax.get_xscale() == "linear"
     curves = lines(fig, "mode")

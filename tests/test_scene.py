@@ -643,3 +643,126 @@ def test_cli_subprocess_missing_file(tmp_path):
     assert result.stdout == ""
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and path.name in lines[0]
+
+
+# ---------------------------------------------------------------------------
+# What float64 arithmetic can carry: finite values the numerics cannot represent are
+# rejected like any other bad value, and accepted extremes solve without a warning.
+
+CANTILEVER_BETA = (1.8751040687119611, 4.6940911329741745)  # roots of 1 + cos b cosh b
+
+
+@pytest.mark.parametrize(
+    "beam, field",
+    [
+        ({"EI": 1e308}, "beam.EI"),
+        ({"mass_per_length": 1e-308}, "beam.mass_per_length"),
+        ({"length": 5e-324}, "beam.length"),
+        ({"EI": 1e200, "mass_per_length": 1e-100}, "beam.EI"),  # EI/mbar = 1e300
+        ({"length": 1e-70}, "beam.length"),  # EI/(mbar L^4) = 1e280 * ...
+    ],
+)
+def test_beam_beyond_float64_is_named(beam, field):
+    data = {"beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0, **beam}}
+    data["beam"] |= {"left": "clamped", "right": "free"}
+    with pytest.raises(SceneError) as info:
+        scene_from_dict(data, source="big.toml")
+    assert info.value.field == field
+    assert str(info.value).startswith(f"big.toml: {field}: ")
+    assert len(str(info.value).splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    "k, m, field",
+    [
+        (5e-324, 1.0, "attachments[0].k"),
+        (1.0, 1e-300, "attachments[0].m"),
+        (1e200, 1e-100, "attachments[0].k"),  # k/m = 1e300
+    ],
+)
+def test_attachment_beyond_float64_is_named(k, m, field):
+    data = {
+        "beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0, "left": "clamped"},
+        "attachments": [{"type": "spring_mass", "x": 0.5, "k": k, "m": m}],
+    }
+    data["beam"]["right"] = "free"
+    with pytest.raises(SceneError) as info:
+        scene_from_dict(data, source="big.toml")
+    assert info.value.field == field
+    assert info.value.value in (k, m)
+
+
+def test_accepted_extremes_solve_exactly_without_warnings():
+    """EI = 1e100, mbar = 1e-100: omega_n = beta_n^2 sqrt(EI/mbar) / L^2 (closed form)."""
+    import warnings
+
+    import mstmm
+
+    scene = scene_from_dict(
+        {
+            "beam": {
+                "length": 2.0,
+                "EI": 1e100,
+                "mass_per_length": 1e-100,
+                "left": "clamped",
+                "right": "free",
+            }
+        }
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sol = mstmm.solve(scene, modes=2, shapes=False)
+    exact = [b**2 * 1e100 / 4.0 for b in CANTILEVER_BETA]
+    assert sol.omega == pytest.approx(exact, rel=1e-12)
+
+
+def test_band_beyond_float64_or_too_wide_is_rejected():
+    from mstmm.scene import check_band
+
+    scene = load_scene(DATA / "wu_chou_1998.toml")
+    check_band(scene, (0.0, 1e6), "<command line>", "--band")  # about 40 beam modes
+    for band in [(1e299, 1e300), (0.0, 1e160), (1.0, 1e20)]:
+        with pytest.raises(SceneError) as info:
+            check_band(scene, band, "<command line>", "--band")
+        assert info.value.field == "--band"
+
+
+def test_sweep_point_beyond_float64_is_named():
+    import mstmm
+
+    scene = load_scene(DATA / "wu_chou_1998.toml")
+    with pytest.raises(SceneError) as info:
+        mstmm.sweep(scene, {"attachments[1].k": [1e5, 2e5, 5e-324]}, modes=2)
+    assert info.value.field == "attachments[1].k"
+    assert "at point 2," in str(info.value)
+
+
+REPRESENTABLE_CASES = {
+    "EI": (BEAM_TOML.replace("EI = 100.0", "EI = 1e308"), [], "beam.EI", "1e+308"),
+    "mbar": (
+        BEAM_TOML.replace("mass_per_length = 3.0", "mass_per_length = 1e-308"),
+        [],
+        "beam.mass_per_length",
+        "1e-308",
+    ),
+    "k": (good_toml((1, "5e-324", 1)), [], "attachments[0].k", "5e-324"),
+    "band": (BEAM_TOML, ["--band", "1e299", "1e300"], "--band", "1e+300"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(REPRESENTABLE_CASES))
+def test_cli_subprocess_unrepresentable_is_one_line_no_warning(tmp_path, case):
+    """The values of issue 12 item 7b: exit 2, one line, and no warning even under -W error."""
+    text, extra, field, value = REPRESENTABLE_CASES[case]
+    path = write(tmp_path, text, f"big_{case}.toml")
+    result = subprocess.run(
+        [sys.executable, "-W", "error", "-m", "mstmm", "solve", str(path), *extra],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert result.returncode == 2, result.stderr
+    assert result.stdout == ""
+    (line,) = result.stderr.splitlines()
+    assert line.startswith("mstmm: error: ")
+    assert f": {field}: " in line and value in line, line

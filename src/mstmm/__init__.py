@@ -11,14 +11,10 @@ never imported on this path).
 >>> sol = mstmm.solve(scene, modes=5)
 """
 
-from __future__ import annotations
-
-from importlib.resources import files
-from pathlib import Path
-
 from . import interpret
 from .kernels import Kernel, load_kernel
 from .scene import Scene, SceneError, load_scene, scene_from_dict
+from .scenes import example_path
 from .solve import Solution, solve
 from .study import sweep
 from .topology import Topology, parameter_vector, topology_of
@@ -42,11 +38,6 @@ __all__ = [
 ]
 
 __version__ = "0.1.0"
-
-
-def example_path(name: str = "wu_chou_1998") -> Path:
-    """Path of a bundled scene (``wu_chou_1998``, ``bare_cantilever``)."""
-    return Path(str(files("mstmm.scenes") / f"{name}.toml"))
 
 
 def kernel_for(scene: Scene) -> Kernel:

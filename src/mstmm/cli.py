@@ -1,7 +1,7 @@
-"""Command line: ``mstmm solve | derive | show``.
+"""Command line: ``mstmm solve | sweep | plot | derive | show``.
 
 Bad input prints one line ``mstmm: error: <file>: <field>: <problem> (got <value>)``
-and exits with status 2, before anything is written.
+and exits with status 2, before anything is written. Exit statuses: see ``EPILOG``.
 """
 
 from __future__ import annotations
@@ -9,21 +9,51 @@ from __future__ import annotations
 import argparse
 import csv
 import io
-import json
 import os
 import sys
 import time
+import warnings
 from pathlib import Path
 
-from . import progress
+from . import __version__, progress
 from .kernels import FORMULATIONS, KernelError
-from .scene import Scene, SceneError, load_scene
+from .scene import Scene, SceneError, check_band, load_scene
 
-EXIT_BAD_INPUT = 2
 EXIT_FAILURE = 1
+EXIT_BAD_INPUT = 2
+EXIT_UNTRUSTED = 3
+EXIT_INTERRUPTED = 130
+COMMAND_LINE = "<command line>"
+
+EPILOG = """\
+exit status:
+  0    success
+  1    failure: no natural frequency in the band, a kernel cache that cannot be
+       written, a missing dependency, an unexpected error (one line; --debug
+       shows the traceback)
+  2    bad scene file or option (one line naming the file or option, the field
+       and the value; nothing is written)
+  3    results written, but a root is NOT TRUSTED, the roots disagree with the
+       Wittrick-Williams count, or (sweep) a point could not be certified (NaN)
+  130  interrupted (Ctrl-C)
+"""
+
+SCENE_HELP = "scene file (TOML); default: the bundled paper example wu_chou_1998"
+MODES_HELP = "the N lowest natural frequencies, counting every one, rigid-body zeros included"
+BAND_HELP = "every natural frequency in [LO, HI] rad/s (instead of --modes)"
+FORMULATION_HELP = (
+    "characteristic function: 'stable' (second-compound chain, full precision) or 'paper'"
+    " (det U_bar of the paper's Eq. (4) as printed; loses digits at higher modes)"
+    " (default: %(default)s)"
+)
+RANGE_HELP = (
+    "PATH=RANGE: a field (beam.length|EI|mass_per_length, attachments[i].x|k|m, i in x order)"
+    " and its values: LOG:lo:hi:n, LIN:lo:hi:n or a list 1,2,3"
+)
 
 
 def _scene(path: str | None) -> Scene:
+    """The scene at ``path``, or the bundled paper example."""
     if path is None:
         from . import example_path
 
@@ -57,70 +87,136 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(EXIT_BAD_INPUT)
 
 
+class _Help(argparse.RawDescriptionHelpFormatter):
+    """Keeps the epilog's layout."""
+
+
 def build_parser() -> argparse.ArgumentParser:
-    ap = _Parser(prog="mstmm", description="Natural frequencies of beams by MSTMM.")
+    """The ``mstmm`` argument parser: every option has help text and shows its default."""
+    ap = _Parser(
+        prog="mstmm",
+        description="Natural frequencies and mode shapes of beams by MSTMM.",
+        epilog=EPILOG,
+        formatter_class=_Help,
+    )
+    ap.add_argument("--version", action="version", version=f"mstmm {__version__}")
     ap.add_argument("--debug", action="store_true", help="show tracebacks of unexpected errors")
     ap.add_argument(
         "--verbose", action="store_true", help="print where the time went (on standard error)"
     )
-    sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    s = sub.add_parser("solve", help="natural frequencies and mode shapes of a scene")
-    s.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
+
+    def command(name: str, summary: str) -> argparse.ArgumentParser:
+        return sub.add_parser(
+            name, help=summary, description=summary, epilog=EPILOG, formatter_class=_Help
+        )
+
+    s = command("solve", "natural frequencies and mode shapes of a scene")
+    s.add_argument("scene", nargs="?", metavar="SCENE", help=SCENE_HELP)
     g = s.add_mutually_exclusive_group()
-    g.add_argument("--modes", type=_positive_int, help="the N lowest frequencies (default 10)")
-    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
-    s.add_argument("--format", choices=("table", "json", "csv"), default="table")
-    s.add_argument("--formulation", choices=FORMULATIONS, default="stable")
-    s.add_argument("--shapes", action="store_true", help="include mode shapes in JSON")
-    d = sub.add_parser("derive", help="write the kernel of a scene's topology, print where")
-    d.add_argument("scene")
+    g.add_argument("--modes", type=_positive_int, metavar="N", help=MODES_HELP + " (default: 10)")
+    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help=BAND_HELP)
+    s.add_argument(
+        "--format",
+        choices=("table", "json", "csv"),
+        default="table",
+        help="output on standard output: a table, one JSON object, or CSV (default: %(default)s)",
+    )
+    s.add_argument("--formulation", choices=FORMULATIONS, default="stable", help=FORMULATION_HELP)
+    s.add_argument(
+        "--shapes",
+        action="store_true",
+        help="mode shapes too, one per natural frequency: with --format json every shape's"
+        " samples (x, Y, theta, M, Q, mass_x, mass_Y) and its modal mass, participation and"
+        " effective mass; with --format csv three blocks separated by an empty line: one row"
+        " per mode (omega, f, multiplicity, modal mass, participation, effective mass), then"
+        " x,Y_1..Y_n (one row per point along the beam), then mass_x,Y_1..Y_n (one row per"
+        " carried mass); with --format table a per-mode summary and the sum of effective"
+        " masses against the total mass (default: off)",
+    )
+    d = command("derive", "write the kernel of a scene's topology, print where")
+    d.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
-    v = sub.add_parser("sweep", help="lowest frequencies over a parameter study (all cores)")
-    v.add_argument("scene")
+    v = command("sweep", "lowest frequencies over a parameter study (all cores)")
+    v.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     v.add_argument(
         "--vary",
         action="append",
         required=True,
         metavar="PATH=RANGE",
-        help="e.g. attachments[2].k=LOG:1e3:1e9:200, beam.EI=LIN:1e4:1e5:50 or a list 1,2,3",
+        help=RANGE_HELP + "; several --vary (each field once) vary together, point by point",
     )
-    v.add_argument("--modes", type=_positive_int, default=5)
+    v.add_argument(
+        "--modes", type=_positive_int, default=5, metavar="N", help=MODES_HELP + " (default: 5)"
+    )
     v.add_argument("--out", type=Path, help="CSV file (default: standard output)")
-    v.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://HOST:8786")
-    q = sub.add_parser(
-        "plot", help="paper Fig. 2 (log|Delta| and mode shapes) or a veering diagram"
+    v.add_argument(
+        "--scheduler", help="Dask scheduler address, e.g. tcp://HOST:8786 (default: local cores)"
     )
-    q.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
+    q = command("plot", "paper Fig. 2 (log|Delta| and mode shapes) or a veering diagram")
+    q.add_argument("scene", nargs="?", metavar="SCENE", help=SCENE_HELP)
     q.add_argument(
         "-o", "--out", type=Path, required=True, help="image file; format from the suffix"
     )
     g = q.add_mutually_exclusive_group()
-    g.add_argument("--modes", type=_positive_int, help="elastic modes shown (default 4; sweep 5)")
-    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
+    g.add_argument(
+        "--modes",
+        type=_positive_int,
+        metavar="N",
+        help=MODES_HELP + "; the shape panel skips the zeros (default: 4; with --sweep 5)",
+    )
+    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help=BAND_HELP)
     q.add_argument(
         "--sweep",
         metavar="PATH=RANGE",
-        help="veering diagram, e.g. attachments[2].k=LOG:1e3:1e9:200",
+        help="veering diagram instead of Fig. 2: " + RANGE_HELP,
     )
-    q.add_argument("--formulation", choices=FORMULATIONS, default="stable")
-    w = sub.add_parser("show", help="print the symbolic U_bar of a scene (and det when small)")
-    w.add_argument("scene")
+    q.add_argument("--formulation", choices=FORMULATIONS, default="stable", help=FORMULATION_HELP)
+    w = command(
+        "show",
+        "print a scene's component matrices and structure (U_bar and det when small)",
+    )
+    w.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
+    w.add_argument(
+        "--full",
+        action="store_true",
+        help="print the whole symbolic U_bar (and its determinant up to 6x6) whatever the size;"
+        " can take minutes and megabytes beyond 2 attachments (default: only when small)",
+    )
+    w.add_argument("--latex", action="store_true", help="print LaTeX instead of pretty text")
     return ap
 
 
+def _checked_band(args, scene: Scene) -> tuple[float, float] | None:
+    """``--band`` as a tuple, checked against the scene (None without ``--band``)."""
+    if args.band is None:
+        return None
+    band = (float(args.band[0]), float(args.band[1]))
+    if band[1] <= band[0]:
+        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(band))
+    check_band(scene, band, COMMAND_LINE, "--band")
+    return band
+
+
+def _check_out_dir(path: Path, option: str = "--out") -> None:
+    """An output file's directory must exist before any work is done."""
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise SceneError(COMMAND_LINE, option, "directory does not exist", str(parent))
+
+
+def _warn(message: str) -> None:
+    print(f"mstmm: warning: {message}", file=sys.stderr)
+
+
 def _solve(args) -> int:
+    from . import output
     from .solve import solve
 
     scene = _scene(args.scene)
-    band = tuple(args.band) if args.band else None
-    if band is not None and band[1] <= band[0]:
-        raise SceneError("<command line>", "--band", "HI must exceed LO", list(band))
+    band = _checked_band(args, scene)
     sol = solve(
-        scene,
-        modes=args.modes,
-        band=band,
-        formulation=args.formulation,
-        shapes=args.shapes and args.format == "json",
+        scene, modes=args.modes, band=band, formulation=args.formulation, shapes=args.shapes
     )
     if band is not None and not sol.omega.size:
         raise NoRoots(
@@ -129,37 +225,23 @@ def _solve(args) -> int:
         )
     _phase(args, "solve", **sol.timings)
     if args.format == "json":
-        print(json.dumps(sol.to_dict(shapes=args.shapes)))
+        text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
+        print(text)
+        if nulls:
+            _warn(
+                f"{len(nulls)} non-finite number(s) written as null in the JSON output"
+                f" (first: {nulls[0]}); they cannot be trusted"
+            )
     elif args.format == "csv":
-        buf = io.StringIO()
-        wr = csv.writer(buf, lineterminator="\n")
-        wr.writerow(["mode", "omega_rad_s", "f_hz", "multiplicity", "converged"])
-        for i, (w, f, m, c) in enumerate(
-            zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
-        ):
-            wr.writerow([i, repr(float(w)), repr(float(f)), int(m), bool(c)])
-        sys.stdout.write(buf.getvalue())
+        sys.stdout.write(output.shapes_csv(sol) if args.shapes else output.frequencies_csv(sol))
     else:
-        print(f"{scene.name}: {len(sol.omega)} natural frequencies ({sol.formulation} formulation)")
-        print(f"{'mode':>4}  {'omega [rad/s]':>24}  {'f [Hz]':>24}  mult")
-        for i, (w, f, m, c) in enumerate(
-            zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
-        ):
-            flag = "" if c else "  NOT TRUSTED"
-            print(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
-        t = sol.timings
-        machine = (
-            "kernel run as Python (cheaper than loading machine code)"
-            if sol.kernel_mode == "interpreted"
-            else f"compile {t['compile']:.3f} s"
-        )
-        print(
-            f"time: load {t['load']:.3f} s, {machine}, "
-            f"scan+refine {t['scan_refine'] * 1e3:.2f} ms, count checked: {sol.count_checked}"
-        )
+        sys.stdout.write(output.frequencies_table(sol))
+        if args.shapes:
+            sys.stdout.write(output.shapes_table(sol))
     for warning in sol.warnings:
-        print(f"mstmm: warning: {warning}", file=sys.stderr)
-    return 0
+        _warn(warning)
+    trusted = bool(sol.count_checked) and bool(sol.converged.all())
+    return 0 if trusted else EXIT_UNTRUSTED
 
 
 class NoRoots(RuntimeError):
@@ -201,17 +283,25 @@ def _phase(args, what: str, **seconds: float) -> None:
 
 
 def _sweep(args) -> int:
-    import os
     import tempfile
 
     from .study import sweep
 
+    if args.out is not None:
+        _check_out_dir(args.out)
     scene = _scene(args.scene)
-    vary = dict(_vary_item(item, "--vary") for item in args.vary)
+    vary: dict[str, object] = {}
+    for item in args.vary:
+        path, values = _vary_item(item, "--vary")
+        if path in vary:
+            raise SceneError(COMMAND_LINE, f"--vary {path}", "the same field is varied twice", item)
+        vary[path] = values
     t0 = time.perf_counter()
-    omega = sweep(
-        scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
-    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        omega = sweep(
+            scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
+        )
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
@@ -220,13 +310,22 @@ def _sweep(args) -> int:
         wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, omega[j].tolist())])
     if args.out is None:
         sys.stdout.write(buf.getvalue())
-        return 0
-    fd, tmp = tempfile.mkstemp(dir=args.out.parent or ".", prefix=".tmp-sweep-")
-    with os.fdopen(fd, "w") as fh:
-        fh.write(buf.getvalue())
-    os.replace(tmp, args.out)
-    print(args.out)
-    return 0
+    else:
+        fd, tmp = tempfile.mkstemp(dir=args.out.parent or ".", prefix=".tmp-sweep-")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(buf.getvalue())
+        os.replace(tmp, args.out)
+        print(args.out)
+    for w in caught:
+        _warn(str(w.message))
+    return EXIT_UNTRUSTED if _has_nan(omega) else 0
+
+
+def _has_nan(values) -> bool:
+    """Whether any value of an array is NaN (a point the sweep could not certify)."""
+    import numpy as np
+
+    return bool(np.isnan(values).any())
 
 
 def _vary_item(item: str, option: str) -> tuple[str, object]:
@@ -235,11 +334,11 @@ def _vary_item(item: str, option: str) -> tuple[str, object]:
 
     path, sep, spec = item.partition("=")
     if not sep:
-        raise SceneError("<command line>", option, "expected PATH=RANGE", item)
+        raise SceneError(COMMAND_LINE, option, "expected PATH=RANGE", item)
     try:
         return path, parse_range(spec)
-    except ValueError:
-        raise SceneError("<command line>", f"{option} {path}", "bad range", spec) from None
+    except ValueError as exc:
+        raise SceneError(COMMAND_LINE, f"{option} {path}", f"bad range: {exc}", spec) from None
 
 
 def _plot(args) -> int:
@@ -250,26 +349,22 @@ def _plot(args) -> int:
             raise
         print("mstmm: error: plotting needs matplotlib: pip install 'mstmm[plot]'", file=sys.stderr)
         return EXIT_FAILURE
-    where = "<command line>"
     if args.out.suffix[1:].lower() not in plot.formats():
         raise SceneError(
-            where,
+            COMMAND_LINE,
             "--out",
             f"unknown image format; use one of {sorted(plot.formats())}",
             str(args.out),
         )
-    if not (args.out.parent if str(args.out.parent) else Path(".")).is_dir():
-        raise SceneError(where, "--out", "directory does not exist", str(args.out.parent))
+    _check_out_dir(args.out)
     scene = _scene(args.scene)
     if args.sweep is not None:
         if args.band is not None:
-            raise SceneError(where, "--band", "not with --sweep", list(args.band))
+            raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
         path, values = _vary_item(args.sweep, "--sweep")
         plot.veering(scene, path, values, modes=args.modes or 5, path=args.out)
     else:
-        band = tuple(args.band) if args.band else None
-        if band is not None and band[1] <= band[0]:
-            raise SceneError(where, "--band", "HI must exceed LO", list(band))
+        band = _checked_band(args, scene)
         plot.figure2(
             scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
         )
@@ -292,30 +387,82 @@ def _derive(args) -> int:
     return 0
 
 
+#: ``mstmm show`` prints the whole symbolic U_bar (without --full) up to this many
+#: attachments: its size grows about 16-fold per two attachments (count_ops: 631 with
+#: one, 13355 with three, 219670 with five).
+SHOW_FULL_MAX_ATTACHMENTS = 1
+
+
 def _show(args) -> int:
+    import textwrap
+
     import sympy as sp
 
-    from mstmm.derive import MAX_DETERMINANT_SIZE, symbolic
+    from mstmm.derive import MAX_DETERMINANT_SIZE, component_matrices, symbolic
 
     scene = _scene(args.scene)
+    render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
+    beam = scene.beam
+    n = len(scene.attachments)
+    print(f"{scene.name}: {beam.left} - {beam.right}, {n} spring-mass attachment(s)")
+    print("component matrices (paper Eqs. (1)-(3)); beam state [Y, theta, M, Q]:")
+    for title, matrix in component_matrices():
+        print(f"{title} =")
+        print(render(matrix))
+    der = symbolic(scene, evaluate=False)  # sizes and zero pattern only: fast for any n
+    print("chain (x = 0 to L):")
+    print(textwrap.fill(" -> ".join(der.chain()), 100, subsequent_indent="  "))
+    print(f"Z_all ({der.Z_all.rows}) =")
+    print(textwrap.fill(", ".join(map(str, der.Z_all)), 100, subsequent_indent="  "))
+    print(f"Z_bar ({der.Z_bar.rows}, the unknowns left by the boundary conditions) =")
+    print(textwrap.fill(", ".join(map(str, der.Z_bar)), 100, subsequent_indent="  "))
+    size = der.U_bar.rows
+    pattern = der.sparsity()
+    nonzero = sum(row.count("X") for row in pattern)
+    print(f"U_bar: {size}x{size}, {nonzero} of {size * size} entries nonzero (X):")
+    for row in pattern:
+        print("  " + row)
+    if n > SHOW_FULL_MAX_ATTACHMENTS and not args.full:
+        print(
+            f"(the symbolic U_bar and its determinant are not printed for more than"
+            f" {SHOW_FULL_MAX_ATTACHMENTS} attachment(s); to print U_bar, large and slow:)"
+        )
+        print(f"  mstmm show --full {args.scene}")
+        return 0
     der = symbolic(scene)
-    print(f"{scene.name}: Z_bar = {list(der.Z_bar)}")
     print("U_bar =")
-    print(sp.pretty(der.U_bar, wrap_line=False))
-    if der.U_bar.rows <= MAX_DETERMINANT_SIZE - 1:
+    print(render(der.U_bar))
+    if size <= MAX_DETERMINANT_SIZE - 1:
         print("det U_bar =")
-        print(sp.pretty(der.determinant(), wrap_line=False))
+        print(render(der.determinant()))
     else:
-        print(f"(det U_bar not expanded: U_bar is {der.U_bar.rows}x{der.U_bar.rows})")
+        print(f"(det U_bar not expanded: U_bar is {size}x{size})")
     return 0
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Any Python warning that reaches the command line: one ``mstmm: warning:`` line."""
+    _warn(" ".join(str(message).split()))
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:  # Ctrl-C: one line, the conventional 128 + SIGINT
+        if "--debug" in (sys.argv[1:] if argv is None else argv):
+            raise
+        print("mstmm: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def _main(argv: list[str] | None) -> int:
     started = _seconds_since_process_start() if argv is None else None
     t0 = time.perf_counter()
     args = build_parser().parse_args(argv)
     progress.enabled = sys.stderr.isatty() and getattr(args, "format", None) != "json"
+    shown = warnings.showwarning
+    warnings.showwarning = _one_line_warning
     try:
         commands = {
             "solve": _solve,
@@ -355,3 +502,5 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"mstmm: error: {type(exc).__name__}: {exc} (--debug shows where)", file=sys.stderr)
         return EXIT_FAILURE
+    finally:
+        warnings.showwarning = shown

@@ -244,14 +244,32 @@ def characteristic(
     return _finish(fig, path)
 
 
+def _copy_labels(sol: Solution, first_mode: int = 0) -> list[str]:
+    """Per entry of ``sol.omega``: ``"7"``, or ``"7a"``, ``"7b"`` for the copies of a double
+    root numbered 7-8 (the number of the root's first entry, a letter per copy)."""
+    labels: list[str] = []
+    for number, _w, m in _distinct(sol):
+        n = first_mode + number
+        labels += [f"{n}{chr(ord('a') + j)}" if m > 1 else f"{n}" for j in range(m)]
+    return labels
+
+
 def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
     if sol.shapes is None:
         raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
     scene = sol.scene
-    elastic = [r for r in _distinct(sol) if r[1] > 0.0]
-    shapes = sol.shapes[: max(int(modes), 0)]
-    for i, (shape, (number, w, m)) in enumerate(zip(shapes, elastic)):
+    labels = _copy_labels(sol, first_mode)
+    count = max(int(modes), 0)
+    drawn = [
+        (shape, label, int(m))
+        for shape, label, m in zip(
+            sol.shapes[:count], labels[:count], sol.multiplicity[:count], strict=True
+        )
+        if shape.omega > 0.0  # rigid-body zeros: counted, not drawn
+    ]
+    for i, (shape, label, m) in enumerate(drawn):
         color = f"C{i % 10}"
+        w = shape.omega
         mult = f", x{m}" if m > 1 else ""
         ax.plot(
             shape.x,
@@ -259,7 +277,7 @@ def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) 
             color=color,
             lw=1.4,
             gid="mode",
-            label=f"mode {first_mode + number}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz{mult}",
+            label=f"mode {label}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz{mult}",
         )
         if len(shape.mass_x):
             at_beam = np.interp(shape.mass_x, shape.x, shape.Y)
@@ -305,22 +323,24 @@ def mode_shapes(
     ax: Axes | None = None,
     path: PathLike | None = None,
 ) -> Figure:
-    """The first ``modes`` elastic mode shapes along the beam: the paper's Fig. 2(b).
+    """The mode shapes of the lowest ``modes`` natural frequencies: the paper's Fig. 2(b).
 
-    Given a :class:`~mstmm.scene.Scene`, it is solved for its rigid-body modes
-    plus ``modes``; a :class:`~mstmm.solve.Solution` (with shapes) is drawn as is.
-    Each mode is a curve ``Y(x)`` (paper Eq. (5), normalised to max ``|Y|`` = 1
-    over the beam and the masses); the attachment points are triangles on the
-    beam axis, each hanging mass a circle at its own displacement above its
-    attachment point, joined to the beam by a thin line (its spring). The legend
-    gives each frequency in rad/s and Hz, numbered as ``mstmm solve`` numbers them.
+    ``modes`` counts every natural frequency, rigid-body zeros included (as
+    ``mstmm solve --modes``); the zeros are not drawn. Given a
+    :class:`~mstmm.scene.Scene`, it is solved for ``modes`` frequencies; a
+    :class:`~mstmm.solve.Solution` (with shapes) is drawn as is. Each mode is a
+    curve ``Y(x)`` (paper Eq. (5), normalised to max ``|Y|`` = 1 over the beam and
+    the masses); every shape of a multiple root is drawn, labelled ``7a``, ``7b``,
+    ... The attachment points are triangles on the beam axis, each hanging mass a
+    circle at its own displacement above its attachment point, joined to the beam
+    by a thin line (its spring). The legend gives each frequency in rad/s and Hz,
+    numbered as ``mstmm solve`` numbers them.
     """
     fig, ax = _axes(ax)
     if isinstance(solution_or_scene, Solution):
         sol = solution_or_scene
     else:
-        nrigid = topology_of(solution_or_scene).rigid_body_modes
-        sol = solve(solution_or_scene, modes=nrigid + int(modes))
+        sol = solve(solution_or_scene, modes=int(modes))
     _draw_mode_shapes(ax, sol, modes)
     return _finish(fig, path)
 
@@ -335,15 +355,16 @@ def figure2(
 ) -> Figure:
     """The paper's Fig. 2 for ``scene``: (a) ``log10|Delta|`` with its roots, (b) mode shapes.
 
-    Without ``band`` panel (a) spans the lowest ``modes`` elastic modes (plus any
-    rigid-body modes) and 8 % beyond, as :func:`characteristic`; with ``band`` it
-    spans that band. Panel (b) shows the first ``modes`` elastic modes of panel (a).
+    ``modes`` counts every natural frequency, rigid-body zeros included (as
+    ``mstmm solve --modes``). Without ``band`` panel (a) spans the lowest ``modes``
+    and 8 % beyond, as :func:`characteristic`; with ``band`` it spans that band.
+    Panel (b) shows the shapes of the first ``modes`` roots of panel (a), skipping
+    rigid-body zeros, every shape of a multiple root.
     """
     fig, (ax_a, ax_b) = _new_figure(2, (13.0, 4.8))
     first = 0
     if band is None:
-        nrigid = topology_of(scene).rigid_body_modes
-        sol, lo, hi = _band_solution(scene, None, nrigid + int(modes), formulation)
+        sol, lo, hi = _band_solution(scene, None, int(modes), formulation)
     else:
         sol, lo, hi = _band_solution(scene, band, None, formulation)
         first = _modes_below(scene, lo)
@@ -367,8 +388,9 @@ def veering(
 
     ``path_name`` is a field path of :func:`mstmm.sweep` (``beam.EI``,
     ``attachments[2].k``, ...) and ``values`` the values it takes; the lowest
-    ``modes`` elastic frequencies at every value are drawn, one line per mode
-    index (rigid-body zeros left out; a point the sweep cannot certify is a gap).
+    ``modes`` natural frequencies at every value (counted as ``mstmm solve --modes``
+    counts them, rigid-body zeros included) are drawn, one line per mode index
+    (the zeros left out; a point the sweep cannot certify is a gap).
     The x axis is logarithmic when the values span more than two decades, the
     y axis when the frequencies do. When ``path_name`` is an attachment's ``k``
     or ``m`` and ``uncoupled``, that oscillator's ``sqrt(k/m)`` is drawn dashed:
@@ -378,7 +400,7 @@ def veering(
 
     values = np.asarray(values, dtype=float).ravel()
     nrigid = topology_of(scene).rigid_body_modes
-    omega = sweep(scene, {path_name: values}, modes=nrigid + int(modes))[:, nrigid:]
+    omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
     fig, ax = _axes(ax)
     order = np.argsort(values, kind="stable")
     v, omega = values[order], omega[order]

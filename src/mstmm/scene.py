@@ -33,10 +33,12 @@ import numbers
 import os
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar
+
+import numpy as np
 
 __all__ = [
     "ATTACHMENT_TYPES",
@@ -45,6 +47,8 @@ __all__ = [
     "Scene",
     "SceneError",
     "SpringMass",
+    "check_band",
+    "check_representable",
     "load_scene",
     "scene_from_dict",
     "scene_to_dict",
@@ -237,7 +241,18 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
         _attachment(item, f"attachments[{i}]", beam, source)
         for i, item in enumerate(raw_attachments)
     ]
+    raw_index = {id(a): i for i, a in enumerate(attachments)}  # file position, for messages
     attachments.sort(key=lambda a: a.x)  # list.sort is stable
+    check_representable(
+        np.array(
+            [
+                [beam.length, beam.EI, beam.mass_per_length]
+                + [v for a in attachments for v in (a.x, a.k, a.m)]
+            ]
+        ),
+        source,
+        [raw_index[id(a)] for a in attachments],
+    )
     return Scene(name=name, beam=beam, attachments=tuple(attachments), source=source)
 
 
@@ -259,6 +274,132 @@ def scene_to_dict(scene: Scene) -> dict[str, Any]:
         },
         "attachments": [{"type": a.kind, "x": a.x, "k": a.k, "m": a.m} for a in scene.attachments],
     }
+
+
+# ---------------------------------------------------------------------------
+# What float64 arithmetic can carry
+
+#: Every value a scene gives, and every product the numerics form from them (the
+#: frequency scale, the nondimensional stiffness and mass of each attachment, ...),
+#: must lie within [REPRESENTABLE_MIN, REPRESENTABLE_MAX]. float64 is normal from
+#: 2.2e-308 to 1.8e308; the margin of 58 decades leaves room for the powers of
+#: lam L up to the 4th that the root search forms on top of these.
+REPRESENTABLE_MIN = 1e-250
+REPRESENTABLE_MAX = 1e250
+_LOG_MIN, _LOG_MAX = math.log10(REPRESENTABLE_MIN), math.log10(REPRESENTABLE_MAX)
+
+#: Products of the parameters that the kernels and mode shapes form, as exponents of
+#: (length, EI, mass_per_length, k, m): name, exponents.
+_BEAM_PRODUCTS: tuple[tuple[str, tuple[float, float, float]], ...] = (
+    ("length", (1, 0, 0)),
+    ("EI", (0, 1, 0)),
+    ("mass_per_length", (0, 0, 1)),
+    ("length^4", (4, 0, 0)),
+    ("EI/mass_per_length", (0, 1, -1)),
+    ("the squared frequency scale EI/(mass_per_length length^4)", (-4, 1, -1)),
+    ("EI/length^4", (-4, 1, 0)),
+    ("mass_per_length length", (1, 0, 1)),
+)
+_ATTACHMENT_PRODUCTS: tuple[tuple[str, tuple[float, float, float, float, float]], ...] = (
+    ("k", (0, 0, 0, 1, 0)),
+    ("m", (0, 0, 0, 0, 1)),
+    ("k/m", (0, 0, 0, 1, -1)),
+    ("k length^3", (3, 0, 0, 1, 0)),
+    ("k length^3/EI", (3, -1, 0, 1, 0)),
+    ("m/(mass_per_length length)", (-1, 0, -1, 0, 1)),
+)
+_BEAM_FIELDS: tuple[str, ...] = ("length", "EI", "mass_per_length")
+
+
+def check_representable(
+    P: np.ndarray, source: str, labels: Sequence[int] | None = None, point: str = ""
+) -> None:
+    """Reject parameter rows whose values or derived products float64 cannot carry.
+
+    ``P`` holds one parameter vector per row, ``[L, EI, mbar, x1, k1, m1, ...]``
+    (all > 0 except positions). ``labels`` gives the index each attachment is
+    named by in messages (default: its column order). Raises :class:`SceneError`
+    naming the field whose value is the most extreme contributor to the first
+    product out of range, with that value; ``point`` (e.g. ``"point"``) makes the
+    message say which row.
+    """
+    P = np.asarray(P, dtype=float)
+    n_att = (P.shape[1] - 3) // 3
+    labels = list(range(n_att)) if labels is None else list(labels)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        logs = np.log10(P)
+    beam_logs = logs[:, :3]
+    checks = [
+        (name, np.array(e, float), beam_logs, list(_BEAM_FIELDS), None)
+        for name, e in _BEAM_PRODUCTS
+    ]
+    for j in range(n_att):
+        cols = np.concatenate([beam_logs, logs[:, 4 + 3 * j : 6 + 3 * j]], axis=1)
+        fields = [*_BEAM_FIELDS, "k", "m"]
+        checks += [(name, np.array(e, float), cols, fields, j) for name, e in _ATTACHMENT_PRODUCTS]
+    for name, exponents, cols, fields, j in checks:
+        value = cols @ exponents
+        bad = ~((value >= _LOG_MIN) & (value <= _LOG_MAX))
+        if not bad.any():
+            continue
+        row = int(np.argmax(bad))
+        used = np.flatnonzero(exponents)
+        worst = int(used[np.argmax(np.abs(cols[row, used] * exponents[used]))])
+        field_path = (
+            f"beam.{fields[worst]}" if worst < 3 else f"attachments[{labels[j]}].{fields[worst]}"
+        )
+        column = worst if worst < 3 else 4 + 3 * j + (worst - 3)
+        where = f"at {point} {row}, " if point else ""
+        size = f"1e{value[row]:+.0f}" if np.isfinite(value[row]) else "0"
+        problem = (
+            f"{where}{name} is about {size}, beyond what float64 arithmetic can carry"
+            f" (every value and product must lie in [{REPRESENTABLE_MIN:g},"
+            f" {REPRESENTABLE_MAX:g}])"
+        )
+        if name in (*_BEAM_FIELDS, "k", "m"):
+            problem = (
+                f"{where}must lie in [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}]"
+                " (what float64 arithmetic can carry with room for the products formed)"
+            )
+        raise SceneError(source, field_path, problem, float(P[row, column]))
+
+
+#: Most beam modes (lam L / pi) a band may span: the search evaluates the characteristic
+#: function about 8 times per mode of the band.
+MAX_BAND_MODES = 100_000
+
+
+def check_band(scene: Scene, band: tuple[float, float], source: str, option: str) -> None:
+    """Reject a band (rad/s) that the numerics cannot carry or search for ``scene``.
+
+    ``omega^2``, ``mass_per_length omega^2`` and ``(lam L)^4`` at the top of the band
+    must lie below :data:`REPRESENTABLE_MAX`, and the band may span at most
+    :data:`MAX_BAND_MODES` beam modes (``lam L / pi``).
+    """
+    lo, hi = band
+    if hi <= 0.0:
+        return
+    beam = scene.beam
+    log_mw2 = math.log10(beam.mass_per_length) + 2.0 * math.log10(hi)
+    log_beta = math.log10(beam.length) + 0.25 * (log_mw2 - math.log10(beam.EI))
+    if 2.0 * math.log10(hi) > _LOG_MAX or log_mw2 > _LOG_MAX or 4.0 * log_beta > _LOG_MAX:
+        raise SceneError(
+            source,
+            option,
+            "HI is beyond what float64 arithmetic can carry for this beam (omega^2,"
+            f" mass_per_length omega^2 and (lam L)^4 must stay below {REPRESENTABLE_MAX:g})",
+            [lo, hi],
+        )
+    scale = math.sqrt(math.sqrt(beam.mass_per_length / beam.EI)) * beam.length
+    span = scale * (math.sqrt(hi) - math.sqrt(lo)) / math.pi
+    if span > MAX_BAND_MODES:
+        raise SceneError(
+            source,
+            option,
+            f"the band spans about {span:.3g} beam modes (lam L / pi); at most"
+            f" {MAX_BAND_MODES} are searched: narrow it",
+            [lo, hi],
+        )
 
 
 # ---------------------------------------------------------------------------

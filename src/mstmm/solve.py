@@ -39,7 +39,14 @@ class Solution:
         return self.omega / (2.0 * math.pi)
 
     def to_dict(self, shapes: bool = False) -> dict:
-        """JSON-ready summary."""
+        """JSON-ready summary; with ``shapes``, one entry per mode shape under ``mode_shapes``.
+
+        Each shape gives ``omega`` (rad/s), ``hz``, the samples ``x`` (m) with ``Y`` (m),
+        ``theta`` (rad), ``M`` (N m), ``Q`` (N), the carried masses ``mass_x``, ``mass_Y``
+        (m), ``singular_ratio``, ``modal_mass`` (kg), ``participation``, ``effective_mass``
+        (kg) and ``multiplicity``. Numbers are Python floats; a non-finite one stays as it
+        is (the command line writes it as ``null``, with a warning).
+        """
         out = {
             "scene": self.scene.name,
             "formulation": self.formulation,
@@ -56,11 +63,20 @@ class Solution:
         if shapes and self.shapes is not None:
             out["mode_shapes"] = [
                 {
-                    "omega": s.omega,
+                    "omega": float(s.omega),
+                    "hz": float(s.omega) / (2.0 * math.pi),
                     "x": s.x.tolist(),
                     "Y": s.Y.tolist(),
+                    "theta": s.theta.tolist(),
+                    "M": s.M.tolist(),
+                    "Q": s.Q.tolist(),
                     "mass_x": s.mass_x.tolist(),
                     "mass_Y": s.mass_Y.tolist(),
+                    "singular_ratio": float(s.singular_ratio),
+                    "modal_mass": float(s.modal_mass),
+                    "participation": float(s.participation),
+                    "effective_mass": float(s.effective_mass),
+                    "multiplicity": int(s.multiplicity),
                 }
                 for s in self.shapes
             ]

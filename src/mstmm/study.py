@@ -21,7 +21,7 @@ import numpy as np
 from .kernels import Kernel, load_kernel
 from .progress import Bar
 from .scan import find_roots
-from .scene import Scene, SceneError
+from .scene import Scene, SceneError, check_representable
 from .topology import ATTACHMENT_PARAMETERS, parameter_vector, topology_of
 
 _BEAM_FIELDS = {"length": 0, "EI": 1, "mass_per_length": 2}
@@ -67,6 +67,7 @@ def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray
             raise SceneError(SOURCE, f"attachments[{j}].x", "must lie in [0, length]", rec[i, j, 0])
         order = np.argsort(rec[:, :, 0], axis=1, kind="stable")
         P[:, 3:] = np.take_along_axis(rec, order[:, :, None], axis=1).reshape(n, -1)
+    check_representable(P, SOURCE, point="point")
     return P
 
 
@@ -158,12 +159,33 @@ def _dask_sweep(scheduler, key: str, P: np.ndarray, modes: int, chunk: int, show
 
 
 def parse_range(text: str) -> np.ndarray:
-    """``LOG:lo:hi:n``, ``LIN:lo:hi:n`` or a comma-separated list of values."""
+    """``LOG:lo:hi:n``, ``LIN:lo:hi:n`` or a comma-separated list of values.
+
+    Raises :class:`ValueError` saying what is wrong: not numbers, fewer than one
+    point, a non-finite value, a LOG range not above 0.
+    """
     kind, _, rest = text.partition(":")
     if kind.upper() in ("LOG", "LIN"):
-        lo, hi, n = rest.split(":")
-        lo_f, hi_f, n_i = float(lo), float(hi), int(n)
+        parts = rest.split(":")
+        if len(parts) != 3:
+            raise ValueError(f"expected {kind.upper()}:lo:hi:n")
+        try:
+            lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
+        except ValueError:
+            raise ValueError("lo and hi must be numbers and n an integer") from None
+        if n < 1:
+            raise ValueError(f"n = {n}: a range needs at least 1 point")
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            raise ValueError("lo and hi must be finite")
         if kind.upper() == "LOG":
-            return np.logspace(math.log10(lo_f), math.log10(hi_f), n_i)
-        return np.linspace(lo_f, hi_f, n_i)
-    return np.array([float(v) for v in text.split(",")])
+            if lo <= 0.0 or hi <= 0.0:
+                raise ValueError("a LOG range needs lo > 0 and hi > 0")
+            return np.logspace(math.log10(lo), math.log10(hi), n)
+        return np.linspace(lo, hi, n)
+    try:
+        values = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        raise ValueError("expected LOG:lo:hi:n, LIN:lo:hi:n or a list of numbers 1,2,3") from None
+    if not np.isfinite(values).all():
+        raise ValueError("values must be finite")
+    return values
