@@ -68,7 +68,13 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("scene", nargs="?", help="scene TOML (default: the bundled wu_chou_1998)")
     g = s.add_mutually_exclusive_group()
     g.add_argument("--modes", type=_positive_int, help="the N lowest frequencies (default 10)")
-    g.add_argument("--band", nargs=2, type=_frequency, metavar=("LO", "HI"), help="rad/s")
+    g.add_argument(
+        "--band",
+        nargs=2,
+        type=_frequency,
+        metavar=("LO", "HI"),
+        help="rad/s; both edges inclusive by 4 ulp: [LO (1 - 4 eps), HI (1 + 4 eps)], eps 2.2e-16",
+    )
     s.add_argument("--format", choices=("table", "json", "csv"), default="table")
     s.add_argument("--formulation", choices=FORMULATIONS, default="stable")
     s.add_argument("--shapes", action="store_true", help="include mode shapes in JSON")

@@ -91,6 +91,13 @@ def solve(
     costs less than the general search would with a looser one. Every root is
     checked against the Wittrick-Williams count; one it does not confirm (see
     :func:`mstmm.scan.verify`) is marked not converged, with a warning.
+
+    Both edges of ``band = (lo, hi)`` are inclusive by 4 ulp: a root is
+    reported when ``lo (1 - 4 eps) <= omega <= hi (1 + 4 eps)``, eps = 2.2e-16
+    (:data:`mstmm.scan.BAND_EDGE`), decided by its refined value. When the
+    lowest ``modes`` end inside a multiple root, ``multiplicity`` gives its true
+    multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
+    exactly ``modes`` values.
     """
     if modes is None and band is None:
         modes = 10
