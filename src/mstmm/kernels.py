@@ -273,9 +273,11 @@ class Kernel:
     def _lowest_in_blocks(self, p: np.ndarray, modes: int, out: np.ndarray, certify: bool) -> int:
         """:meth:`lowest` as a Python loop over kernel blocks, drawing progress between them.
 
-        Block sizes grow with the modes found (at least :data:`BLOCK_MODES`, at
-        most a sixteenth of what is done), so the count that certifies each block
-        (its cost grows with the frequency) adds a cost linear in ``modes``."""
+        A block holds :data:`BLOCK_MODES` modes or a quarter of those found so
+        far, whichever is more: the count that certifies it costs O(lambda L)
+        (about 0.25 us per mode below it on the paper's example, against about
+        12 us per mode for the scan and Brent), so the counts add under 10% and
+        the cost stays linear in ``modes``."""
         state = np.zeros(self.module.STATE_SIZE)
         k = int(self._compiled("lowest_start")(p, modes, out, state, certify))
         run = self._compiled("lowest_run")
@@ -283,7 +285,7 @@ class Kernel:
         try:
             bar.update(max(k, 0))
             while 0 <= k < modes:
-                stop = min(modes, k + max(BLOCK_MODES, k // 16))
+                stop = min(modes, k + max(BLOCK_MODES, k // 4))
                 k_new = int(run(p, modes, out, state, stop, certify))
                 bar.update(max(k_new - k, 0))
                 k = k_new
