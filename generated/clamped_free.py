@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "d9904c708b1eb970fe29958789352ec7965e90e5"
+SIGNATURE = "34bdd62c7c6cfffa3ebab2d2e34ae50e43bc32a8"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -884,14 +884,14 @@ def lowest_start(p, modes, out, state, certify):
 
 
 @njit(cache=True)
-def lowest_block(p, modes, out, state, quota, certify):
+def lowest_block(p, modes, out, state, quota, certify, w_stop):
     """Up to ``quota`` more roots above state[STATE_W], certified by ONE count.
 
     Scans the stable function (pole-free: each sign change brackets an odd number of
     roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at each
     oscillator frequency, with Brent on each sign change, until ``quota`` sign
     changes are found (or (quota + 2) pi of beta are covered), and stops at the next
-    uniform node. With ``certify``, the count at that node proves the whole block
+    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``, the count at that node proves the whole block
     when N(top) - N(bottom) equals the number of sign changes: then each brackets
     exactly one simple root and no root lies elsewhere. A piece where the two
     disagree is halved at a uniform node by the count (never at an oscillator
@@ -935,6 +935,10 @@ def lowest_block(p, modes, out, state, quota, certify):
             x = wu
             j += 1
             is_uniform = True
+        at_stop = x >= w_stop
+        if at_stop:
+            x = w_stop
+            is_uniform = True
         if x <= w[n - 1]:
             continue
         m = delta_stable(x, p)[0]
@@ -952,7 +956,7 @@ def lowest_block(p, modes, out, state, quota, certify):
             found += 1
         m_prev = m
         n += 1
-        if is_uniform and (found >= quota or bu >= b_cap):
+        if at_stop or (is_uniform and (found >= quota or bu >= b_cap)):
             break
     top = n - 1
     state[STATE_W] = w[top]
@@ -1019,15 +1023,16 @@ def lowest_block(p, modes, out, state, quota, certify):
 
 
 @njit(cache=True)
-def lowest_run(p, modes, out, state, k_stop, certify):
-    """Blocks of ``lowest_block`` until k_stop values are written (k_stop <= modes);
+def lowest_run(p, modes, out, state, k_stop, certify, w_stop):
+    """Blocks of ``lowest_block`` until k_stop values are written (k_stop <= modes) or
+    the search reaches ``w_stop`` (the top of a band; inf for the lowest modes);
     returns the new k, or -1 (a block failed, or MAX_STALLED_BLOCKS in a row found
     nothing: the count or the function is broken here)."""
     k = int(state[STATE_K])
     stalled = 0
-    while 0 <= k < k_stop:
+    while 0 <= k < k_stop and state[STATE_W] < w_stop:
         k_before = k
-        k = lowest_block(p, modes, out, state, k_stop - k, certify)
+        k = lowest_block(p, modes, out, state, k_stop - k, certify, w_stop)
         stalled = stalled + 1 if k == k_before else 0
         if stalled > MAX_STALLED_BLOCKS:
             return -1
@@ -1048,7 +1053,7 @@ def lowest(p, modes, out, certify=True):
     k = lowest_start(p, modes, out, state, certify)
     if k < 0:
         return 0
-    k = lowest_run(p, modes, out, state, modes, certify)
+    k = lowest_run(p, modes, out, state, modes, certify, np.inf)
     if k < modes:
         return 0
     return int(state[STATE_LAST])

@@ -95,3 +95,27 @@ def test_band_edges_in_the_paper_formulation(paper):
             sc, band=(shifted(root, ulps), 1.001 * root), formulation="paper", shapes=False
         )
         assert len(sol.omega) == 1 and abs(sol.omega[0] - root) < 1e-13 * root
+
+
+BANDS = [
+    # (left, right, attachments, band): a 6-fold root inside the band, a band from 0 with
+    # two rigid-body zeros, a band starting above the lowest scan node, close roots
+    ("clamped", "free", [(0.5, 100.0, 1.0)] * 7, (5.0, 60.0)),
+    ("free", "free", [(0.3, 50.0, 0.5)], (0.0, 400.0)),
+    ("pinned", "sliding", [(0.2, 1e4, 0.1), (0.7, 10.0, 2.0)], (30.0, 3000.0)),
+    ("pinned", "pinned", [(0.3, (2 * math.pi) ** 4 * 0.01, 0.01)] * 2, (10.0, 100.0)),
+]
+
+
+@pytest.mark.parametrize("left, right, atts, band", BANDS)
+def test_band_matches_the_reference_band(left, right, atts, band):
+    """Every root of a band, with multiplicity, against the reference's own band search."""
+    from test_roots import make
+
+    sc = make(left, right, atts)
+    exact = [float(w) for w in ref.band(sc, *band, dps=30)]
+    sol = mstmm.solve(sc, band=band, shapes=False)
+    assert sol.count_checked and sol.converged.all(), sol.warnings
+    assert len(sol.omega) == len(exact), (list(sol.omega), exact)
+    for got, want in zip(sol.omega, exact):
+        assert got == 0.0 if want == 0.0 else abs(got - want) <= 1e-12 * want, (got, want)

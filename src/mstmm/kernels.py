@@ -286,12 +286,40 @@ class Kernel:
             bar.update(max(k, 0))
             while 0 <= k < modes:
                 stop = min(modes, k + max(BLOCK_MODES, k // 4))
-                k_new = int(run(p, modes, out, state, stop, certify))
+                k_new = int(run(p, modes, out, state, stop, certify, np.inf))
                 bar.update(max(k_new - k, 0))
                 k = k_new
         finally:
             bar.close()
         return int(state[self.module.STATE_LAST]) if k >= modes else 0
+
+    def roots_in_band(
+        self, p: np.ndarray, lo: float, hi: float, from_bottom: bool
+    ) -> np.ndarray | None:
+        """The roots between ``lo`` and ``hi`` as the count sees them (rad/s, ascending,
+        repeated by multiplicity) by the certified search of :meth:`lowest`, started at
+        ``lo`` and stopped at ``hi``; None when it cannot certify them (use the general
+        search). ``from_bottom``: start where :meth:`lowest` starts instead (``lo`` is
+        below its lowest scan node, beta = 1e-3), rigid-body zeros included. Roots within
+        the count's resolution of an edge may fall either way: callers search a wider
+        band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
+        p = _params(p)
+        m = self.module
+        state = np.zeros(m.STATE_SIZE)
+        n_hi = int(self.count_below(hi, p)[0])
+        if from_bottom:
+            out = np.zeros(n_hi)
+            k = int(self._compiled("lowest_start")(p, n_hi, out, state, True))
+        else:
+            n_lo = int(self.count_below(lo, p)[0])
+            if n_hi < n_lo:
+                return None
+            out = np.zeros(n_hi - n_lo)
+            state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
+            k = 0
+        if 0 <= k < out.size:
+            k = int(self._compiled("lowest_run")(p, out.size, out, state, out.size, True, hi))
+        return out if k == out.size else None
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`lowest` for every row of ``P``, in parallel on all cores (numba prange)."""

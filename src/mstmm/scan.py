@@ -260,13 +260,22 @@ def band_roots(
     a band :data:`BAND_MARGIN` wider on each side (wider again when a root lies
     within ``TRUST`` of that edge), and the refined roots, accurate to an ulp or
     two, are kept by value. A root within 1-2 ulp of an edge is then reported
-    exactly once, and the count certifies every root of the wider band.
+    exactly once, and the count certifies every root of the wider band. The
+    stable formulation runs the kernel's search (one count per block of sign
+    changes, as for ``modes=``; :meth:`mstmm.kernels.Kernel.roots_in_band`), the
+    general search below only where that cannot certify.
     """
     lo, hi = float(band[0]), float(band[1])
     margin = BAND_MARGIN
     for _ in range(4):
         wide = (lo * (1.0 - margin), hi * (1.0 + margin))
-        found = _search_roots(kernel, p, wide, None, formulation, rtol, certify)
+        found = None
+        if formulation == "stable" and certify:  # the kernel's search, as for modes=
+            w = kernel.roots_in_band(p, *wide, from_bottom=wide[0] <= float(omega_of(1e-3, p)))
+            if w is not None:
+                found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
+        if found is None:
+            found = _search_roots(kernel, p, wide, None, formulation, rtol, certify)
         if not any(
             r.omega > 0.0 and abs(r.omega - edge) <= TRUST * edge
             for r in found.roots
