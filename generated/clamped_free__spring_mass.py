@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "ee7b3f50f202c19a5c1b3c3c1746be9294106eb0"
+SIGNATURE = "d08de0528eee3bbbbebd3deba06180b00112bde2"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -807,13 +807,45 @@ def refine_paper(a, b, p, rtol, maxiter):
     return b, maxiter, False
 
 
+#: Layout of the search state shared by ``lowest_start``, ``lowest_run`` and
+#: ``lowest_block``: the search has covered (0, state[STATE_W]], whose count is
+#: state[STATE_COUNT]; state[STATE_K] roots are written; state[STATE_LAST] is the
+#: true multiplicity of the last root written (it may exceed the copies written
+#: when the lowest ``modes`` end inside a multiple root).
+STATE_W = 0
+STATE_COUNT = 1
+STATE_K = 2
+STATE_LAST = 3
+STATE_SIZE = 4
+#: Blocks in a row that may end without a new root before the search gives up
+#: (a beam has a natural frequency in every stretch of a few pi of beta = lam L).
+MAX_STALLED_BLOCKS = 4
+
+
 @njit(cache=True)
-def isolate(a, b, na, nb, p, out, k, modes):
+def push_halves(lo, hi, nlo, nhi, top, a, mid, b, na, nm, nb):
+    """Push the pieces (mid, b) and (a, mid) with their counts on a bisection stack (the
+    lower one pops first); returns the new top."""
+    lo[top] = mid
+    hi[top] = b
+    nlo[top] = nm
+    nhi[top] = nb
+    lo[top + 1] = a
+    hi[top + 1] = mid
+    nlo[top + 1] = na
+    nhi[top + 1] = nm
+    return top + 2
+
+
+@njit(cache=True)
+def isolate(a, b, na, nb, p, out, k, modes, state):
     """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
     by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
     width is a multiple root. The count at a midpoint is clamped into [na, nb], so that
-    a count off by one at round-off distance from a root cannot add or lose a root. Writes out[k:] (with multiplicity, up to modes); returns
-    the new k, or -1 if the bisection stack overflows or Brent does not converge."""
+    a count off by one at round-off distance from a root cannot add or lose a root.
+    Writes out[k:] (with multiplicity, up to modes) and the true multiplicity of the
+    last root written into state[STATE_LAST]; returns the new k, or -1 if the
+    bisection stack overflows or Brent does not converge."""
     cap = 256
     sa = np.empty(cap)
     sb = np.empty(cap)
@@ -845,6 +877,7 @@ def isolate(a, b, na, nb, p, out, k, modes):
                 if k < modes:
                     out[k] = 0.5 * (a + b)
                     k += 1
+            state[STATE_LAST] = nb - na
             continue
         if nb - na == 1:
             ma = delta_stable(a, p)[0]
@@ -855,6 +888,7 @@ def isolate(a, b, na, nb, p, out, k, modes):
                     return -1
                 out[k] = root
                 k += 1
+                state[STATE_LAST] = 1
                 continue
         if top + 2 > cap:
             return -1
@@ -862,15 +896,7 @@ def isolate(a, b, na, nb, p, out, k, modes):
         # the count may dip or jump by one within an ulp or so of an oscillator
         # frequency (k - m w^2 at round-off); clamped, the piece keeps its total
         nm = min(max(count_below(mid, p), na), nb)
-        sa[top] = mid
-        sb[top] = b
-        sna[top] = nm
-        snb[top] = nb
-        sa[top + 1] = a
-        sb[top + 1] = mid
-        sna[top + 1] = na
-        snb[top + 1] = nm
-        top += 2
+        top = push_halves(sa, sb, sna, snb, top, a, mid, b, na, nm, nb)
     return k
 
 
@@ -886,16 +912,11 @@ def oscillator_frequencies(p):
 
 
 @njit(cache=True)
-def lowest(p, modes, out):
-    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
-
-    Scan of the stable function on a grid uniform in beta with Brent on each
-    sign change; then the band is cut midway between the roots found and the
-    count must give exactly one root per piece; a piece that holds more (double
-    or close roots) is searched by bisection on the count. Returns False only
-    when the scan cannot start (a root below the lowest grid node) or the
-    bisection overflows: the caller then runs the full search.
-    """
+def lowest_start(p, modes, out, state, certify):
+    """Start the search of the lowest ``modes``: the rigid-body zeros into out, the
+    state at the bottom of the scan (lowest node beta = 1e-3). With ``certify`` the
+    count there must hold exactly the rigid-body modes (else no elastic root below is
+    excluded). Returns the number of values written, or -1 when the count disagrees."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -904,82 +925,197 @@ def lowest(p, modes, out):
     while k < RIGID_BODY_MODES and k < modes:
         out[k] = 0.0
         k += 1
-    if k >= modes:
-        return True
-    b_hi = (modes + 1.5) * math.pi
-    c_hi = count_below(scale * b_hi * b_hi, p)
-    while c_hi < modes:
-        b_hi *= 1.5
-        c_hi = count_below(scale * b_hi * b_hi, p)
-    w_hi = scale * b_hi * b_hi
-    b_lo = 1e-3
-    w_lo = scale * b_lo * b_lo
-    c_lo = count_below(w_lo, p)
-    if c_lo != RIGID_BODY_MODES:
-        return False
-    cand = np.empty(modes)
-    nc = 0
-    w_prev = w_lo
-    m_prev = delta_stable(w_prev, p)[0]
-    nodes = int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1
-    grid = np.empty(nodes - 1)
-    for j in range(1, nodes):
-        b = b_lo + (b_hi - b_lo) * j / (nodes - 1)
-        grid[j - 1] = scale * b * b
-    # a node at every oscillator frequency in the band: the roots near a cluster of
-    # oscillators fall into separate cells instead of costing a count bisection each
+    state[STATE_K] = k
+    state[STATE_LAST] = RIGID_BODY_MODES
+    w_lo = scale * 1e-6
+    state[STATE_W] = w_lo
+    state[STATE_COUNT] = RIGID_BODY_MODES
+    if k < modes and certify and count_below(w_lo, p) != RIGID_BODY_MODES:
+        return -1
+    return k
+
+
+@njit(cache=True)
+def lowest_block(p, modes, out, state, quota, certify, w_stop):
+    """Up to ``quota`` more roots above state[STATE_W], certified by ONE count.
+
+    Scans the stable function (pole-free: each sign change brackets an odd number of
+    roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at each
+    oscillator frequency, with Brent on each sign change, until ``quota`` sign
+    changes are found (or (quota + 2) pi of beta are covered), and stops at the next
+    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``, the count at that node proves the whole block
+    when N(top) - N(bottom) equals the number of sign changes: then each brackets
+    exactly one simple root and no root lies elsewhere. A piece where the two
+    disagree is halved at a uniform node by the count (never at an oscillator
+    frequency, where multiple roots sit and the count is at round-off), down to
+    single pieces whose roots ``isolate`` finds by count bisection. Without
+    ``certify`` the sign-change roots are written unchecked. Writes out[k:] (up to
+    ``modes``), advances ``state``; returns the new k, or -1 (stack overflow, Brent
+    not converged, a count that decreases)."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    scale = math.sqrt(EI / mbar) / (L * L)
+    w_a = state[STATE_W]
+    n_a = int(state[STATE_COUNT])
+    k = int(state[STATE_K])
+    b_a = math.sqrt(w_a / scale)
+    h = math.pi / NODES_PER_MODE
+    b_cap = b_a + (quota + 2) * math.pi
     osc = oscillator_frequencies(p)
-    osc = osc[(osc > w_lo) & (osc < w_hi)]
-    if osc.shape[0] > 0:
-        grid = np.sort(np.concatenate((grid, osc)))
-    for j in range(grid.shape[0]):
-        w = grid[j]
-        if w <= w_prev:
+    osc = osc[(osc > w_a) & (osc < scale * b_cap * b_cap * (1.0 + 1e-15))]
+    size = int(math.ceil((b_cap - b_a) / h)) + 3 + osc.shape[0]
+    w = np.empty(size)
+    uniform = np.zeros(size, dtype=np.bool_)
+    change = np.zeros(size, dtype=np.int64)  # change[i]: a sign change in (w[i-1], w[i]]
+    root = np.empty(size)
+    w[0] = w_a
+    uniform[0] = True
+    m_prev = delta_stable(w_a, p)[0]
+    n = 1
+    j = 1
+    io = 0
+    found = 0
+    while n < size:
+        bu = b_a + j * h
+        wu = scale * bu * bu
+        if io < osc.shape[0] and osc[io] < wu:
+            x = osc[io]
+            io += 1
+            is_uniform = False
+        else:
+            x = wu
+            j += 1
+            is_uniform = True
+        at_stop = x >= w_stop
+        if at_stop:
+            x = w_stop
+            is_uniform = True
+        if x <= w[n - 1]:
             continue
-        m = delta_stable(w, p)[0]
+        m = delta_stable(x, p)[0]
         if m == 0.0:
-            w *= 1.0 + 4.4e-16
-            m = delta_stable(w, p)[0]
+            x *= 1.0 + 4.4e-16
+            m = delta_stable(x, p)[0]
+        w[n] = x
+        uniform[n] = is_uniform
         if (m > 0.0) != (m_prev > 0.0):
-            root, its, ok = refine_stable(w_prev, w, p, 0.0, 200)
+            r, its, ok = refine_stable(w[n - 1], x, p, 0.0, 200)
             if not ok:
-                return False
-            cand[nc] = root
-            nc += 1
-            if nc == modes - k:
-                break
-        w_prev = w
+                return -1
+            change[n] = 1
+            root[n] = r
+            found += 1
         m_prev = m
-    a = w_lo
-    na = c_lo
-    for i in range(nc):
-        if i + 1 < nc:
-            b = 0.5 * (cand[i] + cand[i + 1])
-            nb = min(max(count_below(b, p), na), c_hi)
-        else:
-            b = w_hi
-            nb = c_hi
-        if nb - na == 1 and a < cand[i] < b:
-            out[k] = cand[i]
-            k += 1
-        else:
-            k = isolate(a, b, na, nb, p, out, k, modes)
+        n += 1
+        if at_stop or (is_uniform and (found >= quota or bu >= b_cap)):
+            break
+    top = n - 1
+    state[STATE_W] = w[top]
+    if not certify:
+        for i in range(1, n):
+            if change[i] == 1 and k < modes:
+                out[k] = root[i]
+                k += 1
+                state[STATE_LAST] = 1
+        state[STATE_COUNT] = n_a + found
+        state[STATE_K] = k
+        return k
+    n_b = count_below(w[top], p)
+    if n_b < n_a:
+        return -1
+    state[STATE_COUNT] = n_b
+    changes = np.zeros(n, dtype=np.int64)  # sign changes in (w[0], w[i]]
+    for i in range(1, n):
+        changes[i] = changes[i - 1] + change[i]
+    cap = 128
+    si = np.empty(cap, dtype=np.int64)
+    sj = np.empty(cap, dtype=np.int64)
+    sni = np.empty(cap, dtype=np.int64)
+    snj = np.empty(cap, dtype=np.int64)
+    si[0] = 0
+    sj[0] = top
+    sni[0] = n_a
+    snj[0] = n_b
+    depth = 1
+    while depth > 0 and k < modes:
+        depth -= 1
+        i0 = si[depth]
+        j0 = sj[depth]
+        ni = sni[depth]
+        nj = snj[depth]
+        if nj - ni == changes[j0] - changes[i0]:
+            for i in range(i0 + 1, j0 + 1):
+                if change[i] == 1 and k < modes:
+                    out[k] = root[i]
+                    k += 1
+                    state[STATE_LAST] = 1
+            continue
+        # cut at the uniform node nearest the middle
+        cut = -1
+        mid = (i0 + j0) // 2
+        for d in range(j0 - i0):
+            if i0 < mid + d < j0 and uniform[mid + d]:
+                cut = mid + d
+                break
+            if i0 < mid - d < j0 and uniform[mid - d]:
+                cut = mid - d
+                break
+        if cut < 0:
+            k = isolate(w[i0], w[j0], ni, nj, p, out, k, modes, state)
             if k < 0:
-                return False
-        if k >= modes:
-            return True
-        a = b
-        na = nb
-    if nc == 0:
-        k = isolate(w_lo, w_hi, c_lo, c_hi, p, out, k, modes)
-    return k >= modes
+                return -1
+            continue
+        if depth + 2 > cap:
+            return -1
+        nm = min(max(count_below(w[cut], p), ni), nj)
+        depth = push_halves(si, sj, sni, snj, depth, i0, cut, j0, ni, nm, nj)
+    state[STATE_K] = k
+    return k
+
+
+@njit(cache=True)
+def lowest_run(p, modes, out, state, k_stop, certify, w_stop):
+    """Blocks of ``lowest_block`` until k_stop values are written (k_stop <= modes) or
+    the search reaches ``w_stop`` (the top of a band; inf for the lowest modes);
+    returns the new k, or -1 (a block failed, or MAX_STALLED_BLOCKS in a row found
+    nothing: the count or the function is broken here)."""
+    k = int(state[STATE_K])
+    stalled = 0
+    while 0 <= k < k_stop and state[STATE_W] < w_stop:
+        k_before = k
+        k = lowest_block(p, modes, out, state, k_stop - k, certify, w_stop)
+        stalled = stalled + 1 if k == k_before else 0
+        if stalled > MAX_STALLED_BLOCKS:
+            return -1
+    return k
+
+
+@njit(cache=True)
+def lowest(p, modes, out, certify=True):
+    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
+
+    ``lowest_start`` then ``lowest_block`` with the whole remaining quota (one count
+    certifies the scan when every root is a sign change). Returns the true
+    multiplicity of the last root written (the count's, even when fewer copies fit
+    in ``out``; 1 without ``certify``), or 0 when the search cannot certify (a root
+    below the lowest grid node, a bisection that overflows, Brent not converged): the
+    caller then runs the full search."""
+    state = np.zeros(STATE_SIZE)
+    k = lowest_start(p, modes, out, state, certify)
+    if k < 0:
+        return 0
+    k = lowest_run(p, modes, out, state, modes, certify, np.inf)
+    if k < modes:
+        return 0
+    return int(state[STATE_LAST])
 
 
 @njit(cache=True, parallel=True)
 def sweep_lowest(P, modes, out, certified):
     """``lowest`` for every parameter vector (row of P), in parallel over the rows."""
     for i in prange(P.shape[0]):
-        certified[i] = lowest(P[i], modes, out[i])
+        certified[i] = lowest(P[i], modes, out[i], True) > 0
 
 
 @njit(cache=True)

@@ -40,7 +40,10 @@ exit status:
 
 SCENE_HELP = "scene file (TOML); default: the bundled paper example wu_chou_1998"
 MODES_HELP = "the N lowest natural frequencies, counting every one, rigid-body zeros included"
-BAND_HELP = "every natural frequency in [LO, HI] rad/s (instead of --modes)"
+BAND_HELP = (
+    "every natural frequency in [LO, HI] rad/s (instead of --modes); both edges inclusive by"
+    " 4 ulp: [LO (1 - 4 eps), HI (1 + 4 eps)], eps = 2.2e-16"
+)
 FORMULATION_HELP = (
     "characteristic function: 'stable' (second-compound chain, full precision) or 'paper'"
     " (det U_bar of the paper's Eq. (4) as printed; loses digits at higher modes)"

@@ -51,6 +51,12 @@ BUDGET_PER_NODE = 64
 TRUST = 1e-8
 #: ... or when the stable characteristic function changes sign within this distance.
 STABLE_TRUST = 1e-12
+#: Both edges of a band are inclusive by this relative tolerance (4 ulp of 1):
+#: the band ``(lo, hi)`` means ``[lo (1 - BAND_EDGE), hi (1 + BAND_EDGE)]``.
+BAND_EDGE = 4.0 * 2.220446049250313e-16
+#: The search of a band runs on one this much wider (relative) on each side; the
+#: roots are then kept by value (:func:`band_roots`).
+BAND_MARGIN = 1e-6
 
 
 @dataclass(frozen=True)
@@ -61,6 +67,14 @@ class Root:
     multiplicity: int = 1
     converged: bool = True
     how: str = "sign"  # sign | minimum | rigid
+    #: Copies reported when the lowest ``modes`` end inside this root (fewer than
+    #: ``multiplicity``); 0: all of them.
+    copies: int = 0
+
+    @property
+    def reported(self) -> int:
+        """How many times this root appears in a list repeated by multiplicity."""
+        return self.copies or self.multiplicity
 
 
 def beta_of(omega, p):
@@ -218,11 +232,71 @@ def find_roots(
 
     Rigid-body modes (omega = 0) are included whenever the band starts at 0 or
     ``modes`` is given. With ``certify`` the roots are checked (and completed)
-    against the Wittrick-Williams count.
+    against the Wittrick-Williams count. Both edges of ``band = (lo, hi)`` are
+    inclusive by a relative tolerance of 4 ulp, :data:`BAND_EDGE`: a root
+    ``omega`` is reported when ``lo (1 - BAND_EDGE) <= omega <= hi (1 + BAND_EDGE)``
+    (see :func:`band_roots`).
     """
     if (band is None) == (modes is None):
         raise ValueError("give exactly one of band= or modes=")
     p = np.ascontiguousarray(p, dtype=np.float64)
+    if band is not None:
+        return band_roots(kernel, p, band, formulation, rtol, certify)
+    return _search_roots(kernel, p, None, modes, formulation, rtol, certify)
+
+
+def band_roots(
+    kernel: Kernel,
+    p: np.ndarray,
+    band: tuple[float, float],
+    formulation: str = "stable",
+    rtol: float = 0.0,
+    certify: bool = True,
+) -> Roots:
+    """The roots in ``[lo (1 - BAND_EDGE), hi (1 + BAND_EDGE)]``, decided by their values.
+
+    A count taken within its resolution of a root (about 1e-9 relative, see
+    :data:`TRUST`) may or may not include it, so the search and its count run on
+    a band :data:`BAND_MARGIN` wider on each side (wider again when a root lies
+    within ``TRUST`` of that edge), and the refined roots, accurate to an ulp or
+    two, are kept by value. A root within 1-2 ulp of an edge is then reported
+    exactly once, and the count certifies every root of the wider band. The
+    stable formulation runs the kernel's search (one count per block of sign
+    changes, as for ``modes=``; :meth:`mstmm.kernels.Kernel.roots_in_band`), the
+    general search below only where that cannot certify.
+    """
+    lo, hi = float(band[0]), float(band[1])
+    margin = BAND_MARGIN
+    for _ in range(4):
+        wide = (lo * (1.0 - margin), hi * (1.0 + margin))
+        found = None
+        if formulation == "stable" and certify:  # the kernel's search, as for modes=
+            w = kernel.roots_in_band(p, *wide, from_bottom=wide[0] <= float(omega_of(1e-3, p)))
+            if w is not None:
+                found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
+        if found is None:
+            found = _search_roots(kernel, p, wide, None, formulation, rtol, certify)
+        if not any(
+            r.omega > 0.0 and abs(r.omega - edge) <= TRUST * edge
+            for r in found.roots
+            for edge in wide
+        ):
+            break
+        margin *= 16.0
+    keep = [r for r in found.roots if lo * (1.0 - BAND_EDGE) <= r.omega <= hi * (1.0 + BAND_EDGE)]
+    return Roots(keep, found.count_checked, found.notes)
+
+
+def _search_roots(
+    kernel: Kernel,
+    p: np.ndarray,
+    band: tuple[float, float] | None,
+    modes: int | None,
+    formulation: str,
+    rtol: float,
+    certify: bool,
+) -> Roots:
+    """:func:`find_roots` on exactly ``band`` (edges as the count sees them), or ``modes``."""
     search = _Search(kernel, p, formulation, rtol)
     osc = oscillator_frequencies(kernel, p)
     rigid = kernel.topology.rigid_body_modes
@@ -382,8 +456,13 @@ def _stable_sign_change(kernel: Kernel, p: np.ndarray, omega: float, rel: float)
     return bool(mant[0] * mant[1] < 0.0)
 
 
-def simple_roots(omega: np.ndarray, rigid: int) -> list[Root]:
-    """Roots from an ascending array repeated by multiplicity (zeros: the rigid-body modes)."""
+def simple_roots(omega: np.ndarray, rigid: int, last_multiplicity: int = 0) -> list[Root]:
+    """Roots from an ascending array repeated by multiplicity (zeros: the rigid-body modes).
+
+    ``last_multiplicity``: the true multiplicity of the last root when the array
+    may end inside it (the kernel's ``lowest`` reports it); its ``copies`` are
+    then the values present.
+    """
     roots: list[Root] = []
     for w in omega:
         if roots and roots[-1].omega == w:
@@ -391,6 +470,9 @@ def simple_roots(omega: np.ndarray, rigid: int) -> list[Root]:
             roots[-1] = Root(last.omega, last.multiplicity + 1, True, last.how)
         else:
             roots.append(Root(float(w), 1, True, "rigid" if w == 0.0 else "sign"))
+    if roots and last_multiplicity > roots[-1].multiplicity:
+        last = roots[-1]
+        roots[-1] = Root(last.omega, last_multiplicity, True, last.how, last.multiplicity)
     return roots
 
 
@@ -421,11 +503,13 @@ def _merge(roots: list[Root]) -> list[Root]:
 
 
 def _truncate(roots: list[Root], modes: int) -> list[Root]:
+    """The lowest ``modes`` values; a multiple root cut keeps its true multiplicity."""
     out, n = [], 0
     for r in roots:
         if n >= modes:
             break
         take = min(r.multiplicity, modes - n)
-        out.append(Root(r.omega, take, r.converged, r.how) if take != r.multiplicity else r)
+        cut = take != r.multiplicity
+        out.append(Root(r.omega, r.multiplicity, r.converged, r.how, take) if cut else r)
         n += take
     return out

@@ -32,6 +32,9 @@ class Solution:
     #: How the kernel's root search ran: ``"compiled"`` (numba) or ``"interpreted"``
     #: (plain Python, for a small first solve: :mod:`mstmm.interpret`).
     kernel_mode: str = "compiled"
+    #: True when the lowest ``modes`` end inside a multiple root: its multiplicity
+    #: (the true one, in :attr:`multiplicity`) exceeds the copies in :attr:`omega`.
+    truncated: bool = False
 
     @property
     def hz(self) -> np.ndarray:
@@ -55,6 +58,7 @@ class Solution:
             "multiplicity": [int(m) for m in self.multiplicity],
             "converged": [bool(c) for c in self.converged],
             "count_checked": bool(self.count_checked),
+            "truncated": bool(self.truncated),
             "warnings": list(self.warnings),
             "kernel": self.kernel_origin,
             "kernel_mode": self.kernel_mode,
@@ -105,6 +109,13 @@ def solve(
     costs less than the general search would with a looser one. Every root is
     checked against the Wittrick-Williams count; one it does not confirm (see
     :func:`mstmm.scan.verify`) is marked not converged, with a warning.
+
+    Both edges of ``band = (lo, hi)`` are inclusive by 4 ulp: a root is
+    reported when ``lo (1 - 4 eps) <= omega <= hi (1 + 4 eps)``, eps = 2.2e-16
+    (:data:`mstmm.scan.BAND_EDGE`), decided by its refined value. When the
+    lowest ``modes`` end inside a multiple root, ``multiplicity`` gives its true
+    multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
+    exactly ``modes`` values.
     """
     if modes is None and band is None:
         modes = 10
@@ -129,12 +140,12 @@ def solve(
     timings["compile"] = t2 - t1
     found = None
     if fast:
-        w, certified = kernel.lowest(p, modes)
-        if certified:
+        w, last = kernel.lowest(p, modes)
+        if last:
             # each root is Brent's converged bracket of a sign change of the stable
             # function inside a piece where the count says exactly one root: that is
             # already what scan.verify checks, no second pass needed
-            found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
+            found = Roots(simple_roots(w, kernel.topology.rigid_body_modes, last), True, [])
     if found is None:
         if interpreted:  # the general search runs compiled
             kernel.warm_up(p, formulation)
@@ -143,9 +154,10 @@ def solve(
     roots = found.roots
     t3 = time.perf_counter()
     timings["scan_refine"] = t3 - t2
-    omega = np.array([r.omega for r in roots for _ in range(r.multiplicity)], dtype=float)
-    mult = np.array([r.multiplicity for r in roots for _ in range(r.multiplicity)], dtype=int)
-    conv = np.array([r.converged for r in roots for _ in range(r.multiplicity)], dtype=bool)
+    omega = np.array([r.omega for r in roots for _ in range(r.reported)], dtype=float)
+    mult = np.array([r.multiplicity for r in roots for _ in range(r.reported)], dtype=int)
+    conv = np.array([r.converged for r in roots for _ in range(r.reported)], dtype=bool)
+    truncated = bool(roots) and roots[-1].reported < roots[-1].multiplicity
     warnings = [
         f"omega = {r.omega:.17g} rad/s: refinement did not converge, or neither the count"
         f" nor the stable function confirms a root within {max(TRUST, 4.0 * rtol):.0e}"
@@ -155,6 +167,12 @@ def solve(
     ] + found.notes
     if not found.count_checked:
         warnings.append("the roots disagree with the Wittrick-Williams count: some may be missing")
+    if truncated:
+        r = roots[-1]
+        warnings.append(
+            f"the last root, omega = {r.omega:.17g} rad/s, has multiplicity {r.multiplicity}:"
+            f" only {r.reported} of its copies fit in the {len(omega)} modes asked for"
+        )
     shape_list = None
     if shapes:
         shape_list = mode_shapes(kernel, p, omega)
@@ -171,4 +189,5 @@ def solve(
         shape_list,
         warnings,
         "interpreted" if interpreted else "compiled",
+        truncated,
     )

@@ -101,7 +101,7 @@ def sweep(
     unsure = 0
     for i in np.flatnonzero(~certified):
         found = find_roots(kernel, P[i], modes=modes)
-        omega = [r.omega for r in found.roots for _ in range(r.multiplicity)]
+        omega = [r.omega for r in found.roots for _ in range(r.reported)]
         if found.count_checked and len(omega) == modes:
             out[i] = omega
         else:
