@@ -136,6 +136,7 @@ _ALIASES = {
 }
 
 _GUARD_DPS = 20
+_SNAP = 10**14  # 1 / (relative distance from a segment boundary or end snapped onto it)
 
 
 # --------------------------------------------------------------------------- input
@@ -276,6 +277,15 @@ def _positive(name: str, *values) -> None:
         raise ValueError(f"{name} must be positive: {values}")
 
 
+def _snap(x, edges: list, length):
+    """``x`` moved onto a segment boundary or an end within a relative 1e-14 of it: the
+    float sums of the segment lengths a scene states its positions with."""
+    for edge in edges:
+        if abs(x - edge) * _SNAP <= length:  # mpf or Fraction
+            return edge
+    return x
+
+
 def _build(scene) -> _Model:
     """Nondimensionalise ``scene`` at the current mp precision.
 
@@ -309,7 +319,7 @@ def _build(scene) -> _Model:
     k_max = kr_max = mpf(0)
     for att in _attachments(scene):
         kind = _kind(att)
-        x = _num(_get(att, "x"))
+        x = _snap(_num(_get(att, "x")), [mpf(0)] + bounds + [length], length)
         if not (0 <= x <= length):
             raise ValueError(f"{kind} position {x} outside [0, L]")
         node = node_at(x)
@@ -393,11 +403,16 @@ def _rigid_constraints(scene) -> tuple:
     from the ends, supports, springs and rotational springs to ground."""
     beam = _get(scene, "beam")
     left, right = _end(_get(beam, "left")), _end(_get(beam, "right"))
-    length = sum(_frac(s[0]) for s in _segments(beam))
+    edges = [Fraction(0)]
+    for seg in _segments(beam):
+        edges.append(edges[-1] + _frac(seg[0]))
+    length = edges[-1]
     atts = [(_kind(a), a) for a in _attachments(scene)]
-    hinges = sorted(
-        _frac(_get(a, "x")) for kind, a in atts if kind == "hinge" and _num(_opt(a, "k", 0)) == 0
-    )
+
+    def at(a):
+        return _snap(_frac(_get(a, "x")), edges, length)
+
+    hinges = sorted(at(a) for kind, a in atts if kind == "hinge" and _num(_opt(a, "k", 0)) == 0)
 
     def value(x):
         return [Fraction(1), x] + [x - h if x > h else Fraction(0) for h in hinges]
@@ -413,9 +428,9 @@ def _rigid_constraints(scene) -> tuple:
             rows.append(slope(x))
     for kind, a in atts:
         if kind in ("support", "spring"):
-            rows.append(value(_frac(_get(a, "x"))))
+            rows.append(value(at(a)))
         elif kind == "rotational_spring":
-            rows.append(slope(_frac(_get(a, "x"))))
+            rows.append(slope(at(a)))
     return hinges, rows
 
 
