@@ -5,20 +5,27 @@ characteristic equations solved here with mpmath, and physical limits."""
 from __future__ import annotations
 
 import json
+import math
 import random
 import sys
 import tomllib
 from pathlib import Path
+from types import SimpleNamespace
 
 import mpmath
+import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from mpmath import mp, mpf
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from reference_model import (  # noqa: E402
+    KINDS,
     band,
     count_below,
+    eigenspace,
     frequencies,
     global_determinant,
     rigid_body_mode_count,
@@ -670,3 +677,190 @@ def test_oscillator_chains():
             with mp.workdps(50):
                 lo, hi = w * (1 - mpf("1e-20")), w * (1 + mpf("1e-20"))
             assert count_below(sc, hi, dps=30) == count_below(sc, lo, dps=30) + 1
+
+
+# ----------------------------------------------------------- random scenes, every kind
+
+_POSITIONS = [i / 8 for i in range(9)]  # of L; binary fractions, so segment sums are exact
+
+
+@st.composite
+def mixed_scenes(draw):
+    """Stepped beams (1-3 segments) with up to 5 attachments of any kind, positions on a
+    grid of L/8 that the segment boundaries also lie on (so kinds share points)."""
+    nseg = draw(st.integers(1, 3))
+    cuts = sorted(draw(st.sets(st.integers(1, 7), min_size=nseg - 1, max_size=nseg - 1)))
+    edges = [0, *cuts, 8]
+    props = st.sampled_from([0.5, 1.0, 2.0])
+    segments = [(mpf(b - a) / 8, draw(props), draw(props)) for a, b in zip(edges, edges[1:])]
+    stiff = st.floats(5.0, 2000.0)
+    mass = st.floats(0.05, 1.0)
+    atts, hinges, rotary = [], set(), set()
+    for _ in range(draw(st.integers(0, 5))):
+        kind = draw(st.sampled_from(KINDS))
+        i = draw(st.integers(1, 7) if kind == "hinge" else st.integers(0, 8))
+        att = {"type": kind, "x": _POSITIONS[i]}
+        if kind == "spring_mass":
+            att.update(k=draw(stiff), m=draw(mass))
+        elif kind == "oscillator_chain":
+            n = draw(st.integers(1, 3))
+            att.update(k=[draw(stiff) for _ in range(n)], m=[draw(mass) for _ in range(n)])
+        elif kind == "mass":
+            att.update(m=draw(mass), J=draw(st.sampled_from([0.0, 0.002, 0.01])))
+        elif kind in ("spring", "rotational_spring"):
+            att.update(k=draw(stiff) / (1 if kind == "spring" else 100))
+        elif kind == "hinge":
+            att.update(k=draw(st.sampled_from([0.0, 0.0, 3.0])))
+        # a rotational spring / rotary inertia at a hinge is ambiguous: not generated
+        turns = kind == "rotational_spring" or (kind == "mass" and att["J"] > 0)
+        if (kind == "hinge" and (i in hinges or i in rotary)) or (turns and i in hinges):
+            continue
+        (hinges if kind == "hinge" else rotary if turns else set()).add(i)
+        atts.append(att)
+    ends = st.sampled_from(ENDS)
+    return kscene(draw(ends), draw(ends), atts, segments=segments)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(mixed_scenes())
+def test_property_count_equals_roots_below_on_a_grid(sc):
+    """For random scenes mixing every kind: J(0+) is the rigid-body count; on a grid up to
+    past the 6th elastic root, the count equals the number of roots below each point, and
+    the global determinant changes sign across an odd number of roots (with multiplicity)
+    between neighbouring points, even otherwise (sign and count are independent)."""
+    nrigid = rigid_body_mode_count(sc)
+    ws = frequencies(sc, nrigid + 6, dps=20)
+    assert ws[:nrigid] == [0] * nrigid and all(w > 0 for w in ws[nrigid:])
+    assert count_below(sc, ws[nrigid] * mpf("1e-4"), dps=20) == nrigid
+    top = ws[-1]
+    distinct = sorted(set(ws[nrigid:]))
+    grid = [top * (i + mpf("0.37")) / 24 for i in range(24)]
+    grid += [(a + b) / 2 for a, b in zip(distinct, distinct[1:])]
+    grid = sorted(grid)
+    signs = []
+    for g in grid:
+        below = sum(1 for w in ws if w < g)
+        assert count_below(sc, g, dps=20) == below, (g, below)
+        signs.append((global_determinant(sc, g, dps=20) > 0, below))
+    for (s0, n0), (s1, n1) in zip(signs, signs[1:]):
+        assert (s0 != s1) == ((n1 - n0) % 2 == 1)
+
+
+# ------------------------------------------------------------------ eigenspaces
+
+
+def _same_direction(a, b, tol):
+    a = [float(v) for v in a]
+    b = [float(v) for v in b]
+    na = math.sqrt(sum(v * v for v in a))
+    nb = math.sqrt(sum(v * v for v in b))
+    dot = sum(x * y for x, y in zip(a, b, strict=True)) / (na * nb)
+    assert 1 - abs(dot) < tol, dot
+
+
+def test_eigenspace_two_span_and_hinged_beams():
+    """The first two-span mode is sin(pi x / l) (W = 0 at the support); the pinned beam with
+    a free hinge at mid-span has the same antisymmetric mode."""
+    xs = [i / 10 for i in range(41)]
+    two_span = kscene("pinned", "pinned", [{"type": "support", "x": 2.0}], length=4.0)
+    w1 = frequencies(two_span, 1, dps=30)[0]
+    (vec,) = eigenspace(two_span, w1, 1, xs, dps=30)
+    _same_direction(vec, [math.sin(math.pi * x / 2) for x in xs], 1e-14)
+    hinged = kscene("pinned", "pinned", [{"type": "hinge", "x": 2.0}], length=4.0)
+    assert frequencies(hinged, 2, dps=30)[0] == 0
+    (vec,) = eigenspace(hinged, w1, 1, xs, dps=30)
+    _same_direction(vec, [math.sin(math.pi * x / 2) for x in xs], 1e-14)
+
+
+def test_eigenspace_rigid_motions_with_a_free_hinge():
+    """Free-free with a free hinge and a spring-mass: 3 rigid motions, spanned by 1, x and
+    the kink (x - h)+; the hanging mass moves with its beam point."""
+    h = 0.375
+    sc = kscene(
+        "free",
+        "free",
+        [{"type": "hinge", "x": h}, {"type": "spring_mass", "x": 0.75, "k": 50.0, "m": 0.1}],
+    )
+    xs = [i / 16 for i in range(17)]
+    basis = eigenspace(sc, 0, 3, xs)
+    assert len(basis) == 3
+    funcs = [[1.0] * 18, xs + [0.75], [max(x - h, 0.0) for x in xs] + [0.75 - h]]
+    # same span: the 3 x 3 matrix of least-squares coefficients reproduces the vectors
+    F = np.array(funcs).T
+    B = np.array(basis).T
+    coef, *_ = np.linalg.lstsq(F, B, rcond=None)
+    assert np.abs(F @ coef - B).max() < 1e-14 * np.abs(B).max()
+    assert np.linalg.matrix_rank(coef) == 3
+    with pytest.raises(ValueError):
+        eigenspace(sc, 0, 2, xs)
+
+
+def test_eigenspace_chain_at_a_clamped_end_and_stepped_beam():
+    k1, k2, m1, m2 = mpf(400), mpf(250), mpf("0.5"), mpf("0.25")
+    w = _chain_own_frequencies(k1, k2, m1, m2)[0]
+    chain = {"type": "oscillator_chain", "x": 0.0, "k": [k1, k2], "m": [m1, m2]}
+    sm = {"type": "spring_mass", "x": 0.5, "k": 1e4, "m": 0.01}
+    sc = kscene("clamped", "free", [sm, chain])
+    xs = [0.25, 0.5, 1.0]
+    (vec,) = eigenspace(sc, w, 1, xs, dps=30)
+    # hanging masses sorted by x: the chain's two (at 0), then the spring-mass's (at 0.5)
+    u1, u2 = vec[3], vec[4]
+    assert max(abs(v) for v in vec[:3] + vec[5:]) < 1e-25 * abs(u1)
+    assert rel_err(u2 / u1, k2 / (k2 - m2 * w**2)) < 1e-14
+    # a stepped beam of equal segments has the uniform beam's modes
+    atts = [sm, {"type": "mass", "x": 0.75, "m": 0.2, "J": 0.01}]
+    uniform = kscene("clamped", "pinned", atts)
+    stepped = kscene("clamped", "pinned", atts, segments=[(0.5, 1.0, 1.0), (0.5, 1.0, 1.0)])
+    ws = frequencies(uniform, 3, dps=30)
+    for w in ws:
+        (a,) = eigenspace(uniform, w, 1, xs, dps=30)
+        (b,) = eigenspace(stepped, w, 1, xs, dps=30)
+        _same_direction(a, b, 1e-14)
+
+
+def test_input_objects_with_segments_and_kinds():
+    atts = [
+        {"type": "mass", "x": 0.25, "m": 0.3, "J": 0.01},
+        {"type": "oscillator_chain", "x": 0.5, "k": [300.0, 200.0], "m": [0.1, 0.2]},
+        {"type": "support", "x": 0.625},
+        {"type": "hinge", "x": 0.75, "k": 2.0},
+        {"type": "rotational_spring", "x": 1.0, "k": 1.0},
+    ]
+    segments = [(0.5, 2.0, 1.0), (0.5, 1.0, 0.5)]
+    dct = kscene("clamped", "free", atts, segments=segments)
+
+    def obj(d):
+        out = SimpleNamespace(**{k: v for k, v in d.items() if k != "type"})
+        out.kind = d["type"]
+        return out
+
+    beam = SimpleNamespace(
+        left="clamped",
+        right="free",
+        segments=[SimpleNamespace(length=a, EI=b, mass_per_length=c) for a, b, c in segments],
+    )
+    objs = SimpleNamespace(beam=beam, attachments=[obj(a) for a in atts])
+    assert frequencies(objs, 6, dps=25) == frequencies(dct, 6, dps=25)
+    assert rigid_body_mode_count(objs) == 0
+
+
+@pytest.mark.parametrize(
+    "att",
+    [
+        {"type": "hinge", "x": 0.0},
+        {"type": "hinge", "x": 1.0, "k": 1.0},
+        {"type": "glue", "x": 0.5},
+        {"type": "spring", "x": 0.5, "k": -1.0},
+        {"type": "oscillator_chain", "x": 0.5, "k": [1.0, 2.0], "m": [1.0]},
+        {"type": "mass", "x": 1.5, "m": 1.0},
+    ],
+)
+def test_bad_attachments_raise(att):
+    with pytest.raises(ValueError):
+        frequencies(kscene("clamped", "free", [att]), 1)
+
+
+def test_rotational_attachment_at_a_hinge_is_ambiguous():
+    atts = [{"type": "hinge", "x": 0.5}, {"type": "rotational_spring", "x": 0.5, "k": 1.0}]
+    with pytest.raises(ValueError, match="ambiguous"):
+        frequencies(kscene("clamped", "free", atts), 1)
