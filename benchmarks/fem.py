@@ -1,9 +1,16 @@
 """Independent finite-element model of a beam carrying spring-mass attachments.
 
 A check on, and a benchmark competitor for, the transfer-matrix solver: the
-uniform Euler-Bernoulli beam is cut into cubic Hermite elements (nodal DOFs
-``Y`` and ``theta``, consistent mass matrix), every spring-mass adds the
-displacement of its mass as one more DOF, and the end conditions remove DOFs:
+uniform or stepped Euler-Bernoulli beam is cut into cubic Hermite elements
+(nodal DOFs ``Y`` and ``theta``, consistent mass matrix, the properties of the
+segment each element lies in), and every attachment kind of the scene format
+(:data:`KINDS`) acts on its node: a spring-mass or oscillator chain adds its
+masses as DOFs joined by its springs; a point mass ``m`` and rotary inertia
+``J`` go on the node's ``Y`` / ``theta`` mass; a spring and a rotational spring
+to ground on its ``Y`` / ``theta`` stiffness; a support removes its ``Y``; a
+hinge duplicates its ``theta`` (``theta-``, ``theta+``) with the hinge spring
+``k`` (absent or 0: none) between them.  A rotational spring or rotary inertia
+at a hinge is rejected (ambiguous).  The end conditions remove DOFs:
 
 ========  ==================
 clamped   ``Y = theta = 0``
@@ -13,7 +20,8 @@ free      nothing removed
 ========  ==================
 
 The mesh is uniform with ``n_elements`` elements, except that a node sits
-exactly at every distinct attachment position: the nearest interior uniform
+exactly at every distinct attachment position and segment boundary (positions
+within ``1e-14 L`` of a boundary or an end are moved onto it): the nearest interior uniform
 node is moved onto the attachment when it is closer than ``1e-3`` of the
 uniform element size, otherwise the uniform element is split there.
 
@@ -50,9 +58,10 @@ Solvers (``solver=``):
     the textbook baseline above.
 
 ``scene`` is duck-typed: an object with ``.beam.length``, ``.beam.EI``,
-``.beam.mass_per_length``, ``.beam.left``, ``.beam.right`` and
-``.attachments`` (each with ``.x``, ``.k``, ``.m``), e.g. ``mstmm.Scene``, or a
-mapping in the TOML layout::
+``.beam.mass_per_length`` (or ``.beam.segments``, each with ``.length``,
+``.EI``, ``.mass_per_length``), ``.beam.left``, ``.beam.right`` and
+``.attachments`` (each with ``.kind``, default ``spring_mass``, ``.x`` and the
+kind's values), e.g. ``mstmm.Scene``, or a mapping in the TOML layout::
 
     {"beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0,
               "left": "clamped", "right": "free"},
@@ -71,7 +80,7 @@ import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-__all__ = ["assemble", "count_below", "frequencies", "mesh", "richardson"]
+__all__ = ["KINDS", "assemble", "count_below", "frequencies", "mesh", "richardson"]
 
 #: DOFs (0 = ``Y``, 1 = ``theta``) removed at an end of each kind.
 _REMOVED = {"clamped": (0, 1), "pinned": (0,), "sliding": (1,), "free": ()}
@@ -429,8 +438,10 @@ def assemble(
     """Global stiffness ``K`` and mass ``M`` (sparse CSR) after the end conditions.
 
     DOF order: node by node left to right (nodes as :func:`mesh`), ``Y`` and
-    ``theta`` (rad) of the node followed by the displacements of the masses
-    hung there (in scene order); the DOFs the end conditions fix are removed.
+    ``theta`` (rad; ``theta-``, ``theta+`` at a hinge) of the node followed by
+    the displacements of the masses hung there (scene order, each chain from
+    the beam to its tip); the DOFs the end conditions and supports fix are
+    removed.
     """
     model = _model(scene)
     K, M, _ = _matrices(model, _nodes(model, n_elements))

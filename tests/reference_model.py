@@ -1,12 +1,15 @@
 """Independent high-precision reference model for the tests of ``mstmm``.
 
-Natural frequencies of a uniform Euler-Bernoulli beam carrying spring-mass
-attachments, computed WITHOUT transfer matrices, with mpmath:
+Natural frequencies of a uniform or stepped Euler-Bernoulli beam carrying
+attachments of every kind (:data:`KINDS`: spring-masses, point masses with rotary
+inertia, translational and rotational springs to ground, rigid point supports,
+internal hinges with or without a spring, oscillator chains), computed WITHOUT
+transfer matrices, with mpmath:
 
 * the frequencies are the zeros of the determinant of a *global* linear system
-  (4 coefficients per beam segment plus one displacement per mass), assembled
-  from the end conditions, the continuity / shear-jump conditions at the
-  attachment points and the equations of motion of the masses
+  (4 coefficients per beam segment plus one displacement per hanging mass),
+  assembled from the end conditions, the node conditions at the attachment
+  points and segment boundaries and the equations of motion of the masses
   (:func:`global_determinant`);
 * the roots are bracketed with the Wittrick-Williams algorithm, which counts
   *exactly* how many natural frequencies lie below a trial frequency from the
@@ -27,15 +30,32 @@ The spring pulls the beam toward the mass, ``F = k (u - W(x))``, hence::
     EI W'''(L) = - sum_i k_i (u_i - W(L))                      (free / sliding right end)
     -k_i W(x_i) + (k_i - m_i w^2) u_i = 0                      (each mass)
 
+The other kinds follow from the stationary energy; at a node, with ``[.]`` the jump
+(right minus left, a missing side counting 0)::
+
+    EI [W'''] = (M w^2 - k) W           point mass M, spring k to ground
+    EI [W'']  = (k_t - J w^2) W'        rotational spring k_t, rotary inertia J
+    EI W''(x-) = EI W''(x+) = k_h (W'(x+) - W'(x-))   hinge (W, shear continuous)
+    W = 0, W' and W'' continuous        support (the shear jumps by the reaction)
+    m_i w^2 u_i + k_i (u_{i-1} - u_i) + k_{i+1} (u_{i+1} - u_i) = 0   chain stage i
+                                        (u_0 = W, k_{n+1} = 0; force on the beam k_1 (u_1 - W))
+
+A stepped beam keeps W, W', EI W'', EI W''' continuous at a segment boundary; each
+segment has its own ``lam = (mbar w^2 / EI)^(1/4)`` (rows scaled by its own powers).
+Positions within 1e-14 L of a segment boundary or an end are snapped onto it.  A
+rotational spring or rotary inertia at a hinge is rejected (which side?).
+
 The tests check this against the tip-mass cantilever
 ``1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0`` (stiff-spring
 limit) and against ``tests/data/reference.json``.
 
 Nondimensionalisation
 ---------------------
-``xi = x / L``, ``beta = lam L`` with ``lam^4 = mbar w^2 / EI``, so
-``w = beta^2 sqrt(EI / mbar) / L^2``; ``K = k L^3 / EI`` and
-``M = m / (mbar L)`` (then ``m w^2 L^3 / EI = M beta^4``).
+``xi = x / L`` (L the total length), ``beta = lam L`` with ``lam^4 = mbar w^2 / EI``
+of the first segment, so ``w = beta^2 sqrt(EI / mbar) / L^2``; ``K = k L^3 / EI``,
+``M = m / (mbar L)`` (then ``m w^2 L^3 / EI = M beta^4``), ``K_t = k_t L / EI``,
+``J = J / (mbar L^3)``; segment s has ``e_s = EI_s / EI`` and its own
+``beta_s = beta (mu_s / e_s)^(1/4)``, ``mu_s = mbar_s / mbar``.
 
 Spring-masses at a clamped or pinned end see a fixed point (W = 0 there): each
 is a decoupled oscillator and ``sqrt(k/m)`` is a natural frequency of the
@@ -46,9 +66,13 @@ What is guaranteed about not missing roots
 * Counting.  ``J(beta)`` = number of natural frequencies (with multiplicity,
   rigid-body modes included) strictly below ``beta`` is computed by the
   Wittrick-Williams algorithm: J = J0 + s{K}, J0 = clamped-clamped
-  frequencies of the segments below beta (closed form), s{K} = number of
-  negative pivots of the exact dynamic stiffness matrix (segments' closed
-  form + springs + masses), eliminated node by node.  It is exact as long as
+  frequencies of the segments below their own beta_s (closed form), s{K} =
+  number of negative pivots of the exact dynamic stiffness matrix (segments'
+  closed form times e_s; point masses ``-M beta^4`` on W and ``-J beta^4`` on W';
+  springs ``+K``, ``+K_t``; a chain condensed onto W from its tip, its own
+  pivots counted: a Sturm count of the chain with the beam point held; a
+  support removes the node's W; a hinge node has two rotations coupled by
+  K_h), eliminated node by node.  It is exact as long as
   the pivot signs are right; they are computed with ``2 dps + 20`` digits
   (plus extra digits for short segments / low frequency).  ``J`` can be wrong
   only for a trial ``beta`` very close to a natural frequency: within the
@@ -75,9 +99,10 @@ What is guaranteed about not missing roots
   the isolating interval, ``RuntimeError``: the two formulations disagree.
   Simple roots are thus zeros of the global determinant to ~1e-(dps + 4);
   multiple roots come from the count alone.
-* Rigid-body modes are counted from the end conditions (dimension of the
-  rigid motions ``a + b x`` they allow: free-free 2, pinned-free 1,
-  sliding-free / free-sliding / sliding-sliding 1, else 0) and returned as
+* Rigid-body modes are counted exactly (Fractions) as the dimension of the
+  rigid motions ``a + b x + sum_h c_h (x - x_h)+`` (kinks only at free hinges)
+  that the ends, supports, springs and rotational springs to ground allow
+  (free-free 2, pinned-free 1, ...; a free hinge adds one) and returned as
   exact zeros; the tests check that this equals ``J(0+)``.
 * Working precision: ``dps + 20`` digits for the global determinant, plus
   digits for short segments, low frequency and stiff springs
@@ -85,7 +110,17 @@ What is guaranteed about not missing roots
   1e-32 on stiff, soft, heavy, close-positioned and 50-attachment scenes.
 
 Public API: :func:`frequencies`, :func:`band`, :func:`global_determinant`,
-:func:`count_below`, :func:`rigid_body_mode_count`, :func:`segment_stiffness_matrix`.
+:func:`count_below`, :func:`rigid_body_mode_count`, :func:`eigenspace`,
+:func:`mode_at_attachments`, :func:`segment_stiffness_matrix`, :data:`KINDS`.
+
+Scenes are dicts in the TOML layout or objects with the same attributes:
+``beam`` with ``left``, ``right`` and either ``length``, ``EI``,
+``mass_per_length`` or ``segments`` (each ``length``, ``EI``,
+``mass_per_length``, from the left end); ``attachments``, each with ``type``
+(dict) or ``kind`` (object), default ``spring_mass``, and ``x`` plus: ``k``, ``m``
+(spring_mass); ``m``, ``J`` = 0 (mass); ``k`` (spring, rotational_spring);
+nothing (support); ``k`` = 0 (hinge, strictly inside); lists ``k``, ``m``
+(oscillator_chain, beam to tip).
 """
 
 from __future__ import annotations
@@ -98,10 +133,13 @@ import mpmath
 from mpmath import mp, mpf
 
 __all__ = [
+    "KINDS",
     "band",
     "count_below",
+    "eigenspace",
     "frequencies",
     "global_determinant",
+    "mode_at_attachments",
     "rigid_body_mode_count",
     "segment_stiffness_matrix",
 ]

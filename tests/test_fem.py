@@ -302,6 +302,14 @@ def _at(kind: str, x: float, **values) -> dict:
     return {"type": kind, "x": x, **values}
 
 
+def stepped(left: str, right: str, segments: list, attachments: list) -> dict:
+    """Scene of a stepped beam, segments given as (length, EI, mass_per_length)."""
+    keys = ("length", "EI", "mass_per_length")
+    rows = [dict(zip(keys, s, strict=True)) for s in segments]
+    beam = {"left": left, "right": right, "segments": rows}
+    return {"beam": beam, "attachments": attachments}
+
+
 KIND_SCENES = {
     "mass": bare("clamped", "free")
     | {"attachments": [_at("mass", 1.0, m=1.0, J=0.02), _at("mass", 0.4, m=0.3)]},
@@ -328,35 +336,24 @@ KIND_SCENES = {
             _at("support", 0.5),
         ]
     },
-    "stepped": {
-        "beam": {
-            "left": "clamped",
-            "right": "free",
-            "segments": [
-                {"length": 0.25, "EI": 3.0, "mass_per_length": 2.0},
-                {"length": 0.5, "EI": 1.0, "mass_per_length": 1.0},
-                {"length": 0.25, "EI": 0.4, "mass_per_length": 0.6},
-            ],
-        },
-        "attachments": [_at("spring_mass", 0.25, k=400.0, m=0.2), _at("mass", 1.0, m=0.3, J=0.01)],
-    },
-    "mixed_free": {
-        "beam": {
-            "left": "free",
-            "right": "sliding",
-            "segments": [
-                {"length": 0.5, "EI": 2.0, "mass_per_length": 1.5},
-                {"length": 0.75, "EI": 1.0, "mass_per_length": 1.0},
-            ],
-        },
-        "attachments": [
+    "stepped": stepped(
+        "clamped",
+        "free",
+        [(0.25, 3.0, 2.0), (0.5, 1.0, 1.0), (0.25, 0.4, 0.6)],
+        [_at("spring_mass", 0.25, k=400.0, m=0.2), _at("mass", 1.0, m=0.3, J=0.01)],
+    ),
+    "mixed_free": stepped(
+        "free",
+        "sliding",
+        [(0.5, 2.0, 1.5), (0.75, 1.0, 1.0)],
+        [
             _at("hinge", 0.5, k=3.0),
             _at("spring_mass", 0.5, k=250.0, m=0.1),
             _at("mass", 0.25, m=0.2, J=0.003),
             _at("oscillator_chain", 1.25, k=[100.0, 80.0], m=[0.1, 0.1]),
             _at("spring", 0.875, k=20.0),
         ],
-    },
+    ),
 }
 
 

@@ -185,15 +185,7 @@ def _tip_mass_betas(mu, count):
             + mu * b * (mpmath.cos(b) * mpmath.tanh(b) - mpmath.sin(b))
         )
 
-    roots, step = [], mpf("0.01")
-    a, fa = step, f(step)
-    while len(roots) < count:
-        b = a + step
-        fb = f(b)
-        if fa * fb < 0:
-            roots.append(mpmath.findroot(f, (a, b), solver="anderson"))
-        a, fa = b, fb
-    return roots
+    return roots_on_grid(f, count, step="0.01", start="0.01")
 
 
 def test_stiff_spring_tip_mass_limit_fixes_sign_convention():
