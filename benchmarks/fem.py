@@ -1,9 +1,16 @@
 """Independent finite-element model of a beam carrying spring-mass attachments.
 
 A check on, and a benchmark competitor for, the transfer-matrix solver: the
-uniform Euler-Bernoulli beam is cut into cubic Hermite elements (nodal DOFs
-``Y`` and ``theta``, consistent mass matrix), every spring-mass adds the
-displacement of its mass as one more DOF, and the end conditions remove DOFs:
+uniform or stepped Euler-Bernoulli beam is cut into cubic Hermite elements
+(nodal DOFs ``Y`` and ``theta``, consistent mass matrix, the properties of the
+segment each element lies in), and every attachment kind of the scene format
+(:data:`KINDS`) acts on its node: a spring-mass or oscillator chain adds its
+masses as DOFs joined by its springs; a point mass ``m`` and rotary inertia
+``J`` go on the node's ``Y`` / ``theta`` mass; a spring and a rotational spring
+to ground on its ``Y`` / ``theta`` stiffness; a support removes its ``Y``; a
+hinge duplicates its ``theta`` (``theta-``, ``theta+``) with the hinge spring
+``k`` (absent or 0: none) between them.  A rotational spring or rotary inertia
+at a hinge is rejected (ambiguous).  The end conditions remove DOFs:
 
 ========  ==================
 clamped   ``Y = theta = 0``
@@ -13,7 +20,8 @@ free      nothing removed
 ========  ==================
 
 The mesh is uniform with ``n_elements`` elements, except that a node sits
-exactly at every distinct attachment position: the nearest interior uniform
+exactly at every distinct attachment position and segment boundary (positions
+within ``1e-14 L`` of a boundary or an end are moved onto it): the nearest interior uniform
 node is moved onto the attachment when it is closer than ``1e-3`` of the
 uniform element size, otherwise the uniform element is split there.
 
@@ -50,9 +58,10 @@ Solvers (``solver=``):
     the textbook baseline above.
 
 ``scene`` is duck-typed: an object with ``.beam.length``, ``.beam.EI``,
-``.beam.mass_per_length``, ``.beam.left``, ``.beam.right`` and
-``.attachments`` (each with ``.x``, ``.k``, ``.m``), e.g. ``mstmm.Scene``, or a
-mapping in the TOML layout::
+``.beam.mass_per_length`` (or ``.beam.segments``, each with ``.length``,
+``.EI``, ``.mass_per_length``), ``.beam.left``, ``.beam.right`` and
+``.attachments`` (each with ``.kind``, default ``spring_mass``, ``.x`` and the
+kind's values), e.g. ``mstmm.Scene``, or a mapping in the TOML layout::
 
     {"beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0,
               "left": "clamped", "right": "free"},
@@ -61,6 +70,7 @@ mapping in the TOML layout::
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -70,7 +80,7 @@ import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-__all__ = ["assemble", "count_below", "frequencies", "mesh", "richardson"]
+__all__ = ["KINDS", "assemble", "count_below", "frequencies", "mesh", "richardson"]
 
 #: DOFs (0 = ``Y``, 1 = ``theta``) removed at an end of each kind.
 _REMOVED = {"clamped": (0, 1), "pinned": (0,), "sliding": (1,), "free": ()}
@@ -78,6 +88,20 @@ _REMOVED = {"clamped": (0, 1), "pinned": (0,), "sliding": (1,), "free": ()}
 #: A uniform node closer than this fraction of the uniform element size to an
 #: attachment is moved onto it instead of leaving a short element.
 _SNAP = 1e-3
+
+#: An attachment within this fraction of L of a segment boundary or an end is moved onto it.
+_SNAP_EDGE = 1e-14
+
+#: Attachment kinds (the scene format of ``tests/reference_model.py``).
+KINDS = (
+    "spring_mass",
+    "mass",
+    "spring",
+    "rotational_spring",
+    "support",
+    "hinge",
+    "oscillator_chain",
+)
 
 #: Eigenvalues below this fraction of the lowest elastic scale squared are the
 #: rigid-body zeros (``|omega| < 1e-6`` of that scale).
@@ -95,57 +119,138 @@ _TOO_FINE = (
 
 
 @dataclass(frozen=True)
+class _Attachment:
+    """One attachment: ``kind`` (see the module docstring), position ``x`` (m), stiffnesses
+    ``k`` (the chain's springs, a spring's or hinge's k) and masses ``m`` (a chain's
+    masses; a point mass's ``(m, J)``)."""
+
+    kind: str
+    x: float
+    k: tuple[float, ...] = ()
+    m: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
 class _Model:
     length: float
-    EI: float
-    mbar: float
+    segments: tuple[tuple[float, float, float], ...]  # (length, EI, mbar) from the left
     left: str
     right: str
-    attachments: tuple[tuple[float, float, float], ...]  # (x, k, m)
+    attachments: tuple[_Attachment, ...]
+
+    @property
+    def boundaries(self) -> np.ndarray:
+        """Positions of the segment boundaries, 0 and L included."""
+        edges = np.concatenate([[0.0], np.cumsum([s[0] for s in self.segments])])
+        edges[-1] = self.length
+        return edges
 
     @property
     def scale(self) -> float:
-        """Lowest elastic eigenvalue scale (rad/s)**2: beam ``EI/(mbar L^4)`` or a ``k/m``."""
-        beam = self.EI / (self.mbar * self.length**4)
-        return min([beam] + [k / m for _, k, m in self.attachments])
+        """Lowest elastic eigenvalue scale (rad/s)**2: a segment's ``EI/(mbar L^4)`` or a
+        hanging stage's ``k/m``."""
+        beam = [ei / (mbar * self.length**4) for _, ei, mbar in self.segments]
+        hung = [
+            k / m
+            for a in self.attachments
+            if a.kind == "chain"
+            for k, m in zip(a.k, a.m, strict=True)
+        ]
+        return min(beam + hung)
 
 
 def _get(obj: Any, key: str) -> Any:
     return obj[key] if isinstance(obj, Mapping) else getattr(obj, key)
 
 
+def _opt(obj: Any, key: str, default: Any) -> Any:
+    value = obj.get(key) if isinstance(obj, Mapping) else getattr(obj, key, None)
+    return default if value is None else value
+
+
+def _kind(item: Any) -> str:
+    if isinstance(item, Mapping):
+        kind = item.get("type", item.get("kind", "spring_mass"))
+    else:
+        kind = getattr(item, "kind", None) or getattr(item, "type", None) or "spring_mass"
+    kind = str(getattr(kind, "value", kind))
+    if kind not in KINDS:
+        raise ValueError(f"unsupported attachment type {kind!r}; expected one of {KINDS}")
+    return kind
+
+
+def _attachment(item: Any, length: float, edges: np.ndarray) -> _Attachment:
+    """Read and check one attachment; its position snaps onto a segment boundary or an end
+    within ``1e-14 L`` (the float sums of the segment lengths)."""
+    kind = _kind(item)
+    x = float(_get(item, "x"))
+    near = np.abs(edges - x) <= _SNAP_EDGE * length
+    if np.any(near):
+        x = float(edges[np.argmax(near)])
+    if not 0.0 <= x <= length:
+        raise ValueError(f"{kind} needs 0 <= x <= L = {length}, got x = {x}")
+    if kind in ("spring_mass", "oscillator_chain"):
+        ks, ms = _get(item, "k"), _get(item, "m")
+        ks, ms = (tuple(float(v) for v in (q if kind != "spring_mass" else [q])) for q in (ks, ms))
+        if not ks or len(ks) != len(ms) or not all(v > 0 for v in ks + ms):
+            raise ValueError(f"{kind} needs k > 0, m > 0 (lists of one length): {ks}, {ms}")
+        return _Attachment("chain", x, ks, ms)
+    if kind == "mass":
+        m, inertia = float(_get(item, "m")), float(_opt(item, "J", 0.0))
+        if not (m >= 0 and inertia >= 0):
+            raise ValueError(f"mass needs m >= 0, J >= 0: {m}, {inertia}")
+        return _Attachment(kind, x, (), (m, inertia))
+    if kind == "support":
+        return _Attachment(kind, x)
+    k = float(_opt(item, "k", 0.0) if kind == "hinge" else _get(item, "k"))
+    if not (k > 0 or (kind == "hinge" and k == 0)):
+        raise ValueError(f"{kind} needs k > 0 (a hinge k >= 0), got {k}")
+    if kind == "hinge" and not 0.0 < x < length:
+        raise ValueError(f"a hinge must be strictly inside the beam, got x = {x}")
+    return _Attachment(kind, x, (k,))
+
+
 def _model(scene: Any) -> _Model:
     """Read the duck-typed ``scene`` (object or TOML-layout mapping) and check it."""
     beam = _get(scene, "beam")
-    length, ei, mbar = (float(_get(beam, key)) for key in ("length", "EI", "mass_per_length"))
+    raw = _opt(beam, "segments", None)
+    if raw:
+        segments = tuple(
+            tuple(float(_get(s, key)) for key in ("length", "EI", "mass_per_length")) for s in raw
+        )
+    else:
+        segments = (tuple(float(_get(beam, key)) for key in ("length", "EI", "mass_per_length")),)
+    for length, ei, mbar in segments:
+        if not (length > 0 and ei > 0 and mbar > 0):
+            raise ValueError(
+                f"beam length, EI, mass_per_length must be > 0: {length}, {ei}, {mbar}"
+            )
     ends = (str(_get(beam, "left")), str(_get(beam, "right")))
-    if not (length > 0 and ei > 0 and mbar > 0):
-        raise ValueError(f"beam length, EI, mass_per_length must be > 0: {length}, {ei}, {mbar}")
     for end in ends:
         if end not in _REMOVED:
             raise ValueError(f"unknown end condition {end!r}; expected one of {sorted(_REMOVED)}")
+    total = math.fsum(s[0] for s in segments)
+    edges = np.concatenate([[0.0], np.cumsum([s[0] for s in segments])])
+    edges[-1] = total
     try:
-        raw = _get(scene, "attachments")
+        items = _get(scene, "attachments")
     except (KeyError, AttributeError):
-        raw = ()
-    attachments = []
-    for item in raw or ():
-        kind = (
-            item.get("type", "spring_mass")
-            if isinstance(item, Mapping)
-            else getattr(item, "kind", "spring_mass")
-        )
-        if kind != "spring_mass":
-            raise ValueError(f"unsupported attachment type {kind!r}")
-        x, k, m = (float(_get(item, key)) for key in ("x", "k", "m"))
-        if not (0.0 <= x <= length and k > 0 and m > 0):
-            raise ValueError(f"spring_mass needs 0 <= x <= L, k > 0, m > 0: {x}, {k}, {m}")
-        attachments.append((x, k, m))
-    return _Model(length, ei, mbar, ends[0], ends[1], tuple(attachments))
+        items = ()
+    attachments = tuple(_attachment(item, total, edges) for item in items or ())
+    hinges = [a.x for a in attachments if a.kind == "hinge"]
+    if len(set(hinges)) != len(hinges):
+        raise ValueError(f"one hinge per point, got hinges at {sorted(hinges)}")
+    for a in attachments:
+        turns = a.kind == "rotational_spring" or (a.kind == "mass" and a.m[1] > 0)
+        if turns and a.x in hinges:
+            raise ValueError(
+                f"rotational spring or rotary inertia at the hinge at x = {a.x}: ambiguous"
+            )
+    return _Model(total, segments, ends[0], ends[1], attachments)
 
 
 def _nodes(model: _Model, n_elements: int) -> np.ndarray:
-    """Uniform mesh with a node exactly at every distinct attachment position."""
+    """Uniform mesh with a node exactly at every attachment and segment boundary."""
     if int(n_elements) != n_elements or n_elements < 1:
         raise ValueError(f"n_elements must be a positive integer, got {n_elements!r}")
     n = int(n_elements)
@@ -156,7 +261,7 @@ def _nodes(model: _Model, n_elements: int) -> np.ndarray:
     movable = np.ones(n + 1, dtype=bool)  # interior uniform nodes not yet moved
     movable[[0, -1]] = False
     inserted = []
-    for x in sorted({x for x, _, _ in model.attachments}):
+    for x in sorted({a.x for a in model.attachments} | set(model.boundaries[1:-1])):
         i = min(max(round(x / h), 0), n)
         if uniform[i] == x:
             movable[i] = False
@@ -173,6 +278,28 @@ def mesh(scene: Any, n_elements: int) -> np.ndarray:
     return _nodes(_model(scene), n_elements)
 
 
+class _Springs:
+    """Point stiffnesses and masses gathered as sparse triplets, and the rows of ``G``."""
+
+    def __init__(self) -> None:
+        self.k: list[tuple[int, int, float]] = []
+        self.m: list[tuple[int, int, float]] = []
+        self.g: list[tuple[int, int, float]] = []  # (row, dof, value), rows from 0
+        self.rows = 0
+
+    def spring(self, p: int, q: int | None, k: float) -> None:
+        """A spring ``k`` between DOFs p and q (q None: to ground)."""
+        self.k.append((p, p, k))
+        self.g.append((self.rows, p, math.sqrt(k)))
+        if q is not None:
+            self.k += [(q, q, k), (p, q, -k), (q, p, -k)]
+            self.g.append((self.rows, q, -math.sqrt(k)))
+        self.rows += 1
+
+    def mass(self, p: int, m: float) -> None:
+        self.m.append((p, p, m))
+
+
 def _matrices(
     model: _Model, nodes: np.ndarray, scale: float = 1.0
 ) -> tuple[scipy.sparse.csr_matrix, scipy.sparse.csr_matrix, scipy.sparse.csr_matrix]:
@@ -184,20 +311,28 @@ def _matrices(
     element, ``sqrt(EI h)`` times the mean curvature ``(theta_j - theta_i) / h``
     and ``sqrt(EI h / 12)`` times the curvature change
     ``(12 (Y_i - Y_j) / h + 6 (theta_i + theta_j)) / h``, then one row
-    ``sqrt(k) (Y - u)`` per spring: the strain energy is ``|G v|^2 / 2``.
+    ``sqrt(k) (p - q)`` per spring between DOFs p and q (q = 0 for a spring to
+    ground): the strain energy is ``|G v|^2 / 2``.
     """
     h = np.diff(nodes)
     ne = h.size
-    na = len(model.attachments)
-    ndof = 2 * (ne + 1) + na
-    # Node i's DOFs: Y, theta, then the masses hung there (scene order).
-    at = np.array([np.searchsorted(nodes, x) for x, _, _ in model.attachments], dtype=int)
-    assert np.array_equal(nodes[at], [x for x, _, _ in model.attachments])
-    count = np.bincount(at, minlength=ne + 1)
-    first = 2 * np.arange(ne + 1) + np.concatenate([[0], np.cumsum(count)[:-1]])
-    rank = np.array([np.sum(at[:j] == at[j]) for j in range(na)], dtype=int)
-    mass_dof = first[at] + 2 + rank
+    at = [int(np.searchsorted(nodes, a.x)) for a in model.attachments]
+    assert np.array_equal(nodes[at], [a.x for a in model.attachments])
+    hinge = np.zeros(ne + 1, dtype=int)
+    hung = np.zeros(ne + 1, dtype=int)
+    for a, i in zip(model.attachments, at, strict=True):
+        hinge[i] += a.kind == "hinge"
+        hung[i] += len(a.m) if a.kind == "chain" else 0
+    # Node i's DOFs: Y, theta (theta- and theta+ at a hinge), then its hanging masses.
+    size = 2 + hinge + hung
+    first = np.concatenate([[0], np.cumsum(size)[:-1]])
+    ndof = int(size.sum())
+    theta_left, theta_right = first + 1, first + 1 + hinge
 
+    # Element properties: the segment holding the element's midpoint.
+    seg = np.searchsorted(model.boundaries[1:-1], 0.5 * (nodes[:-1] + nodes[1:]))
+    ei = np.array([s[1] for s in model.segments])[seg]
+    mbar = np.array([s[2] for s in model.segments])[seg]
     one = np.ones_like(h)
     # Element matrices, shape (ne, 4, 4), DOF order Y_i, theta_i, Y_j, theta_j.
     ke = (
@@ -209,7 +344,7 @@ def _matrices(
                 [6 * h, 2 * h**2, -6 * h, 4 * h**2],
             ]
         ).transpose(2, 0, 1)
-        * (model.EI / h**3)[:, None, None]
+        * (ei / h**3)[:, None, None]
     )
     me = (
         np.array(
@@ -220,43 +355,67 @@ def _matrices(
                 [-13 * h, -3 * h**2, -22 * h, 4 * h**2],
             ]
         ).transpose(2, 0, 1)
-        * (model.mbar * h / 420.0)[:, None, None]
+        * (mbar * h / 420.0)[:, None, None]
     )
     ge = np.array(
         [
-            [0 * one, -one, 0 * one, one] * np.sqrt(model.EI / h),
-            [2 / h, one, -2 / h, one] * np.sqrt(3 * model.EI / h),
+            [0 * one, -one, 0 * one, one] * np.sqrt(ei / h),
+            [2 / h, one, -2 / h, one] * np.sqrt(3 * ei / h),
         ]
     ).transpose(2, 0, 1)  # (ne, 2, 4)
-    dofs = np.concatenate([first[:-1, None] + [0, 1], first[1:, None] + [0, 1]], axis=1)
+    dofs = np.stack([first[:-1], theta_right[:-1], first[1:], theta_left[1:]], axis=1)
     rows = np.broadcast_to(dofs[:, :, None], (ne, 4, 4)).ravel()
     cols = np.broadcast_to(dofs[:, None, :], (ne, 4, 4)).ravel()
-    y, a, sk = first[at], mass_dof, np.sqrt([k for _, k, _ in model.attachments])
-    k_spring = np.array([k for _, k, _ in model.attachments])
-    K = _sparse(
-        [rows, y, y, a, a],
-        [cols, y, a, y, a],
-        [ke.ravel(), k_spring, -k_spring, -k_spring, k_spring],
-        (ndof, ndof),
-    )
-    M = _sparse(
-        [rows, a], [cols, a], [me.ravel(), [m for _, _, m in model.attachments]], (ndof, ndof)
-    )
-    g_rows = np.broadcast_to(2 * np.arange(ne)[:, None, None] + [[0], [1]], (ne, 2, 4))
-    g_cols = np.broadcast_to(dofs[:, None, :], (ne, 2, 4))
-    spring_rows = 2 * ne + np.arange(na)
-    G = _sparse(
-        [g_rows.ravel(), spring_rows, spring_rows],
-        [g_cols.ravel(), y, a],
-        [ge.ravel(), sk, -sk],
-        (2 * ne + na, ndof),
-    )
 
+    point = _Springs()
+    next_mass = first + 2 + hinge
     removed = [first[0] + d for d in _REMOVED[model.left]]
     removed += [first[-1] + d for d in _REMOVED[model.right]]
+    for a, i in zip(model.attachments, at, strict=True):
+        y = int(first[i])
+        if a.kind == "chain":
+            prev = y
+            for k, m in zip(a.k, a.m, strict=True):
+                dof = int(next_mass[i])
+                next_mass[i] += 1
+                point.spring(prev, dof, k)
+                point.mass(dof, m)
+                prev = dof
+        elif a.kind == "mass":
+            point.mass(y, a.m[0])
+            if a.m[1] > 0:
+                point.mass(int(theta_left[i]), a.m[1])
+        elif a.kind == "spring":
+            point.spring(y, None, a.k[0])
+        elif a.kind == "rotational_spring":
+            point.spring(int(theta_left[i]), None, a.k[0])
+        elif a.kind == "hinge":
+            if a.k[0] > 0:
+                point.spring(int(theta_left[i]), int(theta_right[i]), a.k[0])
+        else:  # support
+            removed.append(y)
+
+    def triplets(entries):
+        return [np.array([e[c] for e in entries], dtype=float if c == 2 else int) for c in range(3)]
+
+    kr, kc, kv = triplets(point.k)
+    mr, mc, mv = triplets(point.m)
+    K = _sparse([rows, kr], [cols, kc], [ke.ravel(), kv], (ndof, ndof))
+    M = _sparse([rows, mr], [cols, mc], [me.ravel(), mv], (ndof, ndof))
+    g_rows = np.broadcast_to(2 * np.arange(ne)[:, None, None] + [[0], [1]], (ne, 2, 4))
+    g_cols = np.broadcast_to(dofs[:, None, :], (ne, 2, 4))
+    gr, gc, gv = triplets(point.g)
+    G = _sparse(
+        [g_rows.ravel(), 2 * ne + gr],
+        [g_cols.ravel(), gc],
+        [ge.ravel(), gv],
+        (2 * ne + point.rows, ndof),
+    )
+
     keep = np.setdiff1d(np.arange(ndof), removed)
     dof_scale = np.ones(ndof)
-    dof_scale[first + 1] = 1.0 / scale
+    dof_scale[theta_left] = 1.0 / scale
+    dof_scale[theta_right] = 1.0 / scale
     D = scipy.sparse.diags(dof_scale[keep])
     K = (D @ K[keep][:, keep] @ D).tocsr()
     M = (D @ M[keep][:, keep] @ D).tocsr()
@@ -279,8 +438,10 @@ def assemble(
     """Global stiffness ``K`` and mass ``M`` (sparse CSR) after the end conditions.
 
     DOF order: node by node left to right (nodes as :func:`mesh`), ``Y`` and
-    ``theta`` (rad) of the node followed by the displacements of the masses
-    hung there (in scene order); the DOFs the end conditions fix are removed.
+    ``theta`` (rad; ``theta-``, ``theta+`` at a hinge) of the node followed by
+    the displacements of the masses hung there (scene order, each chain from
+    the beam to its tip); the DOFs the end conditions and supports fix are
+    removed.
     """
     model = _model(scene)
     K, M, _ = _matrices(model, _nodes(model, n_elements))

@@ -1,12 +1,15 @@
 """Independent high-precision reference model for the tests of ``mstmm``.
 
-Natural frequencies of a uniform Euler-Bernoulli beam carrying spring-mass
-attachments, computed WITHOUT transfer matrices, with mpmath:
+Natural frequencies of a uniform or stepped Euler-Bernoulli beam carrying
+attachments of every kind (:data:`KINDS`: spring-masses, point masses with rotary
+inertia, translational and rotational springs to ground, rigid point supports,
+internal hinges with or without a spring, oscillator chains), computed WITHOUT
+transfer matrices, with mpmath:
 
 * the frequencies are the zeros of the determinant of a *global* linear system
-  (4 coefficients per beam segment plus one displacement per mass), assembled
-  from the end conditions, the continuity / shear-jump conditions at the
-  attachment points and the equations of motion of the masses
+  (4 coefficients per beam segment plus one displacement per hanging mass),
+  assembled from the end conditions, the node conditions at the attachment
+  points and segment boundaries and the equations of motion of the masses
   (:func:`global_determinant`);
 * the roots are bracketed with the Wittrick-Williams algorithm, which counts
   *exactly* how many natural frequencies lie below a trial frequency from the
@@ -27,15 +30,32 @@ The spring pulls the beam toward the mass, ``F = k (u - W(x))``, hence::
     EI W'''(L) = - sum_i k_i (u_i - W(L))                      (free / sliding right end)
     -k_i W(x_i) + (k_i - m_i w^2) u_i = 0                      (each mass)
 
+The other kinds follow from the stationary energy; at a node, with ``[.]`` the jump
+(right minus left, a missing side counting 0)::
+
+    EI [W'''] = (M w^2 - k) W           point mass M, spring k to ground
+    EI [W'']  = (k_t - J w^2) W'        rotational spring k_t, rotary inertia J
+    EI W''(x-) = EI W''(x+) = k_h (W'(x+) - W'(x-))   hinge (W, shear continuous)
+    W = 0, W' and W'' continuous        support (the shear jumps by the reaction)
+    m_i w^2 u_i + k_i (u_{i-1} - u_i) + k_{i+1} (u_{i+1} - u_i) = 0   chain stage i
+                                        (u_0 = W, k_{n+1} = 0; force on the beam k_1 (u_1 - W))
+
+A stepped beam keeps W, W', EI W'', EI W''' continuous at a segment boundary; each
+segment has its own ``lam = (mbar w^2 / EI)^(1/4)`` (rows scaled by its own powers).
+Positions within 1e-14 L of a segment boundary or an end are snapped onto it.  A
+rotational spring or rotary inertia at a hinge is rejected (which side?).
+
 The tests check this against the tip-mass cantilever
 ``1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0`` (stiff-spring
 limit) and against ``tests/data/reference.json``.
 
 Nondimensionalisation
 ---------------------
-``xi = x / L``, ``beta = lam L`` with ``lam^4 = mbar w^2 / EI``, so
-``w = beta^2 sqrt(EI / mbar) / L^2``; ``K = k L^3 / EI`` and
-``M = m / (mbar L)`` (then ``m w^2 L^3 / EI = M beta^4``).
+``xi = x / L`` (L the total length), ``beta = lam L`` with ``lam^4 = mbar w^2 / EI``
+of the first segment, so ``w = beta^2 sqrt(EI / mbar) / L^2``; ``K = k L^3 / EI``,
+``M = m / (mbar L)`` (then ``m w^2 L^3 / EI = M beta^4``), ``K_t = k_t L / EI``,
+``J = J / (mbar L^3)``; segment s has ``e_s = EI_s / EI`` and its own
+``beta_s = beta (mu_s / e_s)^(1/4)``, ``mu_s = mbar_s / mbar``.
 
 Spring-masses at a clamped or pinned end see a fixed point (W = 0 there): each
 is a decoupled oscillator and ``sqrt(k/m)`` is a natural frequency of the
@@ -46,9 +66,13 @@ What is guaranteed about not missing roots
 * Counting.  ``J(beta)`` = number of natural frequencies (with multiplicity,
   rigid-body modes included) strictly below ``beta`` is computed by the
   Wittrick-Williams algorithm: J = J0 + s{K}, J0 = clamped-clamped
-  frequencies of the segments below beta (closed form), s{K} = number of
-  negative pivots of the exact dynamic stiffness matrix (segments' closed
-  form + springs + masses), eliminated node by node.  It is exact as long as
+  frequencies of the segments below their own beta_s (closed form), s{K} =
+  number of negative pivots of the exact dynamic stiffness matrix (segments'
+  closed form times e_s; point masses ``-M beta^4`` on W and ``-J beta^4`` on W';
+  springs ``+K``, ``+K_t``; a chain condensed onto W from its tip, its own
+  pivots counted: a Sturm count of the chain with the beam point held; a
+  support removes the node's W; a hinge node has two rotations coupled by
+  K_h), eliminated node by node.  It is exact as long as
   the pivot signs are right; they are computed with ``2 dps + 20`` digits
   (plus extra digits for short segments / low frequency).  ``J`` can be wrong
   only for a trial ``beta`` very close to a natural frequency: within the
@@ -75,9 +99,10 @@ What is guaranteed about not missing roots
   the isolating interval, ``RuntimeError``: the two formulations disagree.
   Simple roots are thus zeros of the global determinant to ~1e-(dps + 4);
   multiple roots come from the count alone.
-* Rigid-body modes are counted from the end conditions (dimension of the
-  rigid motions ``a + b x`` they allow: free-free 2, pinned-free 1,
-  sliding-free / free-sliding / sliding-sliding 1, else 0) and returned as
+* Rigid-body modes are counted exactly (Fractions) as the dimension of the
+  rigid motions ``a + b x + sum_h c_h (x - x_h)+`` (kinks only at free hinges)
+  that the ends, supports, springs and rotational springs to ground allow
+  (free-free 2, pinned-free 1, ...; a free hinge adds one) and returned as
   exact zeros; the tests check that this equals ``J(0+)``.
 * Working precision: ``dps + 20`` digits for the global determinant, plus
   digits for short segments, low frequency and stiff springs
@@ -85,23 +110,36 @@ What is guaranteed about not missing roots
   1e-32 on stiff, soft, heavy, close-positioned and 50-attachment scenes.
 
 Public API: :func:`frequencies`, :func:`band`, :func:`global_determinant`,
-:func:`count_below`, :func:`rigid_body_mode_count`, :func:`segment_stiffness_matrix`.
+:func:`count_below`, :func:`rigid_body_mode_count`, :func:`eigenspace`,
+:func:`mode_at_attachments`, :func:`segment_stiffness_matrix`, :data:`KINDS`.
+
+Scenes are dicts in the TOML layout or objects with the same attributes:
+``beam`` with ``left``, ``right`` and either ``length``, ``EI``,
+``mass_per_length`` or ``segments`` (each ``length``, ``EI``,
+``mass_per_length``, from the left end); ``attachments``, each with ``type``
+(dict) or ``kind`` (object), default ``spring_mass``, and ``x`` plus: ``k``, ``m``
+(spring_mass); ``m``, ``J`` = 0 (mass); ``k`` (spring, rotational_spring);
+nothing (support); ``k`` = 0 (hinge, strictly inside); lists ``k``, ``m``
+(oscillator_chain, beam to tip).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 import mpmath
 from mpmath import mp, mpf
 
 __all__ = [
+    "KINDS",
     "band",
     "count_below",
+    "eigenspace",
     "frequencies",
     "global_determinant",
+    "mode_at_attachments",
     "rigid_body_mode_count",
     "segment_stiffness_matrix",
 ]
@@ -136,15 +174,33 @@ _ALIASES = {
 }
 
 _GUARD_DPS = 20
+_SNAP = 10**14  # 1 / (relative distance from a segment boundary or end snapped onto it)
 
 
 # --------------------------------------------------------------------------- input
+
+#: Attachment kinds and what they put on a node (see the module docstring).
+KINDS = (
+    "spring_mass",
+    "mass",
+    "spring",
+    "rotational_spring",
+    "support",
+    "hinge",
+    "oscillator_chain",
+)
 
 
 def _get(obj, name):
     if isinstance(obj, dict):
         return obj[name]
     return getattr(obj, name)
+
+
+def _opt(obj, name, default=None):
+    """``obj[name]`` / ``obj.name`` if present and not None, else ``default``."""
+    value = obj.get(name) if isinstance(obj, dict) else getattr(obj, name, None)
+    return default if value is None else value
 
 
 def _num(value) -> mpf:
@@ -161,6 +217,16 @@ def _num(value) -> mpf:
         raise TypeError(f"cannot convert {value!r} to a number") from exc
 
 
+def _frac(value) -> Fraction:
+    """Exact rational value of a float / int / str / Fraction / mpf (for exact ranks)."""
+    if isinstance(value, mpf):
+        man, exp = value.man_exp
+        return Fraction(man) * Fraction(2) ** exp
+    if isinstance(value, (int, float, str, Fraction)):
+        return Fraction(value)
+    return Fraction(float(value))
+
+
 def _end(value) -> str:
     raw = getattr(value, "value", value)
     if not isinstance(raw, str):
@@ -171,51 +237,187 @@ def _end(value) -> str:
     return _ALIASES[key]
 
 
+def _kind(att) -> str:
+    if isinstance(att, dict):
+        kind = att.get("type", att.get("kind", "spring_mass"))
+    else:
+        kind = getattr(att, "kind", None) or getattr(att, "type", None) or "spring_mass"
+    kind = str(getattr(kind, "value", kind))
+    if kind not in KINDS:
+        raise ValueError(f"unsupported attachment type {kind!r}")
+    return kind
+
+
+def _segments(beam) -> list:
+    """``(length, EI, mass_per_length)`` of each beam segment from the left end (raw values)."""
+    segments = _opt(beam, "segments")
+    if segments:
+        return [(_get(s, "length"), _get(s, "EI"), _get(s, "mass_per_length")) for s in segments]
+    return [(_get(beam, "length"), _get(beam, "EI"), _get(beam, "mass_per_length"))]
+
+
+def _attachments(scene) -> list:
+    try:
+        return list(_get(scene, "attachments") or ())
+    except (KeyError, AttributeError):
+        return []
+
+
+def _stages(kind: str, att) -> list:
+    """Raw ``[(k_1, m_1), ..., (k_n, m_n)]`` of a spring-mass (n = 1) or an oscillator chain."""
+    if kind == "spring_mass":
+        return [(_get(att, "k"), _get(att, "m"))]
+    ks, ms = list(_get(att, "k")), list(_get(att, "m"))
+    if not ks or len(ks) != len(ms):
+        raise ValueError(f"oscillator_chain needs k and m lists of one length: {ks}, {ms}")
+    return list(zip(ks, ms, strict=True))
+
+
+@dataclass
+class _Node:
+    """A point of the beam: an end, a segment boundary or an attachment point (all
+    quantities dimensionless, see the module docstring)."""
+
+    xi: mpf
+    fix_w: bool = False  # W = 0 (clamped / pinned end, support)
+    fix_t: bool = False  # W' = 0 (clamped / sliding end)
+    hinge: object = None  # None: no hinge; else the hinge stiffness Kh (0: free hinge)
+    k: mpf = mpf(0)  # springs to ground
+    m: mpf = mpf(0)  # point masses
+    kt: mpf = mpf(0)  # rotational springs to ground
+    j: mpf = mpf(0)  # rotary inertias
+    chains: list = field(default_factory=list)  # [(K_i, M_i), ...] per spring-mass / chain
+
+
 @dataclass
 class _Model:
     left: str
     right: str
+    nodes: list  # _Node per point, ascending; nodes[0] and nodes[-1] are the ends
     seg: list  # dimensionless segment lengths (all > 0), len = number of nodes - 1
-    masses: list  # per node: list of (K, M)
+    seg_e: list  # EI of each segment / EI of the first
+    seg_a: list  # (mu_s / e_s)^(1/4): the segment's beta is beta * seg_a[s]
     w_scale: mpf  # w = beta^2 * w_scale
     min_seg: mpf
-    k_max: mpf  # largest K = k L^3 / EI (0 without attachments)
+    min_x: mpf  # smallest seg_a[s] * seg[s]
+    k_max: mpf  # largest K = k L^3 / EI0 of a spring (0 without)
+    kr_max: mpf  # largest rotational / hinge stiffness k L / EI0 (0 without)
+    length: mpf  # L (m)
+
+    @property
+    def masses(self) -> list:
+        """Per node: the (K, M) stages of every spring-mass and chain hung there."""
+        return [[stage for chain in node.chains for stage in chain] for node in self.nodes]
+
+
+def _positive(name: str, *values) -> None:
+    if not all(v > 0 for v in values):
+        raise ValueError(f"{name} must be positive: {values}")
+
+
+def _snap(x, edges: list, length):
+    """``x`` moved onto a segment boundary or an end within a relative 1e-14 of it: the
+    float sums of the segment lengths a scene states its positions with."""
+    for edge in edges:
+        if abs(x - edge) * _SNAP <= length:  # mpf or Fraction
+            return edge
+    return x
 
 
 def _build(scene) -> _Model:
-    """Nondimensionalise ``scene`` at the current mp precision."""
+    """Nondimensionalise ``scene`` at the current mp precision.
+
+    Units: L = total length, EI0 and mbar0 those of the first segment; then
+    K = k L^3 / EI0, M = m / (mbar0 L), Kt = k_theta L / EI0, J = J / (mbar0 L^3).
+    """
     beam = _get(scene, "beam")
-    length = _num(_get(beam, "length"))
-    ei = _num(_get(beam, "EI"))
-    mbar = _num(_get(beam, "mass_per_length"))
-    if not (length > 0 and ei > 0 and mbar > 0):
-        raise ValueError("length, EI and mass_per_length must be positive")
+    raw = _segments(beam)
+    seg_len = [_num(s[0]) for s in raw]
+    seg_ei = [_num(s[1]) for s in raw]
+    seg_mu = [_num(s[2]) for s in raw]
+    _positive("segment length, EI and mass_per_length", *seg_len, *seg_ei, *seg_mu)
+    length = mpmath.fsum(seg_len)
+    ei0, mu0 = seg_ei[0], seg_mu[0]
     left = _end(_get(beam, "left"))
     right = _end(_get(beam, "right"))
-    try:
-        atts = list(_get(scene, "attachments"))
-    except (KeyError, AttributeError):
-        atts = []
-    groups: dict = {}
-    for att in atts:
-        kind = att.get("type", "spring_mass") if isinstance(att, dict) else "spring_mass"
-        if kind != "spring_mass":
-            raise ValueError(f"unsupported attachment type {kind!r}")
-        x = _num(_get(att, "x"))
-        k = _num(_get(att, "k"))
-        m = _num(_get(att, "m"))
+    bounds, x = [], mpf(0)
+    for ell in seg_len[:-1]:
+        x += ell
+        bounds.append(x)
+    found: dict = {}
+
+    def node_at(x):
+        if x not in found:
+            found[x] = _Node(x / length)
+        return found[x]
+
+    node_at(mpf(0)), node_at(length)
+    for b in bounds:
+        node_at(b)
+    k_max = kr_max = mpf(0)
+    for att in _attachments(scene):
+        kind = _kind(att)
+        x = _snap(_num(_get(att, "x")), [mpf(0)] + bounds + [length], length)
         if not (0 <= x <= length):
-            raise ValueError(f"attachment position {x} outside [0, L]")
-        if not (k > 0 and m > 0):
-            raise ValueError("spring-mass needs k > 0 and m > 0")
-        groups.setdefault(x, []).append((k * length**3 / ei, m / (mbar * length)))
-    xs = sorted(x for x in groups if 0 < x < length)
-    nodes = [mpf(0)] + xs + [length]
-    seg = [(nodes[j + 1] - nodes[j]) / length for j in range(len(nodes) - 1)]
-    masses = [groups.get(x, []) for x in nodes]
-    w_scale = mpmath.sqrt(ei / mbar) / length**2
-    k_max = max((k for group in masses for k, _m in group), default=mpf(0))
-    return _Model(left, right, seg, masses, w_scale, min(seg), k_max)
+            raise ValueError(f"{kind} position {x} outside [0, L]")
+        node = node_at(x)
+        if kind in ("spring_mass", "oscillator_chain"):
+            chain = [(_num(k), _num(m)) for k, m in _stages(kind, att)]
+            _positive(f"{kind} k and m", *(v for stage in chain for v in stage))
+            node.chains.append([(k * length**3 / ei0, m / (mu0 * length)) for k, m in chain])
+            k_max = max([k_max] + [k for k, _ in node.chains[-1]])
+        elif kind == "mass":
+            m, j = _num(_get(att, "m")), _num(_opt(att, "J", 0))
+            if m < 0 or j < 0:
+                raise ValueError(f"mass needs m >= 0 and J >= 0: {m}, {j}")
+            node.m += m / (mu0 * length)
+            node.j += j / (mu0 * length**3)
+        elif kind == "spring":
+            k = _num(_get(att, "k"))
+            _positive("spring k", k)
+            node.k += k * length**3 / ei0
+            k_max = max(k_max, node.k)
+        elif kind == "rotational_spring":
+            k = _num(_get(att, "k"))
+            _positive("rotational_spring k", k)
+            node.kt += k * length / ei0
+            kr_max = max(kr_max, node.kt)
+        elif kind == "support":
+            node.fix_w = True
+        else:  # hinge
+            k = _num(_opt(att, "k", 0))
+            if not (0 < x < length):
+                raise ValueError(f"a hinge must be strictly inside the beam, got x = {x}")
+            if node.hinge is not None or k < 0:
+                raise ValueError(f"one hinge per point, k >= 0 (x = {x}, k = {k})")
+            node.hinge = k * length / ei0
+            kr_max = max(kr_max, node.hinge)
+    xs = sorted(found)
+    nodes = [found[x] for x in xs]
+    for node in nodes:
+        if node.hinge is not None and (node.kt != 0 or node.j != 0):
+            raise ValueError(
+                f"rotational spring or rotary inertia at the hinge at x = {node.xi * length}: "
+                "ambiguous (which side?)"
+            )
+    nodes[0].fix_w |= left in ("clamped", "pinned")
+    nodes[0].fix_t |= left in ("clamped", "sliding")
+    nodes[-1].fix_w |= right in ("clamped", "pinned")
+    nodes[-1].fix_t |= right in ("clamped", "sliding")
+    # material of each mesh segment: the beam segment it lies in
+    seg, seg_e, seg_a = [], [], []
+    edges = [mpf(0)] + bounds
+    for a, b in zip(xs, xs[1:], strict=False):
+        s = max(i for i, e in enumerate(edges) if e <= a)
+        e_rel, mu_rel = seg_ei[s] / ei0, seg_mu[s] / mu0
+        seg.append((b - a) / length)
+        seg_e.append(e_rel)
+        seg_a.append(mpf(1) if e_rel == mu_rel else mpmath.root(mu_rel / e_rel, 4))
+    w_scale = mpmath.sqrt(ei0 / mu0) / length**2
+    min_x = min(a * ell for a, ell in zip(seg_a, seg, strict=True))
+    return _Model(
+        left, right, nodes, seg, seg_e, seg_a, w_scale, min(seg), min_x, k_max, kr_max, length
+    )
 
 
 def _extra_dps(x) -> int:
@@ -228,25 +430,80 @@ def _extra_dps(x) -> int:
 
 
 def _work_dps(model: _Model, dps: int, beta) -> int:
-    extra = _extra_dps(beta * model.min_seg)
+    extra = _extra_dps(beta * model.min_x)
     extra += int(3 * math.ceil(max(0.0, -float(mpmath.log10(model.min_seg)))))
     return dps + _GUARD_DPS + extra
 
 
-def rigid_body_mode_count(scene) -> int:
-    """Dimension of the rigid motions ``Y = a + b x`` allowed by the end conditions."""
+def _rigid_constraints(scene) -> tuple:
+    """Rigid motions ``W(x) = a + b x + sum_h c_h (x - x_h)_+`` (kinks c_h at the free
+    hinges x_h): the hinge positions and the exact linear constraints on (a, b, c...)
+    from the ends, supports, springs and rotational springs to ground."""
     beam = _get(scene, "beam")
     left, right = _end(_get(beam, "left")), _end(_get(beam, "right"))
-    rows = []  # constraints on (a, b) with x/L = 0 at the left end and 1 at the right end
-    rows += {"clamped": [(1, 0), (0, 1)], "pinned": [(1, 0)], "sliding": [(0, 1)]}.get(left, [])
-    rows += {"clamped": [(1, 1), (0, 1)], "pinned": [(1, 1)], "sliding": [(0, 1)]}.get(right, [])
-    rank = 0
-    if rows:
-        rank = 1
-        first = rows[0]
-        if any(first[0] * r[1] - first[1] * r[0] != 0 for r in rows[1:]):
-            rank = 2
-    return 2 - rank
+    edges = [Fraction(0)]
+    for seg in _segments(beam):
+        edges.append(edges[-1] + _frac(seg[0]))
+    length = edges[-1]
+    atts = [(_kind(a), a) for a in _attachments(scene)]
+
+    def at(a):
+        return _snap(_frac(_get(a, "x")), edges, length)
+
+    hinges = sorted(at(a) for kind, a in atts if kind == "hinge" and _num(_opt(a, "k", 0)) == 0)
+
+    def value(x):
+        return [Fraction(1), x] + [x - h if x > h else Fraction(0) for h in hinges]
+
+    def slope(x):
+        return [Fraction(0), Fraction(1)] + [Fraction(1 if x > h else 0) for h in hinges]
+
+    rows = []
+    for x, end in ((Fraction(0), left), (length, right)):
+        if end in ("clamped", "pinned"):
+            rows.append(value(x))
+        if end in ("clamped", "sliding"):
+            rows.append(slope(x))
+    for kind, a in atts:
+        if kind in ("support", "spring"):
+            rows.append(value(at(a)))
+        elif kind == "rotational_spring":
+            rows.append(slope(at(a)))
+    return hinges, rows
+
+
+def _null_space(rows: list, n: int) -> list:
+    """Exact basis of {v : rows v = 0} (Fractions), by reduced row echelon form."""
+    rows = [list(r) for r in rows]
+    pivots, r = [], 0
+    for c in range(n):
+        p = next((i for i in range(r, len(rows)) if rows[i][c] != 0), None)
+        if p is None:
+            continue
+        rows[r], rows[p] = rows[p], rows[r]
+        pv = rows[r][c]
+        rows[r] = [v / pv for v in rows[r]]
+        for i in range(len(rows)):
+            if i != r and rows[i][c] != 0:
+                f = rows[i][c]
+                rows[i] = [a - f * b for a, b in zip(rows[i], rows[r], strict=True)]
+        pivots.append(c)
+        r += 1
+    basis = []
+    for free in (c for c in range(n) if c not in pivots):
+        v = [Fraction(0)] * n
+        v[free] = Fraction(1)
+        for i, c in enumerate(pivots):
+            v[c] = -rows[i][free]
+        basis.append(v)
+    return basis
+
+
+def rigid_body_mode_count(scene) -> int:
+    """Dimension of the rigid motions (straight pieces, kinks only at free hinges) that the
+    ends, supports, springs and rotational springs to ground allow."""
+    hinges, rows = _rigid_constraints(scene)
+    return len(_null_space(rows, 2 + len(hinges)))
 
 
 # ------------------------------------------------------------- global determinant
@@ -327,63 +584,134 @@ def _global_det(model: _Model, beta):
 
 def _global_rows(model: _Model, beta):
     """Rows of the global system, the column count, the deflection row at each node and
-    the mass columns of each node."""
+    the mass columns of each node.
+
+    Columns: the hanging masses of node 0, the 4 coefficients of segment 0, the
+    masses of node 1, ... Rows, node by node (node 0, the last node, then the
+    interior ones), in the order W, W', moment, shear; then one row per hanging
+    mass.  Node conditions, in the jump form ``[f] = f(x+) - f(x-)`` with a missing
+    side contributing 0 (the row is negated at the right end)::
+
+        W fixed:     W(x-) = 0, W(x+) = 0          else  [W] = 0,  e [W'''] + (K - M b4) W
+                                                          + sum_c K1_c (W - u1_c) = 0
+        W' fixed:    W'(x) = 0                     hinge: e_L W''(x-) = Kh [W'],
+                                                          e_R W''(x+) = Kh [W']
+        otherwise:   [W'] = 0,  e [W''] - (Kt - J b4) W' = 0
+
+    every derivative being d^n W / dxi^n = beta_s^n * (scaled row), each row divided
+    by the largest of its segment factors (so a uniform beam gets the rows of
+    W^(n) / beta^n).
+    """
     nseg = len(model.seg)
+    bs = [beta * a for a in model.seg_a]
     trig = []
-    for ell in model.seg:
-        x = beta * ell
+    for ell, b in zip(model.seg, bs, strict=True):
+        x = b * ell
         trig.append((mpmath.cos(x), mpmath.sin(x), mpmath.exp(-x)))
-    # columns: masses of node 0, seg 0, masses of node 1, seg 1, ..., seg n-1, masses of node n
+    masses = model.masses
     cols, mass_cols, ncol = [], [], 0
     for j in range(nseg + 1):
-        mass_cols.append(list(range(ncol, ncol + len(model.masses[j]))))
-        ncol += len(model.masses[j])
+        mass_cols.append(list(range(ncol, ncol + len(masses[j]))))
+        ncol += len(masses[j])
         if j < nseg:
             cols.append(ncol)
             ncol += 4
-    b3 = beta**3
     b4 = beta**4
     rows = []
 
-    def node_point(j):  # (segment, at_end) where the deflection at node j is evaluated
-        return (j, False) if j < nseg else (nseg - 1, True)
+    def row_of(side, order):
+        return _scaled_row(side[0], side[1], order, trig, cols)
 
-    def shear_forces(row, j, sign):
-        # row += sign * sum_i (K_i / beta^3) (W(x_j) - u_i)
-        seg_j, at_end = node_point(j)
-        w_row = _scaled_row(seg_j, at_end, 0, trig, cols)
-        for (k, _m), uc in zip(model.masses[j], mass_cols[j], strict=True):
-            _add(row, w_row, sign * k / b3)
-            row[uc] = row.get(uc, 0) - sign * k / b3
+    def combine(terms, sign=1) -> dict:
+        """sum of factor * W^(order) / (largest factor) over terms (side, order, factor)."""
+        scale = max(abs(f) for _s, _o, f in terms if f != 0)
+        row: dict = {}
+        for side, order, f in terms:
+            if f != 0:
+                _add(row, row_of(side, order), sign * f / scale)
+        return row, scale
 
-    for order in _END_ROWS[model.left]:
-        row = _scaled_row(0, False, order, trig, cols)
-        if order == 3:
-            shear_forces(row, 0, +1)
-        rows.append(row)
-    for order in _END_ROWS[model.right]:
-        row = _scaled_row(nseg - 1, True, order, trig, cols)
-        if order == 3:
-            shear_forces(row, nseg, -1)
-        rows.append(row)
-    for j in range(1, nseg):
-        for order in range(4):
-            row = _scaled_row(j, False, order, trig, cols)
-            _add(row, _scaled_row(j - 1, True, order, trig, cols), -1)
-            if order == 3:
-                shear_forces(row, j, +1)
+    for j in [0, nseg] + list(range(1, nseg)):
+        node = model.nodes[j]
+        left = (j - 1, True) if j > 0 else None
+        right = (j, False) if j < nseg else None
+        sides = [s for s in (left, right) if s is not None]
+        ref = right if right is not None else left
+        sign = 1 if right is not None else -1
+
+        def jump(order, ei_weighted=True, left=left, right=right):
+            """Terms of [e W^(order)] (or [W^(order)]), right side minus left side."""
+            terms = []
+            for side, s in ((right, 1), (left, -1)):
+                if side is not None:
+                    f = s * bs[side[0]] ** order
+                    terms.append((side, order, f * model.seg_e[side[0]] if ei_weighted else f))
+            return terms
+
+        # order 0
+        if node.fix_w:
+            rows.extend(row_of(side, 0) for side in sides)
+        elif len(sides) == 2:
+            rows.append(combine(jump(0, False))[0])
+        # order 1
+        if node.fix_t:
+            rows.append(row_of(ref, 1))
+        elif len(sides) == 2 and node.hinge is None:
+            rows.append(combine(jump(1, False))[0])
+        # order 2: moments
+        if node.hinge is not None:
+            kink = jump(1, False)
+            for side in (left, right):
+                f = bs[side[0]] ** 2 * model.seg_e[side[0]]
+                terms = [(side, 2, f)] + [(s, o, -node.hinge * g) for s, o, g in kink]
+                rows.append(combine(terms)[0])
+        elif not node.fix_t:
+            row, scale = combine(jump(2), sign)
+            coef = node.kt - node.j * b4
+            if coef != 0:
+                _add(row, row_of(ref, 1), -sign * coef * bs[ref[0]] / scale)
             rows.append(row)
+        # order 3: shear
+        if not node.fix_w:
+            row, scale = combine(jump(3), sign)
+            w_row = row_of(ref, 0)
+            coef = node.k - node.m * b4
+            if coef != 0:
+                _add(row, w_row, sign * coef / scale)
+            for chain, uc in zip(node.chains, _chain_cols(node, mass_cols[j]), strict=True):
+                k1 = chain[0][0]
+                _add(row, w_row, sign * k1 / scale)
+                row[uc] = row.get(uc, 0) - sign * k1 / scale
+            rows.append(row)
+    w_rows = []
     for j in range(nseg + 1):
-        seg_j, at_end = node_point(j)
-        w_row = _scaled_row(seg_j, at_end, 0, trig, cols)
-        for (k, m), uc in zip(model.masses[j], mass_cols[j], strict=True):
-            scale = k + m * b4
-            row = {}
-            _add(row, w_row, -k / scale)
-            row[uc] = (k - m * b4) / scale
-            rows.append(row)
-    w_rows = [_scaled_row(*node_point(j), 0, trig, cols) for j in range(nseg + 1)]
+        w_row = _scaled_row(*((j, False) if j < nseg else (nseg - 1, True)), 0, trig, cols)
+        w_rows.append(w_row)
+        node = model.nodes[j]
+        for chain, uc in zip(node.chains, _chain_cols(node, mass_cols[j]), strict=True):
+            # stage i: -K_i u_{i-1} + (K_i + K_{i+1} - M_i b4) u_i - K_{i+1} u_{i+1} = 0, u_0 = W
+            for i, (k, m) in enumerate(chain):
+                k_next = chain[i + 1][0] if i + 1 < len(chain) else 0
+                scale = k + k_next + m * b4
+                row = {}
+                if i == 0:
+                    _add(row, w_row, -k / scale)
+                else:
+                    row[uc + i - 1] = -k / scale
+                row[uc + i] = (k + k_next - m * b4) / scale
+                if k_next:
+                    row[uc + i + 1] = -k_next / scale
+                rows.append(row)
     return rows, ncol, w_rows, mass_cols
+
+
+def _chain_cols(node: _Node, cols: list) -> list:
+    """Column of the first mass of each chain hung at ``node`` (its masses follow)."""
+    firsts, i = [], 0
+    for chain in node.chains:
+        firsts.append(cols[i])
+        i += len(chain)
+    return firsts
 
 
 # ------------------------------------------------------ Wittrick-Williams counting
@@ -449,14 +777,75 @@ def segment_stiffness_matrix(beta, ell):
     ]
 
 
+def _condense_chain(chain, b4):
+    """Eliminate the masses of one chain (from its tip), the beam point held.
+
+    Returns (number of negative pivots, product of the pivots over their positive
+    envelopes, the stiffness the chain adds to the beam point's W).  The pivots are
+    ``p_i = K_i + q_i`` with ``q_n = -M_n b4``, ``q_i = -M_i b4 + K_{i+1} q_{i+1} / p_{i+1}``
+    (a Sturm sequence of the chain's tridiagonal ``K - w^2 M``); the beam point gets
+    ``K_1 q_1 / p_1`` (for one stage ``-K M b4 / (K - M b4)``), free of cancellation.
+    """
+    neg, prod = 0, mpf(1)
+    q = piv = None
+    for i in range(len(chain) - 1, -1, -1):
+        k, m = chain[i]
+        mb = m * b4
+        if q is None:
+            q, envelope = -mb, k + mb
+        else:
+            k_next = chain[i + 1][0]
+            q, envelope = -mb + k_next * q / piv, k + k_next + mb
+        piv = k + q
+        if piv == 0:
+            raise _Degenerate
+        if piv < 0:
+            neg += 1
+        prod *= piv / envelope
+    return neg, prod, chain[0][0] * q / piv
+
+
+def _eliminate(block: list, coupling, scales: list):
+    """Symmetric Gaussian elimination of a node block (small, dense) with its coupling
+    rows to the next node's (W, W').  Returns (negative pivots, product of pivot / scale,
+    the carry ``G^T D^-1 G`` as (c00, c01, c11))."""
+    n = len(block)
+    d = [list(r) for r in block]
+    g = [list(r) for r in coupling] if coupling is not None else None
+    neg, prod = 0, mpf(1)
+    c00 = c01 = c11 = mpf(0)
+    for p in range(n):
+        piv = d[p][p]
+        if piv == 0:
+            raise _Degenerate
+        if piv < 0:
+            neg += 1
+        prod *= piv / scales[p]
+        for r in range(p + 1, n):
+            f = d[r][p] / piv
+            if f != 0:
+                for c in range(p + 1, n):
+                    d[r][c] -= f * d[p][c]
+                if g is not None:
+                    g[r][0] -= f * g[p][0]
+                    g[r][1] -= f * g[p][1]
+        if g is not None:
+            g0, g1 = g[p]
+            c00 += g0 * g0 / piv
+            c01 += g0 * g1 / piv
+            c11 += g1 * g1 / piv
+    return neg, prod, (c00, c01, c11)
+
+
 def _chain(model: _Model, beta):
     """Wittrick-Williams: (number of natural frequencies strictly below beta > 0, F).
 
     J = J0 + s{K}: J0 sums the clamped-clamped frequencies of the segments below
-    beta (the mass DOFs and massless springs contribute none), s{K} is the number
-    of negative pivots of the symmetric Gaussian elimination of the dynamic
-    stiffness matrix, eliminating node by node along the beam (mass DOFs of a
-    node first, then its W and W').
+    their own beta (the mass DOFs and massless springs contribute none), s{K} is the
+    number of negative pivots of the symmetric Gaussian elimination of the dynamic
+    stiffness matrix, eliminating node by node along the beam (the masses of every
+    chain hung at a node first, from the chain's tip, then the node's W and W', or
+    W, W'(x-), W'(x+) at a hinge; a fixed W or W' is not a DOF).
 
     F = det(K) * prod_j delta_j (delta_j = (1 - cos x_j cosh x_j) / cosh x_j) is
     the determinant of the dynamic stiffness with the segment poles removed,
@@ -474,8 +863,16 @@ def _chain(model: _Model, beta):
     c00 = c01 = c11 = mpf(0)
     prev = None
     for j in range(nseg + 1):
+        node = model.nodes[j]
         if j < nseg:
-            ks, n0, delta = _segment_stiffness(beta, beta2, beta3, model.seg[j])
+            a, e = model.seg_a[j], model.seg_e[j]
+            if a == 1:
+                ks, n0, delta = _segment_stiffness(beta, beta2, beta3, model.seg[j])
+            else:
+                b = beta * a
+                ks, n0, delta = _segment_stiffness(b, b * b, b * b * b, model.seg[j])
+            if e != 1:
+                ks = tuple(e * v for v in ks)
             neg += n0
             prod *= delta
         d00, d01, d11 = -c00, -c01, -c11
@@ -483,29 +880,47 @@ def _chain(model: _Model, beta):
             d00 += prev[0]
             d01 -= prev[1]
             d11 += prev[4]
+        if node.k != 0 or node.m != 0:
+            d00 += node.k - node.m * b4
+        if node.kt != 0 or node.j != 0:
+            d11 += node.kt - node.j * b4
+        for chain in node.chains:
+            if len(chain) == 1:  # one spring-mass (the common case, inline)
+                k, m = chain[0]
+                piv = k - m * b4
+                if piv == 0:
+                    raise _Degenerate
+                if piv < 0:
+                    neg += 1
+                prod *= piv / (k + m * b4)
+                d00 -= k * m * b4 / piv  # k - k^2 / piv: the mass condensed onto W
+            else:
+                n_chain, p_chain, condensed = _condense_chain(chain, b4)
+                neg += n_chain
+                prod *= p_chain
+                d00 += condensed
+        # coupling rows (node j dof) -> (W, W') of node j+1
+        g = None if j == nseg else ((ks[2], ks[3]), (-ks[3], ks[5]))
+        if node.hinge is not None:  # DOFs W (unless fixed), W'(x-), W'(x+)
+            kh = node.hinge
+            block = [[d00 + ks[0], d01, ks[1]], [d01, d11 + kh, -kh], [ks[1], -kh, ks[4] + kh]]
+            coupling = [g[0], (mpf(0), mpf(0)), g[1]]
+            scales = [beta3, beta, beta]
+            keep = [1, 2] if node.fix_w else [0, 1, 2]
+            n_node, p_node, (c00, c01, c11) = _eliminate(
+                [[block[r][c] for c in keep] for r in keep],
+                [coupling[r] for r in keep],
+                [scales[r] for r in keep],
+            )
+            neg += n_node
+            prod *= p_node
+            prev = ks
+            continue
         if j < nseg:  # start block of segment j
             d00 += ks[0]
             d01 += ks[1]
             d11 += ks[4]
-        for k, m in model.masses[j]:
-            piv = k - m * b4
-            if piv == 0:
-                raise _Degenerate
-            if piv < 0:
-                neg += 1
-            prod *= piv / (k + m * b4)
-            d00 -= k * m * b4 / piv  # k - k^2 / piv: the mass condensed onto W
-        if j == 0:
-            free = _END_FREE_DOFS[model.left]
-        elif j == nseg:
-            free = _END_FREE_DOFS[model.right]
-        else:
-            free = (0, 1)
-        if j == nseg:
-            g = None
-        else:
-            # coupling rows (node j dof) -> (W, W') of node j+1
-            g = ((ks[2], ks[3]), (-ks[3], ks[5]))
+        free = (() if node.fix_w else (0,)) + (() if node.fix_t else (1,))
         if free == (0, 1):
             det = d00 * d11 - d01 * d01
             if det == 0:
@@ -665,7 +1080,7 @@ class _Solver:
 
     def det(self, beta):
         # stiff springs: the K / beta^3 shear terms cancel against the mass rows
-        stiff = self.model.k_max / beta**3
+        stiff = max(self.model.k_max / beta**3, self.model.kr_max / beta)
         extra = int(math.ceil(float(mpmath.log10(stiff)))) if stiff > 1 else 0
         with mp.workdps(_work_dps(self.model, self.dps, beta) + extra):
             return _global_det(self.model, +beta)
@@ -754,20 +1169,28 @@ def count_below(scene, w, dps: int = 40) -> int:
         return solver.count(beta)
 
 
+def _null_vectors(model: _Model, beta, m: int):
+    """The ``m`` right singular vectors of the global matrix with the smallest singular
+    values, and the mass columns of each node."""
+    rows, ncol, w_rows, mass_cols = _global_rows(model, beta)
+    A = mpmath.matrix(len(rows), ncol)
+    for r, row in enumerate(rows):
+        for col, val in row.items():
+            A[r, col] = val
+    _u, s, V = mpmath.svd_r(A)
+    order = sorted(range(ncol), key=lambda i: s[i])[:m]
+    return [[V[i, c] for c in range(ncol)] for i in order], w_rows, mass_cols
+
+
 def mode_at_attachments(scene, w, dps: int = 40):
-    """Mode shape at a natural frequency ``w``: the beam's deflection at each attachment and
-    each mass's displacement (attachments sorted by x), from the null vector (SVD) of the
-    global matrix. Arbitrary scale; floats."""
+    """Mode shape at a natural frequency ``w``: for every hanging mass (the mass of each
+    spring-mass, each mass of each oscillator chain; sorted by x, stable) the beam's
+    deflection at its attachment point and the mass's displacement, from the null vector
+    (SVD) of the global matrix. Arbitrary scale; floats."""
     with mp.workdps(dps + _GUARD_DPS):
         model = _build(scene)
         beta = _beta_of(model, _num(w))
-        rows, ncol, w_rows, mass_cols = _global_rows(model, beta)
-        A = mpmath.matrix(len(rows), ncol)
-        for r, row in enumerate(rows):
-            for col, val in row.items():
-                A[r, col] = val
-        _u, _s, V = mpmath.svd_r(A)
-        v = [V[V.rows - 1, i] for i in range(ncol)]
+        (v,), w_rows, mass_cols = _null_vectors(model, beta, 1)
         beam, masses = [], []
         for j, cols in enumerate(mass_cols):
             deflection = sum(val * v[col] for col, val in w_rows[j].items())
@@ -796,64 +1219,62 @@ def global_determinant(scene, w, dps: int = 40):
 def eigenspace(scene, w, m: int, xs, dps: int = 40):
     """Basis of the eigenspace at a natural frequency ``w`` (rad/s) of multiplicity ``m``:
     the right singular vectors of the global matrix for its ``m`` smallest singular values,
-    each evaluated as ``[W(x) for x in xs] + [u_i for every mass]`` (masses sorted by x as
-    the scene's attachments; deflections in the units of the scene). Floats, arbitrary
-    basis and scale; independent of any transfer matrix. For ``w = 0`` pass the rigid-body
-    count as ``m``: the basis is that of the rigid motions ``a + b x`` allowed by the ends.
+    each evaluated as ``[W(x) for x in xs] + [u_i for every hanging mass]`` (the mass of
+    each spring-mass and each mass of each oscillator chain in chain order, the attachments
+    sorted by x, stable; point masses move with the beam and are not listed; deflections in
+    the units of the scene). Floats, arbitrary basis and scale; independent of any transfer
+    matrix. For ``w = 0`` pass the rigid-body count as ``m``: the basis is that of the rigid
+    motions (straight pieces, kinks at free hinges) the ends, supports and springs allow.
     """
     with mp.workdps(dps + _GUARD_DPS):
         model = _build(scene)
-        length = _num(_get(_get(scene, "beam"), "length"))
-        masses = sum(len(g) for g in model.masses)
         if _num(w) == 0:
-            return _rigid_space(scene, m, xs, masses)
+            return _rigid_space(scene, m, xs)
         beta = _beta_of(model, _num(w))
-        rows, ncol, _w_rows, mass_cols = _global_rows(model, beta)
-        A = mpmath.matrix(len(rows), ncol)
-        for r, row in enumerate(rows):
-            for col, val in row.items():
-                A[r, col] = val
-        _u, s, V = mpmath.svd_r(A)
-        order = sorted(range(ncol), key=lambda i: s[i])[:m]
-        nodes = [mpf(0)]
-        for ell in model.seg:
-            nodes.append(nodes[-1] + ell)
+        vectors, _w_rows, mass_cols = _null_vectors(model, beta, m)
+        nseg = len(model.seg)
+        starts = [node.xi for node in model.nodes]
+        bases = []
+        for x in xs:
+            xi = _num(x) / model.length
+            j = min(max(k for k in range(nseg) if starts[k] <= xi), nseg - 1)
+            sloc, b = xi - starts[j], beta * model.seg_a[j]
+            base = 4 * j + sum(len(cols) for cols in mass_cols[: j + 1])
+            funcs = (
+                mpmath.cos(b * sloc),
+                mpmath.sin(b * sloc),
+                mpmath.exp(-b * sloc),
+                mpmath.exp(b * (sloc - model.seg[j])),
+            )
+            bases.append((base, funcs))
         out = []
-        for i in order:
-            v = [V[i, c] for c in range(ncol)]
-            row = []
-            for x in xs:
-                xi = _num(x) / length
-                j = min(max(k for k in range(len(model.seg)) if nodes[k] <= xi), len(model.seg) - 1)
-                sloc = xi - nodes[j]
-                base = 4 * j + sum(len(g) for g in model.masses[: j + 1])
-                basis = (
-                    mpmath.cos(beta * sloc),
-                    mpmath.sin(beta * sloc),
-                    mpmath.exp(-beta * sloc),
-                    mpmath.exp(beta * (sloc - model.seg[j])),
-                )
-                row.append(float(sum(b * v[base + t] for t, b in enumerate(basis))))
+        for v in vectors:
+            row = [float(mpmath.fdot(funcs, v[base : base + 4])) for base, funcs in bases]
             row += [float(v[c]) for cols in mass_cols for c in cols]
             out.append(row)
     return out
 
 
-def _rigid_space(scene, m, xs, masses):
-    """The rigid motions a + b x (masses moving with the beam point) the ends allow."""
-    beam = _get(scene, "beam")
-    length = float(_num(_get(beam, "length")))
-    left, right = _end(_get(beam, "left")), _end(_get(beam, "right"))
-    atts = sorted(float(_num(_get(a, "x"))) for a in _get(scene, "attachments"))
-    basis = []
-    if left not in ("clamped", "pinned") and right not in ("clamped", "pinned"):
-        basis.append(lambda x: 1.0)  # translation
-    if (left, right) in (("free", "free"),):
-        basis.append(lambda x: x / length - 0.5)  # rotation about the middle
-    if left == "pinned" and right in ("free",):
-        basis.append(lambda x: x / length)
-    if right == "pinned" and left in ("free",):
-        basis.append(lambda x: 1.0 - x / length)
+def _hanging_mass_positions(scene) -> list:
+    """x of every hanging mass, in the order of :func:`eigenspace`."""
+    out = []
+    for att in _attachments(scene):
+        kind = _kind(att)
+        if kind in ("spring_mass", "oscillator_chain"):
+            out += [_frac(_get(att, "x"))] * len(_stages(kind, att))
+    return sorted(out)
+
+
+def _rigid_space(scene, m, xs):
+    """The rigid motions (hanging masses moving with their beam point) the scene allows."""
+    hinges, rows = _rigid_constraints(scene)
+    basis = _null_space(rows, 2 + len(hinges))
     if len(basis) != m:
-        raise ValueError(f"{m} rigid-body modes asked for, the ends allow {len(basis)}")
-    return [[f(float(x)) for x in xs] + [f(x) for x in atts] for f in basis]
+        raise ValueError(f"{m} rigid-body modes asked for, the scene allows {len(basis)}")
+    points = [_frac(x) for x in xs] + _hanging_mass_positions(scene)
+
+    def motion(v, x):
+        kinks = zip(v[2:], hinges, strict=True)
+        return v[0] + v[1] * x + sum(c * (x - h) for c, h in kinks if x > h)
+
+    return [[float(motion(v, x)) for x in points] for v in basis]
