@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import reference_model as ref
+from eigenspaces import check_shapes
 
 import mstmm
 from mstmm import progress
@@ -50,7 +51,8 @@ def test_blocks_across_a_multiple_root_keep_every_copy():
     below = ref.count_below(sc, w * (1 - WINDOW), dps=30)
     above = ref.count_below(sc, w * (1 + WINDOW), dps=30)
     assert above - below == 6 and below > BLOCK_MODES
-    sol = mstmm.solve(sc, modes=above + 5, shapes=False)
+    sol = mstmm.solve(sc, modes=above + 5)
+    check_shapes(sc, sol)
     assert sol.count_checked, sol.warnings
     hit = np.flatnonzero(np.abs(sol.omega - w) <= 1e-12 * w)
     assert list(hit) == list(range(below, above))

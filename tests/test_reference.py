@@ -13,6 +13,7 @@ import sys
 
 import numpy as np
 import pytest
+from eigenspaces import check_shapes
 
 import mstmm
 
@@ -84,7 +85,8 @@ def test_paper_formulation_reproduces_table_1(reference):
 def test_band_returns_every_frequency_inside(reference):
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     ref = np.array(reference["wu_chou_1998"])
-    sol = mstmm.solve(scene, band=(150.0, 8000.0), shapes=False)
+    sol = mstmm.solve(scene, band=(150.0, 8000.0))
+    check_shapes(scene, sol)
     inside = ref[(ref > 150) & (ref < 8000)]
     assert len(sol.omega) == len(inside)
     assert rel_err(sol.omega, inside).max() < 1e-13

@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 import reference_model as ref
+from eigenspaces import check_shapes
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -56,7 +57,8 @@ def test_count_matches_reference_count(left, right):
 def test_identical_oscillators_at_one_point_give_a_double_root():
     """Three identical spring-masses at x = 0.5: sqrt(k/m) is a root of multiplicity 2."""
     sc = make("clamped", "free", [(0.5, 100.0, 1.0)] * 3)
-    sol = mstmm.solve(sc, modes=6, shapes=False)
+    sol = mstmm.solve(sc, modes=6)
+    check_shapes(sc, sol)
     exact = ref.frequencies(sc, 6, dps=30)
     assert sol.count_checked
     assert max(rel(a, b) for a, b in zip(sol.omega, exact)) < 1e-13
@@ -70,7 +72,8 @@ def test_close_pair_tuned_to_a_beam_mode():
     w2 = (2 * math.pi) ** 2
     m = 0.01
     sc = make("pinned", "pinned", [(0.3, w2**2 * m, m), (0.3 + 1e-7, w2**2 * m, m)])
-    sol = mstmm.solve(sc, modes=8, shapes=False)
+    sol = mstmm.solve(sc, modes=8)
+    check_shapes(sc, sol)
     exact = ref.frequencies(sc, 8, dps=30)
     assert sol.count_checked
     assert len(sol.omega) == 8
@@ -80,7 +83,8 @@ def test_close_pair_tuned_to_a_beam_mode():
 def test_free_free_gives_two_zeros_then_elastic_modes():
     """Free-free: 0 twice, then cos b cosh b = 1, b1 = 4.730040744862704."""
     sc = make("free", "free", [], L=2.0, EI=3.0, mbar=0.5)
-    sol = mstmm.solve(sc, modes=5, shapes=False)
+    sol = mstmm.solve(sc, modes=5)
+    check_shapes(sc, sol)
     assert list(sol.omega[:2]) == [0.0, 0.0]
     assert list(sol.multiplicity[:2]) == [2, 2]
     b1 = 4.730040744862704
@@ -146,7 +150,8 @@ def test_property_no_missed_or_spurious_root(sc):
 
 
 def check_lowest_20(sc):
-    sol = mstmm.solve(sc, modes=20, shapes=False)
+    sol = mstmm.solve(sc, modes=20)
+    check_shapes(sc, sol)
     assert len(sol.omega) == 20
     assert sol.count_checked, sol.warnings
     delta = 1e-9
@@ -187,7 +192,8 @@ def test_spring_mass_next_to_a_pinned_left_end(right, x, k, m):
     carries the subspace by its 2x2 minors; every frequency must match the reference
     and be certified."""
     sc = make("pinned", right, [(x, k, m)])
-    sol = mstmm.solve(sc, modes=6, shapes=False)
+    sol = mstmm.solve(sc, modes=6)
+    check_shapes(sc, sol)
     exact = ref.frequencies(sc, 6, dps=30)
     assert sol.count_checked and sol.converged.all(), sol.warnings
     assert len(sol.omega) == 6

@@ -14,6 +14,7 @@ import mpmath
 import numpy as np
 import pytest
 import reference_model as ref
+from eigenspaces import check_against_reference, sin_angle, vectors
 
 import mstmm
 from mstmm.scene import scene_from_dict
@@ -27,47 +28,6 @@ def make(left, right, atts, L=1.0, EI=1.0, mbar=1.0):
             "attachments": [{"type": "spring_mass", "x": x, "k": k, "m": m} for x, k, m in atts],
         }
     )
-
-
-def sin_angle(ours, theirs) -> float:
-    """Sine of the largest principal angle between the spans of two sets of row vectors."""
-    qa, _ = np.linalg.qr(np.asarray(ours, dtype=float).T)
-    qb, _ = np.linalg.qr(np.asarray(theirs, dtype=float).T)
-    return float(np.linalg.norm(qa - qb @ (qb.T @ qa), 2))
-
-
-def vectors(shapes, every: int = 5):
-    """Rows [Y at every ``every``-th sample point and at the attachments, Y of each mass]."""
-    x = shapes[0].x
-    keep = np.unique(np.concatenate([np.arange(0, len(x), every), [len(x) - 1]]))
-    keep = np.union1d(keep, np.searchsorted(x, shapes[0].mass_x))
-    return x[keep], [np.concatenate([s.Y[keep], s.mass_Y]) for s in shapes]
-
-
-def groups(sol):
-    """Index ranges of the shapes that share one eigenspace."""
-    out, i = [], 0
-    while i < len(sol.shapes):
-        m = sol.shapes[i].multiplicity
-        out.append((i, i + m))
-        i += m
-    return out
-
-
-def check_against_reference(sc, sol, tol, exact=None):
-    """Every eigenspace of ``sol`` against the reference null space at the exact root."""
-    exact = exact or ref.frequencies(sc, len(sol.omega), dps=30)
-    worst = 0.0
-    for a, b in groups(sol):
-        xs, ours = vectors(sol.shapes[a:b])
-        centre = sum(exact[a:b]) / (b - a)
-        theirs = ref.eigenspace(sc, centre, b - a, xs, dps=30)
-        worst = max(worst, sin_angle(ours, theirs))
-    assert worst <= tol, worst
-    for s in sol.shapes:
-        for arr in (s.Y, s.theta, s.M, s.Q, s.mass_Y):
-            assert np.all(np.isfinite(arr))
-    return worst
 
 
 def test_paper_example_shapes_up_to_mode_40_span_the_reference_null_space(tier):

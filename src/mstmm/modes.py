@@ -171,10 +171,10 @@ def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
         mass_Y = q[j, : len(mass_x)] * L
         big = np.concatenate([Y, mass_Y])
         k = int(np.argmax(np.abs(big)))
-        scale = 1.0 / big[k] if big[k] != 0.0 else 1.0
-        state = Z[j] * units * scale
-        modal = mbar * L**3 * scale**2  # the basis vector has unit nondimensional modal mass
-        numerator = mbar * L**2 * part[j] * scale
+        top = big[k] if big[k] != 0.0 else 1.0
+        state = Z[j] * units / top  # divided, so that the largest entry is exactly 1
+        modal = mbar * L**3 / top**2  # the basis vector has unit nondimensional modal mass
+        numerator = mbar * L**2 * part[j] / top
         out.append(
             ModeShape(
                 omega=float(omegas[j]),
@@ -184,7 +184,7 @@ def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
                 M=state[:, 2],
                 Q=state[:, 3],
                 mass_x=mass_x.copy(),
-                mass_Y=mass_Y * scale,
+                mass_Y=mass_Y / top,
                 singular_ratio=worst,
                 modal_mass=float(modal),
                 participation=float(numerator / modal),
