@@ -499,6 +499,7 @@ def figures_of(wp, sc, st) -> dict[str, dict]:
             "lowest20_n1000": n1000,
             "derive_median": _median([r["derive"] for r in ok]) if ok else None,
             "compile_median": _median([r["compile"] for r in ok]) if ok else None,
+            "slopes": sc.slopes,
         }
     if st is not None:
         out["study"] = {**st.to_json(), "quick": st.points < 10_000}
