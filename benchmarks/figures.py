@@ -10,10 +10,10 @@ README holds exactly what it would write. A figure is never typed by hand.
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -24,6 +24,28 @@ FIGURES = ROOT / "docs" / "figures.json"
 def load(path: Path = FIGURES) -> dict:
     """Every recorded section (``{}`` when the file does not exist)."""
     return json.loads(path.read_text()) if path.exists() else {}
+
+
+def finite(value):
+    """``value`` with every NaN or infinite float replaced by None (strict JSON: a failed
+    measurement is null, never a number)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite(v) for v in value]
+    return value
+
+
+def save(data: dict, path: Path = FIGURES) -> Path:
+    """Write ``data`` to ``path`` (sections sorted, strict JSON), atomically."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")  # then renamed: never half-written
+    text = json.dumps(finite(dict(sorted(data.items()))), indent=1, allow_nan=False)
+    tmp.write_text(text + "\n")
+    os.replace(tmp, path)
+    return path
 
 
 def record(section: str, values: dict, path: Path = FIGURES, command: str | None = None) -> Path:
@@ -41,15 +63,4 @@ def record(section: str, values: dict, path: Path = FIGURES, command: str | None
             f"Python {platform.python_version()}",
         },
     }
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".figures-", suffix=".json")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            json.dump(dict(sorted(data.items())), fh, indent=1, sort_keys=False)
-            fh.write("\n")
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+    return save(data, path)

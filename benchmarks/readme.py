@@ -29,6 +29,8 @@ import sys
 import textwrap
 from pathlib import Path
 
+from mstmm.interpret import DEFAULT_BUDGET
+
 from . import figures
 from .workprecision import fmt_err, fmt_time
 
@@ -113,7 +115,8 @@ def first_solve(figs: dict, cert: dict | None) -> str:
         f"{fmt_time(fresh['mstmm-cold-jit']['time'])} when forced to load the compiled "
         f"kernel.{floor} Bigger or repeated work in a process loads the compiled kernel "
         '("compile" in the time line) once the Python time would have paid for it '
-        "(`MSTMM_INTERPRET_BUDGET`, seconds, default 0.3; `0` means always compiled; see "
+        f"(`MSTMM_INTERPRET_BUDGET`, seconds, default {DEFAULT_BUDGET:g}; `0` means always "
+        "compiled; see "
         "`src/mstmm/interpret.py`). The first run of a new topology derives its kernel with "
         f"SymPy and compiles it: {fmt_time(fresh['mstmm-derive']['time'])} once, for the "
         f"whole process ({fmt_time(sc['derive_median'])} of it SymPy)."
@@ -244,11 +247,11 @@ def _opensees(wp: dict) -> str:
     best = wp.get("opensees_best") or {}
     if not best:
         return f"OpenSeesPy was not measured ({wp.get('opensees', '')}). "
-    ok = {k: v for k, v in best.items() if v and v["error"] != float("inf")}
+    ok = {k: v for k, v in best.items() if v and v["error"] is not None}
     parts = []
     for series, p in best.items():
         solver = series.replace("OpenSeesPy ", "")
-        if p and p["error"] != float("inf"):
+        if p and p["error"] is not None:
             parts.append(f"`{solver}` {fmt_err(p['error'])} at {p['setting']}")
         else:
             why = KNOWN_FAILURES.get(solver, "fails")
