@@ -32,6 +32,7 @@ from pathlib import Path
 from mstmm.interpret import DEFAULT_BUDGET
 
 from . import figures
+from .opensees_model import KNOWN_FAILURES
 from .workprecision import fmt_err, fmt_time
 
 README = figures.ROOT / "README.md"
@@ -52,12 +53,6 @@ PRODUCERS = {
 }
 
 WIDTH = 88
-
-#: Why an OpenSeesPy eigen solver fails on this model, as OpenSees says it.
-KNOWN_FAILURES = {
-    "-symmBandLapack": "fails: it solves only the standard eigenproblem, and this model's "
-    "consistent mass matrix is not diagonal",
-}
 
 
 class MissingFigures(LookupError):

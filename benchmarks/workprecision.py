@@ -619,7 +619,10 @@ def opensees_summary(res: Results, modes: int) -> str:
         if math.isfinite(p.error):
             parts.append(f"`{solver}` {fmt_err(p.error)} ({p.setting}, {fmt_time(p.time)})")
         else:
-            parts.append(f"`{solver}` failed ({p.note.splitlines()[0][:80] if p.note else '?'})")
+            from .opensees_model import KNOWN_FAILURES
+
+            note = p.note.splitlines()[0][:80] if p.note else "?"
+            parts.append(f"`{solver}` " + KNOWN_FAILURES.get(solver, f"failed ({note})"))
     return "; ".join(parts)
 
 
