@@ -226,7 +226,8 @@ def accuracy(figs: dict, cert: dict | None) -> str:
         f"**Parameter studies**: {st['points']:,} points of the paper's example (lowest "
         f"{st['modes']}) take {fmt_time(every)} on {st['cores']} threads against "
         f"{fmt_time(one)} on one (speed-up {one / every:.2f}x, with whatever else the machine "
-        f"was running: see docs/benchmarks.md), {certified} (largest error {fmt_err(st['max_error'])} on {st['checked']} "
+        f"was running: see docs/benchmarks.md), {certified} (largest error "
+        f"{fmt_err(st['max_error'])} on {st['checked']} "
         "points checked against the mpmath reference)."
     )
     return "\n" + "\n".join(_bullet(b) for b in bullets) + "\n"
