@@ -29,6 +29,7 @@ import numpy as np
 
 import mstmm
 
+from . import figures
 from .cases import CASES, ROOT, Case, bracketed_root_errors, compare, make_scene, reference
 
 OUT = ROOT / "docs" / "stability.md"
@@ -139,8 +140,9 @@ def _diagnostic(case: Case) -> tuple[str, str]:
     return _fmt_err(float(err[known].max())), "none" if not bad.size else f"mode {bad[0] + 1}"
 
 
-def accuracy() -> tuple[list[str], list[str], str]:
-    """Markdown rows of the case table, the failures of the default formulation, a summary."""
+def accuracy() -> tuple[list[str], list[str], str, dict]:
+    """Markdown rows of the case table, the failures of the default formulation, a summary,
+    and the figures the README quotes."""
     stable: dict[str, dict] = {}
     diag: dict[str, tuple[str, str]] = {}
     for case in CASES:
@@ -186,7 +188,17 @@ def accuracy() -> tuple[list[str], list[str], str]:
         f"its determinant's own roots leave the tolerance on {len(firsts)} of {len(CASES)} "
         + (f"cases, from mode {firsts[0]} to mode {firsts[-1]}." if firsts else "cases.")
     )
-    return rows, failures, summary
+    worst = max(CASES, key=lambda c: stable[c.name]["max_rel_error"])
+    figs = {
+        "cases": len(CASES),
+        "passed": len(CASES) - len(failures),
+        "worst_error": stable[worst.name]["max_rel_error"],
+        "worst_case": worst.name,
+        "worst_condition": worst.condition,
+        "paper_det_first_beyond": [firsts[0], firsts[-1]] if firsts else None,
+        "paper_det_cases_beyond": len(firsts),
+    }
+    return rows, failures, summary, figs
 
 
 # ---------------------------------------------------------------------- cost
@@ -248,7 +260,7 @@ def machine() -> str:
 def main() -> None:
     t0 = time.perf_counter()
     print("accuracy (stable in process, then paper in forked children):", flush=True)
-    rows, failures, paper_summary = accuracy()
+    rows, failures, paper_summary, figs = accuracy()
     print("evaluation cost:", flush=True)
     cost, slope_all, slope_big = evaluation_cost()
     elapsed = time.perf_counter() - t0
@@ -316,6 +328,10 @@ def main() -> None:
     OUT.parent.mkdir(parents=True, exist_ok=True)
     OUT.write_text(text)
     print(f"written {OUT.relative_to(ROOT)}", file=sys.stderr)
+    figs["cost_seconds"] = {str(n): t for n, t, _ in cost}
+    figs["cost_slope_all"] = slope_all
+    figs["cost_slope_big"] = slope_big
+    print(f"recorded in {figures.record('stability', figs, command=COMMAND)}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -6,20 +6,22 @@ Prints a Markdown table: the frequencies the paper quotes (FEM, ANCM of Wu &
 Chou 1998, the paper's MSTMM), each with its largest relative error against
 ``tests/data/reference.json``, and mstmm's own line with its measured time
 (median of repeated warm solves of the lowest five modes, kernel compiled).
+The figures go to ``docs/figures.json`` (key ``table1``), whence the README's
+table is written (``python -m benchmarks.readme``).
 """
 
 from __future__ import annotations
 
 import json
 import statistics
-import subprocess
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
 import mstmm
+
+from . import figures
 
 REFERENCE = Path(__file__).resolve().parent.parent / "tests" / "data" / "reference.json"
 
@@ -42,44 +44,56 @@ def warm_time(scene, formulation: str, repeats: int = 200) -> float:
     return statistics.median(times)
 
 
-def cold_time() -> float:
-    """Wall time of a fresh ``mstmm solve --modes 5`` process with the kernel cached."""
-    cmd = [sys.executable, "-m", "mstmm", "solve", "--modes", "5", "--format", "json"]
-    subprocess.run(cmd, check=True, capture_output=True)  # warm numba's on-disk cache
-    times = []
-    for _ in range(5):
-        t = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True)
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
-
-
-def main() -> None:
+def measure(repeats: int = 200) -> dict:
+    """Table 1's rows: label, the five frequencies, largest relative error, time (s or quoted)."""
     exact = np.array([float(w) for w in json.loads(REFERENCE.read_text())["wu_chou_1998"]["omega"]])
     exact = exact[:5]
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     rows = []
     for label, (omega, cpu) in QUOTED.items():
-        err = np.max(np.abs(np.array(omega) - exact) / exact)
-        rows.append((label, [f"{w:.2f}" for w in omega], f"{err:.1e}", cpu))
+        err = float(np.max(np.abs(np.array(omega) - exact) / exact))
+        rows.append({"label": label, "omega": omega, "error": err, "quoted_time": cpu})
     for formulation in ("stable", "paper"):
         sol = mstmm.solve(scene, modes=5, shapes=False, formulation=formulation)
-        err = np.max(np.abs(sol.omega - exact) / exact)
-        t = warm_time(scene, formulation)
+        err = float(np.max(np.abs(sol.omega - exact) / exact))
         rows.append(
-            (
-                f"mstmm, {formulation} (measured)",
-                [f"{w:.10g}" for w in sol.omega],
-                f"{err:.1e}",
-                f"{t * 1e3:.2f} ms warm",
-            )
+            {
+                "label": f"mstmm, {formulation} (measured)",
+                "omega": [float(w) for w in sol.omega],
+                "error": err,
+                "seconds": warm_time(scene, formulation, repeats),
+            }
         )
-    rows.append(("exact (reference.json)", [f"{w:.10g}" for w in exact], "0", ""))
-    print("| method | w1 | w2 | w3 | w4 | w5 | max rel. error | time |")
-    print("|---|---|---|---|---|---|---|---|")
-    for label, omega, err, t in rows:
-        print(f"| {label} | " + " | ".join(omega) + f" | {err} | {t} |")
-    print(f"\n`mstmm solve --modes 5` in a fresh process, kernel cached: {cold_time():.2f} s wall.")
+    rows.append({"label": "exact (reference.json)", "omega": exact.tolist(), "error": 0.0})
+    return {"rows": rows, "repeats": repeats}
+
+
+def markdown(fig: dict) -> str:
+    """The Markdown table of :func:`measure`'s figures."""
+    from .workprecision import fmt_time  # (workprecision imports this module)
+
+    out = [
+        "| method | w1 | w2 | w3 | w4 | w5 | max rel. error | time |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for row in fig["rows"]:
+        quoted = "quoted_time" in row
+        omega = [f"{w:.2f}" if quoted else f"{w:.10g}" for w in row["omega"]]
+        err = f"{row['error']:.1e}" if row["error"] else "0"
+        if quoted:
+            t = row["quoted_time"]
+        elif "seconds" in row:
+            t = f"{fmt_time(row['seconds'])} warm"
+        else:
+            t = ""
+        out.append(f"| {row['label']} | " + " | ".join(omega) + f" | {err} | {t} |")
+    return "\n".join(out) + "\n"
+
+
+def main() -> None:
+    fig = measure()
+    print(markdown(fig))
+    print(f"recorded in {figures.record('table1', fig, command='python -m benchmarks.table1')}")
 
 
 if __name__ == "__main__":

@@ -88,6 +88,9 @@ class Results:
     cold_breakdown: dict[str, float] = field(default_factory=dict)
     profiles: dict[str, dict] = field(default_factory=dict)
     plateaus: dict[str, str] = field(default_factory=dict)
+    #: ``mstmm.solve(scene, modes=5)`` as a user calls it (warm): seconds with the default
+    #: ``shapes=True`` and with ``shapes=False``, and the number of runs.
+    default_solve: dict[str, float] = field(default_factory=dict)
     quick: bool = False
 
     def to_json(self) -> dict:
@@ -410,6 +413,25 @@ def measure_mstmm_warm(
         )
 
 
+def measure_default_solve(res: Results, scene, budget: float) -> None:
+    """The default call, ``mstmm.solve(scene, modes=5)`` (mode shapes on), warm, against the
+    same without shapes; median of many runs, the two interleaved in rounds."""
+    mstmm.solve(scene, modes=5)  # load, compile, warm every path both calls take
+    mstmm.solve(scene, modes=5, shapes=False)
+    runs = {"shapes": [], "no_shapes": []}
+    spent, rounds = 0.0, 0
+    while rounds < 50 or (spent < 4 * budget and rounds < 2000):
+        for key, shapes in (("shapes", True), ("no_shapes", False)):
+            t = time.perf_counter()
+            mstmm.solve(scene, modes=5, shapes=shapes)
+            dt = time.perf_counter() - t
+            runs[key].append(dt)
+            spent += dt
+        rounds += 1
+    res.default_solve = {k: statistics.median(v) for k, v in runs.items()}
+    res.default_solve["repeats"] = rounds
+
+
 #: Fresh-process series: label, family, ``MSTMM_INTERPRET_BUDGET`` (None: the default).
 COLD_SERIES = (
     ("mstmm cold: fresh process, kernel cached", "mstmm-cold", None),
@@ -545,7 +567,13 @@ def _fe_point(res, scene, refs, modes, n, solver, rich, budget) -> None:
     res.points.append(Point(label, family, modes, setting, t, err, reps, note, param=n))
 
 
+def opensees_series(solver: str) -> str:
+    """Legend label of OpenSeesPy with one eigen solver."""
+    return f"OpenSeesPy {solver}"
+
+
 def measure_opensees(res: Results, refs: dict, meshes, budget: float) -> None:
+    """OpenSeesPy with each eigen solver it offers (:data:`opensees_model.SOLVERS`)."""
     from . import opensees_model
 
     out = opensees_model.run(
@@ -554,30 +582,48 @@ def measure_opensees(res: Results, refs: dict, meshes, budget: float) -> None:
     if "error" in out:
         res.opensees = f"OpenSeesPy could not be run: {out['error']}"
         return
-    res.opensees = f"OpenSeesPy {out['version']}, `eigen('{out['solver']}', n)`"
+    solvers = ", ".join(f"`{s}`" for s in out["solvers"])
+    res.opensees = f"OpenSeesPy {out['version']}, `eigen(solver, n)` with each of {solvers}"
     for row in out["rows"]:
         modes, n = row["modes"], row["n"]
+        series = opensees_series(row["solver"])
         if "error" in row:
-            res.points.append(
-                Point(
-                    "OpenSeesPy",
-                    "opensees",
-                    modes,
-                    f"n={n}",
-                    math.nan,
-                    math.inf,
-                    0,
-                    row["error"],
-                    n,
-                )
+            point = Point(
+                series, "opensees", modes, f"n={n}", math.nan, math.inf, 0, row["error"], n
             )
+        else:
+            err = max_rel_error(row["omega"], refs[modes])
+            point = Point(
+                series, "opensees", modes, f"n={n}", row["time"], err, row["repeats"], param=n
+            )
+        res.points.append(point)
+
+
+def opensees_best(res: Results, modes: int) -> dict[str, Point]:
+    """Per OpenSeesPy eigen solver: its most accurate point (a failed point if all failed)."""
+    out: dict[str, Point] = {}
+    for p in res.points:
+        if p.family != "opensees" or p.modes != modes:
             continue
-        err = max_rel_error(row["omega"], refs[modes])
-        res.points.append(
-            Point(
-                "OpenSeesPy", "opensees", modes, f"n={n}", row["time"], err, row["repeats"], param=n
-            )
-        )
+        best = out.get(p.series)
+        if best is None or p.error < best.error:
+            out[p.series] = p
+    return out
+
+
+def opensees_summary(res: Results, modes: int) -> str:
+    """Each solver's best error (or its failure), one clause each."""
+    parts = []
+    for series, p in opensees_best(res, modes).items():
+        solver = series.replace("OpenSeesPy ", "")
+        if math.isfinite(p.error):
+            parts.append(f"`{solver}` {fmt_err(p.error)} ({p.setting}, {fmt_time(p.time)})")
+        else:
+            from .opensees_model import KNOWN_FAILURES
+
+            note = p.note.splitlines()[0][:80] if p.note else "?"
+            parts.append(f"`{solver}` " + KNOWN_FAILURES.get(solver, f"failed ({note})"))
+    return "; ".join(parts)
 
 
 def add_quoted(res: Results, refs: dict) -> None:
@@ -676,6 +722,15 @@ def run(quick: bool = False, log=print) -> Results:
     )
     stage(
         res,
+        "work-precision: default solve (shapes on)",
+        log,
+        measure_default_solve,
+        res,
+        scene,
+        budget,
+    )
+    stage(
+        res,
         "work-precision: mstmm cold (fresh processes)",
         log,
         measure_mstmm_cold,
@@ -733,7 +788,9 @@ STYLE = {
     "FE dense (eigh, shift-inverted) + Richardson": dict(color="C2", marker="^", ls="--"),
     "FE sparse (eigsh shift-invert) + Richardson": dict(color="C3", marker="v", ls="--"),
     "FE textbook eigh(K, M)": dict(color="C7", marker=".", ls=":"),
-    "OpenSeesPy": dict(color="C4", marker="D"),
+    "OpenSeesPy -genBandArpack": dict(color="C4", marker="D"),
+    "OpenSeesPy -fullGenLapack": dict(color="C6", marker="d", ls="--"),
+    "OpenSeesPy -symmBandLapack": dict(color="C5", marker="d", ls=":"),
 }
 
 
@@ -905,6 +962,17 @@ def markdown(res: Results, img: str | None) -> str:
     else:
         out.append("(plot skipped: matplotlib is not installed)\n")
     out.append(f"OpenSees: {res.opensees}.\n")
+    for modes in MODES:
+        summary = opensees_summary(res, modes)
+        if summary:
+            out.append(f"OpenSeesPy, lowest {modes}, best per eigen solver: {summary}.\n")
+    if res.default_solve:
+        d = res.default_solve
+        out.append(
+            f"The default call `mstmm.solve(scene, modes=5)` (mode shapes on), warm: "
+            f"{fmt_time(d['shapes'])}; with `shapes=False`: {fmt_time(d['no_shapes'])} "
+            f"(medians of {int(d['repeats'])} interleaved runs each).\n"
+        )
     for note in res.notes:
         out.append(f"Note: {note}.\n")
     # time to accuracy

@@ -1,0 +1,351 @@
+"""Write the README's measured figures from ``docs/figures.json``: ``python -m benchmarks.readme``.
+
+The README marks every measured figure with a block::
+
+    <!-- figures:NAME -->...<!-- /figures:NAME -->
+
+and this script rewrites each block's content from the figures the benchmarks
+recorded (:mod:`benchmarks.figures`; ``docs/certification.json`` of
+``python -m benchmarks.certification`` too, when it exists). ``--check`` only
+reports whether the README is up to date (exit status 1 if not);
+``tests/test_readme_figures.py`` runs the same check, so a figure typed into
+the README fails CI. Which benchmark feeds which block:
+
+* ``example``: ``python -m benchmarks.example`` (the output of ``mstmm solve``);
+* ``first-solve``: ``example``, ``python -m benchmarks`` (fresh-process and
+  first-derive times, the scaling run's SymPy time);
+* ``table1``: ``python -m benchmarks.table1`` and ``python -m benchmarks``
+  (the fresh-process line);
+* ``certification``: ``python -m benchmarks.certification`` (docs/certification.json);
+* ``accuracy``: ``python -m benchmarks.stability`` and ``python -m benchmarks``;
+* ``many-modes``: ``python -m benchmarks.many_modes``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+import textwrap
+from pathlib import Path
+
+from mstmm.interpret import DEFAULT_BUDGET
+
+from . import figures
+from .opensees_model import KNOWN_FAILURES
+from .workprecision import fmt_err, fmt_time
+
+README = figures.ROOT / "README.md"
+CERTIFICATION = figures.ROOT / "docs" / "certification.json"
+
+BLOCK = re.compile(
+    r"<!-- figures:(?P<name>[a-z0-9-]+) -->(?P<body>.*?)<!-- /figures:(?P=name) -->", re.S
+)
+
+#: The producing command of each section of docs/figures.json.
+PRODUCERS = {
+    "example": "python -m benchmarks.example",
+    "table1": "python -m benchmarks.table1",
+    "stability": "python -m benchmarks.stability",
+    "workprecision": "python -m benchmarks",
+    "scaling": "python -m benchmarks",
+    "study": "python -m benchmarks",
+    "many_modes": "python -m benchmarks.many_modes",
+}
+
+WIDTH = 88
+
+
+class MissingFigures(LookupError):
+    """A block needs a section that no benchmark has recorded (or only a --quick run)."""
+
+
+def _section(figs: dict, name: str) -> dict:
+    sec = figs.get(name)
+    if sec is None:
+        raise MissingFigures(f"docs/figures.json has no '{name}': run {PRODUCERS[name]}")
+    if sec.get("quick"):
+        raise MissingFigures(
+            f"docs/figures.json '{name}' comes from a --quick run: run {PRODUCERS[name]}"
+        )
+    return sec
+
+
+def _para(text: str) -> str:
+    return textwrap.fill(" ".join(text.split()), WIDTH)
+
+
+def _bullet(text: str) -> str:
+    return textwrap.fill(" ".join(text.split()), WIDTH, initial_indent="* ", subsequent_indent="  ")
+
+
+def _fresh(figs: dict) -> dict:
+    return _section(figs, "workprecision")["fresh_process"]
+
+
+# ------------------------------------------------------------------ blocks
+
+
+def example(figs: dict, cert: dict | None) -> str:
+    ex = _section(figs, "example")
+    return f"\n```\n$ {ex['command']}\n{ex['output'].rstrip()}\n```\n"
+
+
+def first_solve(figs: dict, cert: dict | None) -> str:
+    wp = _section(figs, "workprecision")
+    sc = _section(figs, "scaling")
+    fresh = wp["fresh_process"]
+    br = wp.get("fresh_process_breakdown") or {}
+    floor_key = "import numba; first call of a trivial cached @njit function (numba's floor)"
+    floor = ""
+    if floor_key in br and "import numba" in br:
+        floor = (
+            f" numba charges a fresh process {fmt_time(br[floor_key] - br['import numba'])} "
+            "to load even cached machine code, whatever the function (a trivial function's "
+            "first call after `import numba`)."
+        )
+    text = (
+        "A small first solve runs the kernel's own functions as plain Python "
+        "(scan+refine in the time line above); a fresh `mstmm solve --modes 5` process "
+        f"takes {fmt_time(fresh['mstmm-cold']['time'])} that way, against "
+        f"{fmt_time(fresh['mstmm-cold-jit']['time'])} when forced to load the compiled "
+        f"kernel.{floor} Bigger or repeated work in a process loads the compiled kernel "
+        '("compile" in the time line) once the Python time would have paid for it '
+        f"(`MSTMM_INTERPRET_BUDGET`, seconds, default {DEFAULT_BUDGET:g}; `0` means always "
+        "compiled; see "
+        "`src/mstmm/interpret.py`). The first run of a new topology derives its kernel with "
+        f"SymPy and compiles it: {fmt_time(fresh['mstmm-derive']['time'])} once, for the "
+        f"whole process ({fmt_time(sc['derive_median'])} of it SymPy)."
+    )
+    return "\n" + _para(text) + "\n"
+
+
+def table1(figs: dict, cert: dict | None) -> str:
+    from .table1 import markdown
+
+    t1 = _section(figs, "table1")
+    cold = _fresh(figs)["mstmm-cold"]
+    intro = (
+        "Lowest five frequencies (rad/s) of the paper's example, each line's largest relative "
+        "error against the exact reference (`tests/data/reference.json`, computed "
+        "independently by global assembly in 50-digit arithmetic). Quoted lines are the "
+        "paper's numbers and CPU times; mstmm's lines are measured on this machine "
+        f"({t1['measured']['machine']}), median of {t1['repeats']} warm solves. Reproduce "
+        "with `python -m benchmarks.table1`."
+    )
+    line = (
+        f"`mstmm solve --modes 5` in a fresh process, kernel cached: {fmt_time(cold['time'])} "
+        "wall (`python -m benchmarks`)."
+    )
+    return f"\n{_para(intro)}\n\n{markdown(t1)}\n{line}\n"
+
+
+def certification(figs: dict, cert: dict | None) -> str:
+    if not cert:
+        return "What the check costs is measured by `python -m benchmarks.certification`."
+    rows = cert.get("rows") or []
+    row = min(rows, key=lambda r: r.get("modes", 0)) if rows else None
+    if row is None:
+        return "What the check costs is measured by `python -m benchmarks.certification`."
+    return (
+        f"The check's cost: the lowest {row['modes']} of the paper's example take "
+        f"{fmt_time(row['certified_s'])} certified against {fmt_time(row['unchecked_s'])} "
+        f"for the same search with the count switched off ({row['ratio']:.2f}x; "
+        "`python -m benchmarks.certification`)."
+    )
+
+
+def many_modes(figs: dict, cert: dict | None) -> str:
+    mm = _section(figs, "many_modes")
+    times = mm["times"]
+    n, t = times[-1]
+    return _bullet(
+        f"**Many modes**: the cost of `--modes N` is linear in N: {n:,} modes of the paper's "
+        f"example in {fmt_time(t)} warm, {fmt_time(t / n)} per mode (log-log slope "
+        f"{mm['slope']:.2f} over N = {times[0][0]:,} .. {n:,}; `python -m "
+        "benchmarks.many_modes`, [docs/many_modes.md](docs/many_modes.md))."
+    ) + "\n"
+
+
+def accuracy(figs: dict, cert: dict | None) -> str:
+    stab = _section(figs, "stability")
+    wp = _section(figs, "workprecision")
+    sc = _section(figs, "scaling")
+    st = _section(figs, "study")
+    fresh = wp["fresh_process"]
+    bullets = []
+    first = stab.get("paper_det_first_beyond")
+    paper = (
+        f"The paper's determinant leaves the tolerance between its {first[0]}th and "
+        f"{first[1]}th mode on {stab['paper_det_cases_beyond']} of them."
+        if first
+        else "The paper's determinant stays within the tolerance on every one."
+    )
+    bullets.append(
+        f"**Extreme cases** ({stab['cases']} scenes: springs 1e-6 .. 1e12 EI/L^3, masses 1e-6 "
+        ".. 1e6 mbar L, attachments at the ends, 1e-9 L apart and at one x, 1000 attachments, "
+        "the paper's example up to its 100th mode, all 16 end pairs, free-free, beams from "
+        "0.01 m to 100 m and EI from 1 to 1e9): the default formulation is within the case's "
+        "tolerance (1e-12, or 1e-10 for the hardest) of an independent 30-digit reference on "
+        f"{stab['passed']} of {stab['cases']} (worst {fmt_err(stab['worst_error'])}, "
+        f"`{stab['worst_case']}`); `tests/test_extremes.py` asserts it. {paper}"
+    )
+    cost = stab["cost_seconds"]
+    bullets.append(
+        "**Cost per evaluation** of the stable function grows linearly with the number of "
+        f"attachments (slope {stab['cost_slope_big']:.2f} for N >= 100; "
+        f"{fmt_time(cost['1000'])} at N = 1000)."
+    )
+    warm = wp["warm_default_lowest5"]
+    fe = wp["fe_richardson_1e-10"]
+    fe_text = (
+        f"a finite-element model with Richardson extrapolation needs {fmt_time(fe['time'])} for "
+        f"1e-10 ({wp['fe_ratio']:.0f}x)"
+        if fe
+        else "a finite-element model with Richardson extrapolation does not reach 1e-10"
+    )
+    bullets.append(
+        f"**Work-precision** (lowest 5 of the paper's example): mstmm reaches "
+        f"{fmt_err(warm['error'])} in {fmt_time(warm['time'])} warm; {fe_text}; "
+        + _opensees(wp)
+        + _default_solve(wp)
+        + f" A fresh `mstmm solve` process with the kernel cached takes "
+        f"{fmt_time(fresh['mstmm-cold']['time'])}, mostly starting Python, numpy and numba "
+        f"({fmt_time(fresh['mstmm-cold-jit']['time'])} if forced to load the compiled kernel); "
+        f"the first run of a new topology (derive + compile) "
+        f"{fmt_time(fresh['mstmm-derive']['time'])}, of which SymPy is "
+        f"{fmt_time(sc['derive_median'])}."
+    )
+    n1000 = [t for t in sc["lowest20_n1000"].values() if t is not None]
+    slopes = sc.get("slopes") or {}
+    flat = [slopes.get(k) for k in ("derive (all N)", "bytes (all N)", "compile (all N)")]
+    flat_text = (
+        " (log-log slopes against N: " + ", ".join(f"{s:.2f}" for s in flat) + ")"
+        if all(s is not None for s in flat)
+        else ""
+    )
+    bullets.append(
+        f"**Scale**: lowest 20 modes of a beam with 1000 spring-masses in "
+        f"{_span(n1000)} warm; derive time, kernel size and compile time do not depend on "
+        f"N{flat_text}."
+    )
+    one, every = st["threads"].values()
+    certified = (
+        "every point certified by the count"
+        if not st["uncertified"]
+        else f"{st['uncertified']} points not certified by the count (NaN)"
+    )
+    bullets.append(
+        f"**Parameter studies**: {st['points']:,} points of the paper's example (lowest "
+        f"{st['modes']}) take {fmt_time(every)} on {st['cores']} threads against "
+        f"{fmt_time(one)} on one (speed-up {one / every:.2f}x, with whatever else the machine "
+        f"was running: see docs/benchmarks.md), {certified} (largest error "
+        f"{fmt_err(st['max_error'])} on {st['checked']} "
+        "points checked against the mpmath reference)."
+    )
+    return "\n" + "\n".join(_bullet(b) for b in bullets) + "\n"
+
+
+def _span(times: list[float]) -> str:
+    if not times:
+        return "(not measured)"
+    lo, hi = min(times), max(times)
+    return fmt_time(lo) if lo == hi else f"{fmt_time(lo)} - {fmt_time(hi)}"
+
+
+def _opensees(wp: dict) -> str:
+    best = wp.get("opensees_best") or {}
+    if not best:
+        return f"OpenSeesPy was not measured ({wp.get('opensees', '')}). "
+    ok = {k: v for k, v in best.items() if v and v["error"] is not None}
+    parts = []
+    for series, p in best.items():
+        solver = series.replace("OpenSeesPy ", "")
+        if p and p["error"] is not None:
+            parts.append(f"`{solver}` {fmt_err(p['error'])} at {p['setting']}")
+        else:
+            why = KNOWN_FAILURES.get(solver, "fails")
+            parts.append(f"`{solver}` {why}")
+    top = min(ok.values(), key=lambda p: p["error"]) if ok else None
+    lead = (
+        f"OpenSeesPy gets no lower than {fmt_err(top['error'])} with any of its eigen solvers"
+        if top
+        else "OpenSeesPy fails with every eigen solver"
+    )
+    return f"{lead} ({'; '.join(parts)})."
+
+
+def _default_solve(wp: dict) -> str:
+    d = wp.get("default_solve") or {}
+    if not d:
+        return ""
+    return (
+        f" The default call `mstmm.solve(scene, modes=5)`, mode shapes included, takes "
+        f"{fmt_time(d['shapes'])} warm ({fmt_time(d['no_shapes'])} with `shapes=False`)."
+    )
+
+
+BLOCKS = {
+    "example": example,
+    "first-solve": first_solve,
+    "table1": table1,
+    "certification": certification,
+    "many-modes": many_modes,
+    "accuracy": accuracy,
+}
+
+
+# ------------------------------------------------------------------ rewrite
+
+
+def render(text: str, figs: dict, cert: dict | None) -> str:
+    """``text`` with every figure block rewritten; every block of :data:`BLOCKS` must occur
+    exactly once, and no other."""
+    names = [m.group("name") for m in BLOCK.finditer(text)]
+    unknown = sorted(set(names) - set(BLOCKS))
+    if unknown:
+        raise ValueError(f"README.md: unknown figure block(s) {unknown}")
+    missing = sorted(set(BLOCKS) - set(names))
+    if missing:
+        raise ValueError(f"README.md: figure block(s) {missing} missing")
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise ValueError(f"README.md: figure block(s) {twice} occur more than once")
+
+    def body(m: re.Match) -> str:
+        name = m.group("name")
+        return f"<!-- figures:{name} -->{BLOCKS[name](figs, cert)}<!-- /figures:{name} -->"
+
+    return BLOCK.sub(body, text)
+
+
+def load_certification(path: Path = CERTIFICATION) -> dict | None:
+    return json.loads(path.read_text()) if path.exists() else None
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.readme", description=__doc__)
+    ap.add_argument("--check", action="store_true", help="exit 1 if README.md is not current")
+    args = ap.parse_args(argv)
+    text = README.read_text()
+    try:
+        new = render(text, figures.load(), load_certification())
+    except (MissingFigures, ValueError) as exc:
+        print(f"benchmarks.readme: error: {exc}", file=sys.stderr)
+        return 2
+    if args.check:
+        if new != text:
+            print("README.md figures are not current: run python -m benchmarks.readme")
+            return 1
+        return 0
+    if new != text:
+        README.write_text(new)
+        print("README.md: figures rewritten from docs/figures.json")
+    else:
+        print("README.md: figures already current")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
