@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "14866e9f2877cfb9dae31f768d6a0f2986df5353"
+SIGNATURE = "eca1c8c1751cba7807df5070caa7d1911ec9cc08"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -844,10 +844,23 @@ def lowest_start(p, modes, out, state, certify):
     state[STATE_K] = k
     state[STATE_LAST] = RIGID_BODY_MODES
     w_lo = scale * 1e-6
+    if k < modes and certify:
+        # settle the bottom where the count holds exactly the rigid-body modes: lower
+        # when an elastic root (a very soft oscillator) lies below it, higher when the
+        # count has not yet registered a rigid-body mode (its -omega^2 pivot drowns in
+        # round-off at very low frequency next to a constrained end); a count of exactly
+        # the rigid-body modes at the bottom proves that no elastic root lies below it
+        n = count_below(w_lo, p)
+        while n > RIGID_BODY_MODES and w_lo > 1e-300:
+            w_lo *= 1e-3
+            n = count_below(w_lo, p)
+        while n < RIGID_BODY_MODES and w_lo < 1e300:
+            w_lo *= 2.0
+            n = count_below(w_lo, p)
+        if n != RIGID_BODY_MODES:
+            return -1
     state[STATE_W] = w_lo
     state[STATE_COUNT] = RIGID_BODY_MODES
-    if k < modes and certify and count_below(w_lo, p) != RIGID_BODY_MODES:
-        return -1
     return k
 
 
