@@ -160,7 +160,7 @@ def many_modes(figs: dict, cert: dict | None) -> str:
     mm = _section(figs, "many_modes")
     times = mm["times"]
     n, t = times[-1]
-    return _bullet(
+    return "\n" + _bullet(
         f"**Many modes**: the cost of `--modes N` is linear in N: {n:,} modes of the paper's "
         f"example in {fmt_time(t)} warm, {fmt_time(t / n)} per mode (log-log slope "
         f"{mm['slope']:.2f} over N = {times[0][0]:,} .. {n:,}; `python -m "

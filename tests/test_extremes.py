@@ -22,8 +22,10 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from eigenspaces import check_shapes  # noqa: E402
+
 import mstmm  # noqa: E402
-from benchmarks.cases import CASES, compare, reference  # noqa: E402
+from benchmarks.cases import CASES, compare, reference, solution  # noqa: E402
 from benchmarks.cases import rm as reference_model  # noqa: E402
 
 RIGID = [c for c in CASES if reference_model.rigid_body_mode_count(c.scene) > 0]
@@ -77,6 +79,8 @@ def test_default_formulation_matches_reference(case):
     comp = compare(case, "stable")
     assert comp.max_rel_error <= case.tol, comp.describe()
     assert comp.passed, comp.describe()  # count, zeros exactly 0, ascending, converged
+    sol, _ = solution(case, "stable")  # the default path: mode shapes too
+    check_shapes(case.build(), sol)
 
 
 @pytest.mark.parametrize("case", RIGID, ids=lambda c: c.name)
