@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import stat
 import struct
@@ -14,7 +13,6 @@ import numpy as np
 import pytest
 
 import mstmm
-from mstmm.modes import ModeShape
 
 pytest.importorskip("matplotlib")
 
@@ -142,11 +140,6 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     assert "attachment points (3)" in labels
 
 
-@pytest.mark.xfail(
-    "modal_mass" not in {f.name for f in dataclasses.fields(ModeShape)},
-    reason="needs the new ModeShape (one shape per natural frequency, issue 12 item 1)",
-    strict=True,
-)
 def test_mode_shapes_of_a_free_free_scene_skip_rigid_modes(free_free):
     """--modes counts every natural frequency: 5 of a free-free beam are 2 zeros, 3 shapes."""
     fig = plot.mode_shapes(free_free, modes=5)

@@ -1,11 +1,8 @@
 """Mode shapes where a user looks: ``solve --shapes`` as JSON, CSV and table; plots of copies.
 
-The writers are tested on solutions carrying shapes built here with the fields of
-``mstmm.modes.ModeShape`` (issue 12 item 1), so that they check the layout and the
-round trip, not the shapes. The tests marked ``needs_new_shapes`` check real shapes
-against closed forms and need the new ``ModeShape`` (modal mass, participation,
-effective mass, one shape per natural frequency): they are expected failures until
-it is merged, and strict, so they report when it has landed.
+The writers are tested on solutions carrying made-up ``mstmm.modes.ModeShape``
+values, so that they check the layout and the round trip, not the shapes; other
+tests check real shapes against closed forms.
 """
 
 from __future__ import annotations
@@ -13,7 +10,6 @@ from __future__ import annotations
 import json
 import math
 import sys
-from dataclasses import dataclass, fields
 
 import numpy as np
 import pytest
@@ -22,31 +18,6 @@ import mstmm
 from mstmm import output
 from mstmm.cli import main
 from mstmm.modes import ModeShape
-
-needs_new_shapes = pytest.mark.xfail(
-    "modal_mass" not in {f.name for f in fields(ModeShape)},
-    reason="needs the new mstmm.modes.ModeShape (issue 12 item 1), merged separately",
-    strict=True,
-)
-
-
-@dataclass(frozen=True)
-class Shape:
-    """The fields of the new ModeShape, filled with made-up numbers."""
-
-    omega: float
-    x: np.ndarray
-    Y: np.ndarray
-    theta: np.ndarray
-    M: np.ndarray
-    Q: np.ndarray
-    mass_x: np.ndarray
-    mass_Y: np.ndarray
-    singular_ratio: float
-    modal_mass: float
-    participation: float
-    effective_mass: float
-    multiplicity: int
 
 
 def with_made_up_shapes(sol):
@@ -58,7 +29,7 @@ def with_made_up_shapes(sol):
     for i, (w, m) in enumerate(zip(sol.omega, sol.multiplicity, strict=True), start=1):
         Y = np.sin(i * x / L)
         shapes.append(
-            Shape(
+            ModeShape(
                 omega=float(w),
                 x=x,
                 Y=Y,
@@ -172,7 +143,6 @@ def test_plot_counts_rigid_body_zeros_and_skips_them():
 # Real shapes against closed forms (after the merge of the new ModeShape)
 
 
-@needs_new_shapes
 def test_cantilever_effective_mass_closed_form(capsys):
     """Bare cantilever: m_eff,n / (mbar L) = 4 sigma_n^2 / beta_n^2 (0.6131, 0.1883, 0.0647)."""
     path = mstmm.example_path("bare_cantilever")
@@ -185,7 +155,6 @@ def test_cantilever_effective_mass_closed_form(capsys):
         assert shape["effective_mass"] / mass == pytest.approx(4 * sigma**2 / beta**2, rel=1e-6)
 
 
-@needs_new_shapes
 def test_free_free_rigid_modes_carry_the_total_mass(capsys):
     """The two rigid-body zeros of a free-free beam span rigid translation: 100 % of the mass."""
     from pathlib import Path
