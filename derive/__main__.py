@@ -10,10 +10,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from mstmm.kernels import write_kernel
-from mstmm.topology import Topology
-
 from .bundled import BUNDLED_TOPOLOGIES, generated_dir
+from .catalog import Topology
+from .emit import write_kernel
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mstmm.topology import Topology
+from .catalog import Topology
 
 #: Topologies of the scenes shipped in ``mstmm/scenes`` (wu_chou_1998, bare_cantilever).
 BUNDLED_TOPOLOGIES = (

@@ -9,19 +9,20 @@ are printed, and the attachment loops are left out for a bare beam.
 from __future__ import annotations
 
 import importlib.metadata
+import os
+import tempfile
 from pathlib import Path
 from string import Template
 
 import sympy as sp
 
-from mstmm.kernels import signature
-from mstmm.topology import ATTACHMENT_PARAMETERS, BEAM_PARAMETERS, KNOWN_ZERO, Topology, unknown
-
 from . import special
 from . import symbols as S
+from .catalog import ATTACHMENT_PARAMETERS, BEAM_PARAMETERS, KNOWN_ZERO, Topology, unknown
 from .components import beam, rigid_body, spring_mass
 from .compound import pair_index
 from .printer import assignments, code
+from .sign import signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 FORMULATION_TEMPLATE = TEMPLATE.with_name("formulation.py.tmpl")
@@ -347,3 +348,22 @@ def kernel_source(topology: Topology) -> str:
     )
     text = Template(TEMPLATE.read_text()).substitute(values)
     return "\n".join(line.rstrip() for line in text.splitlines()) + "\n"
+
+
+def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
+    """Derive the kernel of ``topology`` and write it atomically into ``directory`` (as
+    ``name``, default ``<key>_<signature[:16]>.py``); returns its path."""
+    source = kernel_source(topology)
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".py")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(source)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path

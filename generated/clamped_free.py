@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "eca1c8c1751cba7807df5070caa7d1911ec9cc08"
+SIGNATURE = "3ae600acf3e64be1dad89e7e99b045ee0cb1e4d7"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "e47effcb4a4b817aa11ec1b4e2fdd162a9daddc9"
+SIGNATURE = "035e4a24a9b5c78d94e6dba8b746f19785ec3a0b"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5

@@ -133,3 +133,25 @@ def test_kernel_carries_only_what_the_scene_needs():
     with_sm = kernel_source(BUNDLED_TOPOLOGIES[0])
     assert "spring_mass" not in bare.split('"""', 2)[2]
     assert "def spring_mass_compound_step" in with_sm
+
+
+def test_stages_run_in_one_direction():
+    """derive prints, signs and writes kernels; the runtime finds and loads them: no module
+    of mstmm.derive imports the runtime package (the runtime imports derive's SymPy-free
+    catalog and sign, and derive.emit only to write a new kernel)."""
+    import ast
+
+    from mstmm.derive.bundled import generated_dir
+
+    root = generated_dir().parent / "derive"
+    for path in root.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = []
+            if isinstance(node, ast.ImportFrom) and node.level == 0:
+                names = [node.module or ""]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            for name in names:
+                assert not (name == "mstmm" or name.startswith("mstmm.")) or name.startswith(
+                    "mstmm.derive"
+                ), f"{path.name} imports {name}"

@@ -17,13 +17,11 @@ numba's on-disk cache (keyed on the file) stays valid (DESIGN.md, tool-chain fac
 
 from __future__ import annotations
 
-import hashlib
 import importlib
 import importlib.metadata
 import importlib.util
 import os
 import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,11 +29,10 @@ from types import ModuleType
 
 import numpy as np
 
+from mstmm.derive.sign import signature
+
 from . import interpret, progress
 from .topology import Topology
-
-#: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
-KERNEL_FORMAT = 1
 
 #: Characteristic functions every kernel carries (``evaluate_<name>``, ``refine_<name>``).
 FORMULATIONS = ("stable", "paper")
@@ -46,42 +43,6 @@ BLOCK_MODES = 256
 
 class KernelError(RuntimeError):
     """A kernel could not be generated, written or loaded."""
-
-
-def _derive_dir() -> Path:
-    spec = importlib.util.find_spec("mstmm.derive")
-    if spec is None or not spec.submodule_search_locations:
-        raise KernelError("the mstmm.derive package is missing from this installation")
-    return Path(next(iter(spec.submodule_search_locations)))
-
-
-def _derive_digest() -> str:
-    h = hashlib.sha1()
-    root = _derive_dir()
-    for path in sorted(root.rglob("*")):
-        if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
-            h.update(path.relative_to(root).as_posix().encode())
-            h.update(path.read_bytes())
-    return h.hexdigest()
-
-
-_DIGEST: str | None = None
-
-
-def signature(topology: Topology) -> str:
-    """sha1 of the topology, the derive/ sources, the SymPy version and the kernel format."""
-    global _DIGEST
-    if _DIGEST is None:
-        _DIGEST = _derive_digest()
-    text = "|".join(
-        [
-            topology.key,
-            _DIGEST,
-            importlib.metadata.version("sympy"),
-            str(KERNEL_FORMAT),
-        ]
-    )
-    return hashlib.sha1(text.encode()).hexdigest()
 
 
 def cache_dir() -> Path:
@@ -120,22 +81,11 @@ def _bundled(topology: Topology, sig: str) -> ModuleType | None:
 
 
 def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
-    """Derive the kernel of ``topology`` and write it atomically into ``directory``."""
-    from mstmm.derive.emit import kernel_source  # SymPy only here
+    """Derive the kernel of ``topology`` into ``directory`` (``mstmm.derive.emit``; SymPy
+    is imported only now)."""
+    from mstmm.derive.emit import write_kernel as derive_and_write
 
-    source = kernel_source(topology)
-    directory.mkdir(parents=True, exist_ok=True)
-    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".py")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(source)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+    return derive_and_write(topology, directory, name)
 
 
 def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
