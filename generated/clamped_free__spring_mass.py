@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit, prange
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "035e4a24a9b5c78d94e6dba8b746f19785ec3a0b"
+SIGNATURE = "6618b72687a1a7a7422948ff40bc4578b284e96d"
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 START_PAIR = 5
@@ -1349,7 +1349,7 @@ def event_step(W, G, Cz, Cq, B, nc, nq):
 
 
 @njit(cache=True)
-def small_null_vector_2x2(E, V):
+def svd_2x2(E, V):
     """SVD of the 2 x 2 end matrix E: V's columns are its right singular vectors, smallest
     singular value first; returns the singular values in that order."""
     A = np.empty((2, 2))
@@ -1476,7 +1476,7 @@ def mode_shapes(omega, p, m, xs, Z_out, q_out, gram, part, ratio):
         E[0, c] = W[RIGHT_KNOWN[0], c]
         E[1, c] = W[RIGHT_KNOWN[1], c]
     Ve = np.empty((2, 2))
-    se = small_null_vector_2x2(E, Ve)
+    se = svd_2x2(E, Ve)
     top = se[1]
     a = np.zeros((m, 2))
     f = np.zeros((m, max(1, nf_total)))

@@ -192,9 +192,16 @@ class Kernel:
         """Number of attachments a parameter vector describes."""
         return (len(p) - 3) // self.module.ATTACHMENT_STRIDE
 
-    def interprets(self, p: np.ndarray, modes: int) -> bool:
-        """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`)."""
-        return "lowest" not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
+    def interprets(self, p: np.ndarray, modes: int, what: str = "lowest") -> bool:
+        """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`); for
+        another entry point ``what``, ``modes`` is its cost in modes of ``lowest``."""
+        return what not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
+
+    def _python_function(self, name: str):
+        """The module's function ``name`` as plain Python (:func:`interpret.python_copy`)."""
+        if self._python is None:
+            self._python = interpret.python_copy(self.module)
+        return self._python[name]
 
     def lowest(self, p: np.ndarray, modes: int, certify: bool = True) -> tuple[np.ndarray, int]:
         """The lowest ``modes`` frequencies by the kernel's own certified scan.
@@ -211,9 +218,7 @@ class Kernel:
         out = np.zeros(modes)
         p = _params(p)
         if self.interprets(p, modes):
-            if self._python is None:
-                self._python = interpret.python_copy(self.module)
-            last = interpret.timed_call(self._python["lowest"], p, modes, out, certify)
+            last = interpret.timed_call(self._python_function("lowest"), p, modes, out, certify)
         elif modes <= BLOCK_MODES:
             last = self._compiled("lowest")(p, modes, out, certify)
         else:
@@ -309,15 +314,10 @@ class Kernel:
         part = np.zeros(m)
         ratio = np.zeros(m)
         args = (float(omega), p, m, xs, Z, q, gram, part, ratio)
-        if "mode_shapes" not in self.warmed and interpret.worthwhile(
-            m * interpret.SHAPE_COST_FACTOR, self.attachments(p)
-        ):
-            if self._python is None:
-                self._python = interpret.python_copy(self.module)
-            interpret.timed_call(self._python["mode_shapes"], *args)
+        if self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes"):
+            interpret.timed_call(self._python_function("mode_shapes"), *args)
         else:
-            interpret.mark_compiled()
-            self.module.mode_shapes(*args)
+            self._compiled("mode_shapes")(*args)
             self.warmed.add("mode_shapes")
         return Z, q, gram, part, ratio
 
