@@ -18,7 +18,8 @@ the README fails CI. Which benchmark feeds which block:
   (the fresh-process line);
 * ``certification``: ``python -m benchmarks.certification`` (docs/certification.json);
 * ``accuracy``: ``python -m benchmarks.stability`` and ``python -m benchmarks``;
-* ``many-modes``: ``python -m benchmarks.many_modes``.
+* ``many-modes``: ``python -m benchmarks.many_modes``;
+* ``components``: ``python -m benchmarks.components --record``.
 """
 
 from __future__ import annotations
@@ -52,6 +53,7 @@ PRODUCERS = {
     "scaling": "python -m benchmarks",
     "study": "python -m benchmarks",
     "many_modes": "python -m benchmarks.many_modes",
+    "components": "python -m benchmarks.components --record",
 }
 
 WIDTH = 88
@@ -160,12 +162,16 @@ def many_modes(figs: dict, cert: dict | None) -> str:
     mm = _section(figs, "many_modes")
     times = mm["times"]
     n, t = times[-1]
-    return "\n" + _bullet(
-        f"**Many modes**: the cost of `--modes N` is linear in N: {n:,} modes of the paper's "
-        f"example in {fmt_time(t)} warm, {fmt_time(t / n)} per mode (log-log slope "
-        f"{mm['slope']:.2f} over N = {times[0][0]:,} .. {n:,}; `python -m "
-        "benchmarks.many_modes`, [docs/many_modes.md](docs/many_modes.md))."
-    ) + "\n"
+    return (
+        "\n"
+        + _bullet(
+            f"**Many modes**: the cost of `--modes N` is linear in N: {n:,} modes of the paper's "
+            f"example in {fmt_time(t)} warm, {fmt_time(t / n)} per mode (log-log slope "
+            f"{mm['slope']:.2f} over N = {times[0][0]:,} .. {n:,}; `python -m "
+            "benchmarks.many_modes`, [docs/many_modes.md](docs/many_modes.md))."
+        )
+        + "\n"
+    )
 
 
 def accuracy(figs: dict, cert: dict | None) -> str:
@@ -286,12 +292,32 @@ def _default_solve(wp: dict) -> str:
     )
 
 
+def components(figs: dict, cert: dict | None) -> str:
+    co = _section(figs, "components")
+    m, first = co["mixed"], co["first_run"]
+    warm, cold = first["numerics_compiled"], first["nothing_compiled"]
+    text = (
+        f"A 3-segment beam carrying {m['components']} components of every kind: its lowest 20"
+        f" frequencies in {fmt_time(m['lowest20_seconds'])} warm (`Kernel.lowest`;"
+        f" `mstmm.solve(..., shapes=False)` {fmt_time(m['solve20_seconds'])}, with mode"
+        f" shapes {fmt_time(m['solve20_shapes_seconds'])}), certified by the count and"
+        f" within {fmt_err(m['agreement_with_general_search'])} of the general search. The"
+        " first run of a topology with every kind present (derive with SymPy, compile,"
+        f" solve; a fresh process) takes {fmt_time(warm['wall_seconds'])} once the shared"
+        " numerics are compiled on the machine (any earlier run compiled them), and"
+        f" {fmt_time(cold['wall_seconds'])} on a machine where nothing is compiled yet."
+        " Reproduce with `python -m benchmarks.components`."
+    )
+    return "\n" + _para(text) + "\n"
+
+
 BLOCKS = {
     "example": example,
     "first-solve": first_solve,
     "table1": table1,
     "certification": certification,
     "many-modes": many_modes,
+    "components": components,
     "accuracy": accuracy,
 }
 

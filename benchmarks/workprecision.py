@@ -340,7 +340,7 @@ def _lowest_grid(kernel, scene, modes: int) -> dict:
     p = mstmm.parameter_vector(scene)
     (mant, _), t, _ = timed(lambda: kernel.evaluate(w, p), 0.05, min_repeats=3)
     changes = np.nonzero(np.sign(mant[1:]) != np.sign(mant[:-1]))[0]
-    want = modes - kernel.topology.rigid_body_modes
+    want = modes - kernel.rigid_body_modes(p)
     visited = int(changes[want - 1]) + 2 if 0 < want <= changes.size else nodes
     sub = w[:: max(1, nodes // 16)]
     _, tc, _ = timed(lambda: kernel.count_below(sub, p), 0.05, min_repeats=3)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from .bundled import BUNDLED_TOPOLOGIES, generated_dir
 from .catalog import Topology
-from .emit import write_kernel
+from .emit import write_kernel, write_numerics
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -23,6 +23,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, help="output directory (with --topology)")
     args = ap.parse_args(argv)
     if args.bundled:
+        print(write_numerics(generated_dir()))
         for topology in BUNDLED_TOPOLOGIES:
             print(write_kernel(topology, generated_dir(), name=f"{topology.key}.py"))
         return 0

@@ -1,18 +1,26 @@
-"""The catalog of what decides a kernel's code: end conditions, attachment kinds, topologies.
+"""The catalog of what decides a kernel's code: end conditions, component kinds, topologies,
+and the parameter layout.
 
 SymPy-free (imported by the runtime to name, validate and look up kernels); the
-derivation stages (``emit``, ``reduce``) read the same definitions, so nothing in
+derivation stages (``emit``, ``descriptor``) read the same definitions, so nothing in
 ``mstmm.derive`` imports the runtime package ``mstmm``. Two scenes share a kernel
-when they have the same end conditions and the same *kinds* of attachments:
-positions, stiffnesses, masses and the number of attachments are run-time
-parameters, because the kernel loops over the attachments instead of unrolling
-them (DESIGN.md, "Scale of the symbolic step").
+when they have the same end conditions and the same *kinds* of components:
+positions, values, segments and the number of components are run-time parameters,
+because the kernel loops over an event table instead of unrolling it (DESIGN.md,
+"Scale of the symbolic step"; docs/components.md).
+
+A kind is one module (``derive/components/<kind>.py``, or any module given to
+:func:`register_kind`) that declares ``KIND``, ``KEYS``, ``COUNT`` and its descriptor;
+this module only reads its plain-data declarations (``KEYS``, ``SAME_LENGTH``, ``DOC``).
 """
 
 from __future__ import annotations
 
+import importlib
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import cached_property
+from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
@@ -27,11 +35,26 @@ KNOWN_ZERO: dict[str, tuple[int, int]] = {
     "sliding": (1, 3),  # theta = Q = 0
 }
 
-#: Number of parameters of each attachment kind in the parameter vector, in order.
-ATTACHMENT_PARAMETERS: dict[str, tuple[str, ...]] = {"spring_mass": ("x", "k", "m")}
-
-#: Parameters of the beam at the head of the parameter vector.
+#: Parameters of the beam at the head of the parameter vector (the first segment's EI
+#: and mass per length are the reference units of the kernel).
 BEAM_PARAMETERS = ("L", "EI", "mbar")
+
+#: Layout of the head of the parameter vector (docs/components.md, section 4):
+#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) * n_seg, (tag, x, offset) * n_ev,
+#: data...]``.
+HEAD = 5
+SEGMENT_WIDTH = 3
+EVENT_WIDTH = 3
+
+#: Exponents (L, EI_0, mbar_0) that make a value of each SI unit dimensionless:
+#: value * L^a EI_0^b mbar_0^c.
+UNIT_SCALES: dict[str, tuple[int, int, int]] = {
+    "m": (-1, 0, 0),
+    "N/m": (3, -1, 0),
+    "kg": (-1, 0, -1),
+    "N m/rad": (1, -1, 0),
+    "kg m^2": (-3, 0, -1),
+}
 
 
 def unknown(kind: str) -> tuple[int, int]:
@@ -41,8 +64,97 @@ def unknown(kind: str) -> tuple[int, int]:
 
 
 @dataclass(frozen=True)
+class Key:
+    """One scene key of a component kind.
+
+    ``check``: ``"position"`` (0 <= x <= L), ``"interior"`` (0 < x < L), ``"positive"``
+    (> 0) or ``"nonnegative"`` (>= 0); ``default`` None means required; ``shape``
+    ``"list"`` for a non-empty list of values (an oscillator chain's ``k`` and ``m``).
+    """
+
+    name: str
+    unit: str
+    check: str = "positive"
+    default: float | None = None
+    shape: str = "scalar"
+    doc: str = ""
+
+    def __post_init__(self) -> None:
+        if self.unit not in UNIT_SCALES:
+            raise ValueError(f"key {self.name!r}: unknown unit {self.unit!r}")
+        if self.check not in ("position", "interior", "positive", "nonnegative"):
+            raise ValueError(f"key {self.name!r}: unknown check {self.check!r}")
+        if self.shape not in ("scalar", "list"):
+            raise ValueError(f"key {self.name!r}: unknown shape {self.shape!r}")
+
+    @property
+    def scale(self) -> tuple[int, int, int]:
+        """Exponents of (L, EI_0, mbar_0) that make this key's value dimensionless."""
+        return UNIT_SCALES[self.unit]
+
+
+#: The kinds shipped with mstmm, one module each in ``derive/components``.
+BUILTIN_KINDS = (
+    "hinge",
+    "mass",
+    "oscillator_chain",
+    "rotational_spring",
+    "spring",
+    "spring_mass",
+    "support",
+)
+
+_REGISTRY: dict[str, ModuleType] = {}
+
+
+def _check_kind(module: ModuleType) -> None:
+    for name in ("KIND", "KEYS", "COUNT", "DOC"):
+        if not hasattr(module, name):
+            raise ValueError(f"component kind module {module.__name__} has no {name}")
+    names = [k.name for k in module.KEYS]
+    if not names or names[0] != "x" or module.KEYS[0].check not in ("position", "interior"):
+        raise ValueError(f"kind {module.KIND!r}: its first key must be the position x")
+    if len(set(names)) != len(names) or "type" in names:
+        raise ValueError(f"kind {module.KIND!r}: key names must be unique and not 'type'")
+    if module.COUNT not in ("stiffness", "constraint", "split"):
+        raise ValueError(f"kind {module.KIND!r}: COUNT must be stiffness|constraint|split")
+    if not module.KIND.isidentifier() or "__" in module.KIND or module.KIND.startswith("_"):
+        raise ValueError(f"kind name {module.KIND!r} must be an identifier without '__'")
+
+
+def register_kind(module: ModuleType) -> None:
+    """Add a component kind defined outside the package (its file enters the signature)."""
+    _check_kind(module)
+    kinds()
+    _REGISTRY[module.KIND] = module
+
+
+def kinds() -> dict[str, ModuleType]:
+    """Every known kind: name -> its module (built-ins first, then registered ones)."""
+    if not _REGISTRY:
+        for name in BUILTIN_KINDS:
+            module = importlib.import_module(f"{__package__}.components.{name}")
+            _check_kind(module)
+            _REGISTRY[name] = module
+    return _REGISTRY
+
+
+def kind(name: str) -> ModuleType:
+    """The module of one kind; ValueError when unknown."""
+    try:
+        return kinds()[name]
+    except KeyError:
+        raise ValueError(f"unknown component kind {name!r}") from None
+
+
+def kind_file(name: str) -> Path:
+    """The source file of a kind (hashed into a kernel's signature)."""
+    return Path(kind(name).__file__).resolve()
+
+
+@dataclass(frozen=True)
 class Topology:
-    """End conditions and the attachment kinds present: everything the kernel code depends on."""
+    """End conditions and the component kinds present: everything the kernel code depends on."""
 
     left: str
     right: str
@@ -52,9 +164,8 @@ class Topology:
         for end in (self.left, self.right):
             if end not in KNOWN_ZERO:
                 raise ValueError(f"unknown end condition {end!r}")
-        for kind in self.kinds:
-            if kind not in ATTACHMENT_PARAMETERS:
-                raise ValueError(f"unknown attachment kind {kind!r}")
+        for name in self.kinds:
+            kind(name)
         if tuple(sorted(set(self.kinds))) != self.kinds:
             raise ValueError(f"kinds must be sorted and unique, got {self.kinds!r}")
 
@@ -66,23 +177,96 @@ class Topology:
     @classmethod
     def from_key(cls, key: str) -> Topology:
         """Inverse of :attr:`key`."""
-        ends, *kinds = key.split("__")
+        ends, *names = key.split("__")
         left, right = ends.split("_")
-        return cls(left, right, tuple(kinds))
+        return cls(left, right, tuple(names))
 
-    @cached_property
-    def rigid_body_modes(self) -> int:
-        """Number of zero natural frequencies: rigid motions ``Y = a + b x`` the ends allow.
+    def tag(self, name: str) -> int:
+        """The tag of a kind in this topology's event table: its index in ``kinds``."""
+        return self.kinds.index(name)
 
-        Springs and hanging masses move with a rigid beam without force, so they
-        do not change this number.
-        """
-        rows = []
-        for end, x in ((self.left, 0.0), (self.right, 1.0)):
-            if 0 in KNOWN_ZERO[end]:
-                rows.append((1.0, x))  # Y(x) = a + b x = 0
-            if 1 in KNOWN_ZERO[end]:
-                rows.append((0.0, 1.0))  # theta = b = 0
-        if not rows:
-            return 2
-        return 2 - int(np.linalg.matrix_rank(np.array(rows)))
+
+@dataclass(frozen=True)
+class Component:
+    """A point component as the layout reads it: kind, position (m) and its values
+    (name -> float, or a tuple of floats for a list key), defaults filled in."""
+
+    kind: str
+    x: float
+    values: Mapping[str, float | tuple[float, ...]]
+
+
+def pack(name: str, values: Mapping[str, float | Sequence[float]]) -> list[float]:
+    """A component's data block: its keys after x in declared order, a list preceded by
+    its length."""
+    out: list[float] = []
+    for key in kind(name).KEYS[1:]:
+        v = values[key.name]
+        if key.shape == "list":
+            seq = [float(a) for a in v]  # type: ignore[union-attr]
+            out.append(float(len(seq)))
+            out.extend(seq)
+        else:
+            out.append(float(v))  # type: ignore[arg-type]
+    return out
+
+
+def layout(
+    segments: Sequence[tuple[float, float, float]],
+    components: Sequence[Component],
+    topology: Topology,
+) -> tuple[np.ndarray, dict[str, int]]:
+    """The parameter vector of a beam (segments ``(length, EI, mbar)`` from the left end)
+    carrying ``components`` (in scene order), and the index of every field in it.
+
+    Field paths: ``beam.length`` (total), ``beam.EI``, ``beam.mass_per_length`` (first
+    segment), ``beam.segments[s].EI|mass_per_length``, ``attachments[i].x``,
+    ``attachments[i].<key>`` and ``attachments[i].<key>[j]`` for a list key. The event
+    rows are sorted by x (stable); their offsets point at each component's data block.
+    """
+    lengths = [float(s[0]) for s in segments]
+    total = float(sum(lengths))
+    n_seg = len(segments)
+    n_ev = len(components)
+    head = [total, float(segments[0][1]), float(segments[0][2]), float(n_seg), float(n_ev)]
+    seg_rows: list[float] = []
+    end = 0.0
+    for s, (length, ei, mbar) in enumerate(segments):
+        end = total if s == n_seg - 1 else end + float(length)
+        seg_rows += [end, float(ei), float(mbar)]
+    data_start = HEAD + SEGMENT_WIDTH * n_seg + EVENT_WIDTH * n_ev
+    fields = {"beam.length": 0, "beam.EI": 1, "beam.mass_per_length": 2}
+    for s in range(n_seg):
+        fields[f"beam.segments[{s}].EI"] = HEAD + SEGMENT_WIDTH * s + 1
+        fields[f"beam.segments[{s}].mass_per_length"] = HEAD + SEGMENT_WIDTH * s + 2
+    data: list[float] = []
+    rows: list[tuple[float, int, list[float]]] = []
+    for i, c in enumerate(components):
+        offset = data_start + len(data)
+        block = pack(c.kind, c.values)
+        j = offset
+        for key in kind(c.kind).KEYS[1:]:
+            if key.shape == "list":
+                n = int(block[j - offset])
+                for a in range(n):
+                    fields[f"attachments[{i}].{key.name}[{a}]"] = j + 1 + a
+                j += 1 + n
+            else:
+                fields[f"attachments[{i}].{key.name}"] = j
+                j += 1
+        data += block
+        rows.append((float(c.x), i, [float(topology.tag(c.kind)), float(c.x), float(offset)]))
+    order = sorted(range(n_ev), key=lambda i: rows[i][0])
+    ev_rows: list[float] = []
+    for r, i in enumerate(order):
+        fields[f"attachments[{rows[i][1]}].x"] = HEAD + SEGMENT_WIDTH * n_seg + EVENT_WIDTH * r + 1
+        ev_rows += rows[i][2]
+    p = np.asarray(head + seg_rows + ev_rows + data, dtype=np.float64)
+    return p, fields
+
+
+def event_rows(p: np.ndarray) -> slice:
+    """The columns of the event table in a parameter vector (rows of EVENT_WIDTH)."""
+    n_seg = int(p[3])
+    start = HEAD + SEGMENT_WIDTH * n_seg
+    return slice(start, start + EVENT_WIDTH * int(p[4]))

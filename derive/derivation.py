@@ -40,7 +40,7 @@ class Derivation:
         return self.overall.Z_all
 
     def determinant(self, simplify: bool = True) -> sp.Expr:
-        """``det U_bar`` in ``lam``, segment lengths, ``EI``, ``k_i``, ``m_i``, ``omega``."""
+        """``det U_bar`` in ``lam``, segment lengths, ``EI``, the components' values, ``omega``."""
         if self.U_bar.rows > MAX_DETERMINANT_SIZE:
             raise ValueError(
                 f"U_bar is {self.U_bar.rows}x{self.U_bar.rows}; symbolic determinants are "
@@ -56,7 +56,11 @@ class Derivation:
             if kind == "beam":
                 out.append(f"beam {par['l']}")
             else:
-                out.append(f"rigid body + spring-mass ({par['k']}, {par['m']})")
+                values = ", ".join(
+                    str(v) if not isinstance(v, list) else "[" + ", ".join(map(str, v)) + "]"
+                    for v in par["values"].values()
+                )
+                out.append(f"{kind} {par['index']}" + (f" ({values})" if values else ""))
         return [*out, "Z_root (right end)"]
 
     def sparsity(self) -> list[str]:
@@ -67,16 +71,34 @@ class Derivation:
         ]
 
     def parameters(self, scene) -> dict[sp.Symbol, float]:
-        """Numeric values of this derivation's symbols for ``scene`` (``lam`` excluded)."""
+        """Numeric values of this derivation's symbols for ``scene`` (the uniform beam's
+        ``lam`` excluded; a stepped beam's ``lam_s`` as expressions of ``omega``)."""
         beam = scene.beam
-        values = {symbols.EI: beam.EI, symbols.mbar: beam.mass_per_length}
-        pos = 0.0
-        for i, a in enumerate(scene.attachments, start=1):
-            values[symbols.indexed("l", i)] = a.x - pos
-            values[symbols.indexed("k", i)] = a.k
-            values[symbols.indexed("m", i)] = a.m
-            pos = a.x
-        values[symbols.indexed("l", len(scene.attachments) + 1)] = beam.length - pos
+        segments = getattr(beam, "segments", ()) or ()
+        if segments:
+            values = {}
+            for s, seg in enumerate(segments, start=1):
+                EI_s, mbar_s = (
+                    sp.Symbol(f"EI_{s}", positive=True),
+                    sp.Symbol(f"mbar_{s}", positive=True),
+                )
+                values[EI_s] = seg.EI
+                values[mbar_s] = seg.mass_per_length
+                lam = (seg.mass_per_length * symbols.omega**2 / seg.EI) ** sp.Rational(1, 4)
+                values[sp.Symbol(f"lam_{s}", positive=True)] = lam
+        else:
+            values = {symbols.EI: beam.EI, symbols.mbar: beam.mass_per_length}
+        points = sorted(scene.attachments, key=lambda a: a.x)
+        for kind, par in self.overall.components:
+            if kind == "beam":
+                values[par["l"]] = par["length"]
+                continue
+            given = dict(points[par["index"] - 1].values)
+            for name, sym in par["values"].items():
+                if isinstance(sym, list):
+                    values.update(zip(sym, given[name], strict=True))
+                else:
+                    values[sym] = given[name]
         return values
 
 
@@ -90,8 +112,8 @@ def symbolic(scene, evaluate: bool = True) -> Derivation:
     """
     n = len(scene.attachments)
     with sp.evaluate(evaluate):
-        overall = overall_transfer(n)
-        U_bar, Z_bar = reduce(overall.U_all, overall.Z_all, scene.beam.left, scene.beam.right, n)
+        overall = overall_transfer(scene)
+        U_bar, Z_bar = reduce(overall.U_all, overall.Z_all, scene.beam.left, scene.beam.right)
     return Derivation(scene.beam.left, scene.beam.right, n, overall, U_bar, Z_bar)
 
 
@@ -124,4 +146,23 @@ def component_matrices() -> list[tuple[str, sp.Matrix]]:
         ("rigid body U_I2 (branch input [Y, Q]), Eq. (2)", rigid_body.U_I2()),
         ("rigid body H_I1 (geometric equation, beam side), Eq. (3)", rigid_body.H_I1()),
         ("rigid body H_I2 (geometric equation, branch side), Eq. (3)", rigid_body.H_I2()),
-    ]
+    ] + _kind_matrices()
+
+
+def _kind_matrices() -> list[tuple[str, sp.Matrix]]:
+    """Each kind's point matrix ``det(Cq) (A - B Cq^-1 Cz)`` on ``[Y, theta, M, Q]`` (its
+    pole factor multiplied out; a constraint's is its constrained map), from its
+    descriptor in SI with generic values ``k``, ``m``, ``J``; a chain's depends on its
+    length (``symbolic`` shows it with every mass)."""
+    from . import catalog, descriptor
+    from .assemble import component_descriptor
+
+    out = []
+    for name, module in catalog.kinds().items():
+        if any(key.shape == "list" for key in module.KEYS):
+            continue
+        values = {key.name: sp.Symbol(key.name, positive=True) for key in module.KEYS[1:]}
+        P, pole = descriptor.point_matrix(component_descriptor(name, values))
+        factor = f" times its pole factor {pole}" if pole != 1 else ""
+        out.append((f"{name} ({module.DOC}): point matrix{factor}, Eqs. (1)-(3)", P))
+    return out

@@ -1,9 +1,10 @@
 """Emit the numba kernel module of a topology: fill the template, sign it, write it.
 
-The template (``templates/kernel.py.tmpl``) holds the generic numerics (scan
-loop, Brent refinement, LU determinant, renormalisation); this module prints the
-per-component expressions into it. Only the components of the topology's kinds
-are printed, and the attachment loops are left out for a bare beam.
+Two templates: ``templates/numerics.py.tmpl``, the numerics every kernel shares (beam
+functions, renormalised steps, the scan with Brent and the count, the paper's tree, the
+mode-shape march), printed once into ``generated/numerics.py``; and
+``templates/kernel.py.tmpl``, a topology's characteristic functions with one branch per
+kind present, printed from each kind's descriptor. A bare beam gets no branch at all.
 """
 
 from __future__ import annotations
@@ -16,21 +17,18 @@ from string import Template
 
 import sympy as sp
 
-from . import special
+from . import catalog, descriptor, special
 from . import symbols as S
-from .catalog import ATTACHMENT_PARAMETERS, BEAM_PARAMETERS, KNOWN_ZERO, Topology, unknown
-from .components import beam, rigid_body, spring_mass
+from .catalog import KNOWN_ZERO, Topology, unknown
+from .components import beam
 from .compound import pair_index
 from .printer import assignments, code
-from .sign import signature
+from .sign import derive_digest, signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
-FORMULATION_TEMPLATE = TEMPLATE.with_name("formulation.py.tmpl")
-SHAPES_TEMPLATE = TEMPLATE.with_name("shapes.py.tmpl")
+NUMERICS_TEMPLATE = TEMPLATE.with_name("numerics.py.tmpl")
 #: Gauss-Legendre points of the mode shapes' mass integrals.
 GAUSS_POINTS = 8
-#: Formulations emitted into every kernel (``delta_<name>`` in the kernel template).
-FORMULATIONS = ("stable", "paper")
 
 
 def _indent(lines: list[str], n: int) -> str:
@@ -83,179 +81,199 @@ def _compound_step(C: sp.Matrix) -> list[str]:
     return lines
 
 
-SPRING_MASS_FUNCTIONS = '''
-
-@njit(cache=True)
-def spring_mass_compound_step(v, beta, kappa, mu):
-    """v <- (1 - mu beta^4 / kappa) C2(P) v: the condensed spring-mass branch, pole-free."""
-$step
-
-
-@njit(cache=True)
-def spring_mass_tip(k, m, omega):
-    """Geometric (H_I2 B e_Y) and shear (U_I2 B e_Y) of a unit tip displacement, B = U_s U_m."""
-$tip
-    return geometric, shear
-'''
-
-SPRING_MASS_COUNT = '''
-
-@njit(cache=True)
-def spring_mass_stiffness(beta, kappa, mu):
-    """Pivot of the mass degree of freedom (k - m w^2 over k) and the condensed stiffness
-    it adds to the node's Y, -shear / pivot (units L = EI = 1, B = U_spring U_mass)."""
-$stiffness
-    if pivot == 0.0:
-        return 0.0, PENALTY  # at the oscillator frequency the branch pins the node
-    return pivot, -shear / pivot
-'''
-
-SPRING_MASS_COUNT_LOOP = """\
-n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-for i in range(n):
-    q = 3 + ATTACHMENT_STRIDE * i
-    rho = (p[q] - pos) / L
-    paired = leave_pairing(Zc, S, pos, L, started, paired)
-    if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
-        count += segment_count(S, Zc, U, beta, rho, started, paired)
-        started = True
-    pos = p[q]
-    pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
-    if pivot < 0.0:
-        count += 1
-    S[0, 0] += added
-    if paired:
-        add_node_stiffness(Zc, added)"""
-
-SPRING_MASS_STABLE_LOOP = """\
-n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-for i in range(n):
-    q = 3 + ATTACHMENT_STRIDE * i
-    rho = (p[q] - pos) / L
-    pos = p[q]
-    if rho > 0.0:
-        log += beam_compound_step(v, beta, rho)
-    kappa = p[q + 1] * L**3 / EI
-    mu = p[q + 2] / (mbar * L)
-    spring_mass_compound_step(v, beta, kappa, mu)
-    log += renormalise(v)"""
-
-#: Body of ``oscillator_frequencies(p)``: where the kernel's ``lowest`` puts extra scan nodes.
-SPRING_MASS_OSCILLATORS = """\
-n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-out = np.empty(n)
-for i in range(n):
-    q = 3 + ATTACHMENT_STRIDE * i
-    out[i] = math.sqrt(p[q + 1] / p[q + 2])
-return np.sort(out)"""
-
-SPRING_MASS_PAPER_LOOP = """\
-for i in range(n):
-    q = 3 + ATTACHMENT_STRIDE * i
-    l = p[q] - pos
-    pos = p[q]
-    if l > 0.0:
-        beam_transfer(lam, l, EI, U)
-        apply_columns(U, W, ncols, col)
-    geometric, shear = spring_mass_tip(p[q + 1], p[q + 2], omega)
-    # geometric equation, paper Eq. (3): -H_I1 Z_I1 + H_I2 Z_I2 = 0
-    for j in range(ncols):
-        A[4 + i, j] = -W[H_I1_INDEX, j]
-    A[4 + i, ncols] = geometric
-    # rigid body output, paper Eq. (2): Z_O = U_I1 Z_I1 + U_I2 Z_I2
-    W[U_I2_ROW, ncols] = shear
-    ncols += 1"""
+def _value_lines(module, exclude: tuple[str, ...] = ()) -> tuple[list[str], dict]:
+    """Lines loading a kind's scalar values from its data block (at ``o``) in units
+    L = EI = mbar = 1 (exponents from each key's unit), and their symbols."""
+    lines = []
+    values = {}
+    j = 0
+    for key in module.KEYS[1:]:
+        if key.shape == "list":
+            break
+        a, b, c = key.scale
+        num = [n for n, e in (("L", a), ("EI", b), ("mbar", c)) for _ in range(max(e, 0))]
+        den = [n for n, e in (("L", a), ("EI", b), ("mbar", c)) for _ in range(max(-e, 0))]
+        factor = "".join(f" * {n}" for n in num)
+        if den:
+            factor += " / " + (den[0] if len(den) == 1 else "(" + " * ".join(den) + ")")
+        name = f"val_{key.name}"
+        lines.append(f"{name} = p[o + {j}]{factor}")
+        values[key.name] = sp.Symbol(name, real=True)
+        j += 1
+    for name in getattr(module, "PRELUDE_NAMES", ()):
+        values[name] = sp.Symbol(name, real=True)
+    if hasattr(module, "PRELUDE"):
+        lines.append(module.PRELUDE)
+    return lines, values
 
 
-def _spring_mass_functions() -> str:
-    C, _pole = spring_mass.condensed_compound(S.kappa, S.mu, S.beta**2)
-    col = spring_mass.tip_column(S.k, S.m, S.omega)
-    geometric = (rigid_body.H_I2() * col)[0, 0]
-    shear = (rigid_body.U_I2() * col)[_u_i2_row(), 0]
-    tip = assignments(["geometric", "shear"], [geometric, shear], indent="")
-    # node stiffness of the condensed branch: F = -(B10 / B00) Y (paper Eq. (3) eliminated)
-    col_nd = spring_mass.tip_column(S.kappa, S.mu, S.beta**2)
-    stiffness = assignments(["pivot", "shear"], [col_nd[0], col_nd[1]], indent="")
-    return Template(SPRING_MASS_FUNCTIONS + SPRING_MASS_COUNT).substitute(
-        step=_indent(_compound_step(C), 4),
-        tip=_indent(tip, 4),
-        stiffness=_indent(stiffness, 4),
-    )
+def _symbolic_descriptor(module) -> tuple[list[str], descriptor.Descriptor]:
+    lines, values = _value_lines(module)
+    return lines, module.descriptor(values)
 
 
-SHAPE_EVENT = '''
-
-@njit(cache=True)
-def event_position(p, i):
-    """x (SI) of the i-th point component, sorted by x."""
-    return p[3 + ATTACHMENT_STRIDE * i]
-
-
-@njit(cache=True)
-def shape_event(p, i, beta, Cz, Cq, B, qmass):
-    """The i-th point component in descriptor form for the mode-shape march (units
-    L = EI = 1): its geometric equation H_I1 Z = B00 Y_m (paper Eq. (3), B00 = 1 - m w^2/k)
-    as Cz Z + Cq q = 0, and the shear its mass puts into the beam, U_I2 B e_Y Y_m
-    (paper Eq. (2)), as Z+ = Z + B q; q = [Y_m / L], of mass qmass = [mu] (units
-    mbar L). Returns (constraints, unknowns)."""
-    q = 3 + ATTACHMENT_STRIDE * i
-    L = p[0]
-    kappa = p[q + 1] * L**3 / p[1]
-    mu = p[q + 2] / (p[2] * L)
-    qmass[0] = mu
-$descriptor
-    return 1, 1
-'''
-
-NO_SHAPE_EVENT = '''
-
-@njit(cache=True)
-def event_position(p, i):
-    """This topology has no point components."""
-    return p[0]
+def _step_lines(d: descriptor.Descriptor, name: str = "v") -> list[str]:
+    vs = sp.symbols("v0:6")
+    lines = [f"v{a} = {name}[{a}]" for a in range(6)]
+    step = descriptor.compound_step(d, sp.Matrix(vs))
+    lines += assignments([f"{name}[{a}]" for a in range(6)], list(step), indent="")
+    return lines
 
 
-@njit(cache=True)
-def shape_event(p, i, beta, Cz, Cq, B, qmass):
-    """This topology has no point components."""
-    return 0, 0
-'''
+def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """v <- the component's pole-free compound step (docs/components.md)."""
+    return _value_lines(module)[0] + _step_lines(d)
 
 
-def _shape_event(has_sm: bool) -> str:
-    """The per-kind descriptor functions of the mode-shape march."""
-    if not has_sm:
-        return NO_SHAPE_EVENT
-    col = spring_mass.tip_column(S.kappa, S.mu, S.beta**2)
-    B00, B10 = col[0], col[1]
-    H = rigid_body.H_I1()
-    jump = rigid_body.U_I2()[:, 1] * B10  # the branch's shear, per unit tip displacement
-    targets = [f"Cz[0, {j}]" for j in range(4)] + ["Cq[0, 0]"] + [f"B[{r}, 0]" for r in range(4)]
-    exprs = [H[0, j] for j in range(4)] + [-B00] + list(jump)
-    lines = assignments(targets, exprs, indent="")
-    return Template(SHAPE_EVENT).substitute(descriptor=_indent(lines, 4))
+def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """The negative pivots a component adds to the count (returned), and the minors Zc of
+    the node's state subspace carried across it."""
+    values = _value_lines(module)[0]
+    if module.COUNT == "constraint":
+        # the constrained freedoms as a stiffness PENALTY: exact for the inertia count
+        A = sp.eye(4) - sp.Symbol("PENALTY") * d.B * d.Cz
+        return _step_lines(descriptor.point(A), "Zc") + ["return 0"]
+    step = _step_lines(d, "Zc")
+    if module.COUNT == "split":
+        # a hinge: the rotation left of it is eliminated first, pivot S_theta + kappa
+        if d.Cz != descriptor.unit(2).T or d.B != descriptor.unit(1):
+            raise ValueError(f"{module.KIND}: COUNT 'split' needs Cz = e_M and B = e_theta")
+        pivot = [f"pivot = (Zc[1] - ({code(d.Cq[0, 0])}) * Zc[0]) * Zc[0]"]
+        return values + pivot + step + ["return 1 if pivot < 0.0 else 0"]
+    if d.n_q == 0:
+        descriptor.node_stiffness(d)  # checks that it is one
+        return values + step + ["return 0"]
+    if hasattr(module, "OWN"):
+        return values + step + [f"return {module.OWN}"]
+    if d.n_q != 1 or d.Cz != descriptor.unit(0).T:
+        raise ValueError(f"{module.KIND}: a stiffness kind with unknowns needs Cz = e_Y, n_q = 1")
+    # the unknown's own dynamic stiffness (k - m w^2 over k for a spring-mass)
+    pivot = [f"pivot = {code(-d.Cq[0, 0])}"]
+    return values + pivot + step + ["return 1 if pivot < 0.0 else 0"]
 
 
-def _shape_functions(topology: Topology, has_sm: bool) -> str:
-    import numpy as np
+def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """Fill Cz, Cq, A, B, qmass (units L = EI = mbar = 1); return (constraints, unknowns)."""
+    if hasattr(module, "SHAPE"):
+        return [f"return {module.SHAPE}"]
+    lines = _value_lines(module)[0]
+    targets = [f"A[{r}, {c}]" for r in range(4) for c in range(4)]
+    exprs = list(d.A)
+    for r in range(d.Cz.rows):
+        targets += [f"Cz[{r}, {c}]" for c in range(4)] + [f"Cq[{r}, {j}]" for j in range(d.n_q)]
+        exprs += list(d.Cz[r, :]) + list(d.Cq[r, :])
+    for j in range(d.n_q):
+        targets += [f"B[{r}, {j}]" for r in range(4)] + [f"qmass[{j}]"]
+        exprs += list(d.B[:, j]) + [d.qmass[j]]
+    lines += assignments(targets, [sp.sympify(e) for e in exprs], indent="")
+    return lines + [f"return {d.Cz.rows}, {d.n_q}"]
 
-    gx, gw = np.polynomial.legendre.leggauss(GAUSS_POINTS)
-    return _shape_event(has_sm) + Template(SHAPES_TEMPLATE.read_text()).substitute(
-        max_q=1 if has_sm else 0,
-        right_known=repr(KNOWN_ZERO[topology.right]),
-        n_events="(p.shape[0] - 3) // ATTACHMENT_STRIDE" if has_sm else "0",
-        gauss_x=repr([float(v) for v in 0.5 * (gx + 1.0)]),
-        gauss_w=repr([float(v) for v in 0.5 * gw]),
-    )
+
+def _internal_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """Append the component's own frequencies (rad/s) to out[n:]; return n."""
+    if hasattr(module, "INTERNAL"):
+        return [f"return {module.INTERNAL}"]
+    roots = descriptor.internal_b4(d)
+    if not roots:
+        return ["return n"]
+    lines = _value_lines(module)[0]
+    for r in roots:
+        lines += [
+            f"b4 = {code(r)}",
+            "if b4 > 0.0 and math.isfinite(b4):",
+            "    out[n] = math.sqrt(b4 * EI / mbar) / (L * L)",
+            "    n += 1",
+        ]
+    return lines + ["return n"]
 
 
-def _riccati_lines() -> list[str]:
-    Us = sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"U{i}{j}"))
-    s00, s01, s11 = sp.symbols("s00 s01 s11")
-    S_num, detX, detBP, m00 = beam.riccati_step(Us, sp.Matrix([[s00, s01], [s01, s11]]))
-    lines = [f"U{i}{j} = U[{i}, {j}]" for i in range(4) for j in range(4)]
-    targets = ["S00", "S01", "S10", "S11", "detX", "detBP", "m00"]
-    return lines + assignments(targets, [*S_num, detX, detBP, m00], indent="")
+def _nq_lines(module, d: descriptor.Descriptor) -> list[str]:
+    return [f"return {getattr(module, 'N_Q', d.n_q)}"]
+
+
+#: Flags of ``event_rigid``: the kinematic constraint a component puts on rigid motions.
+RIGID_FLAGS = {"Y": 1, "theta": 2, "kink_if_free": 3}
+
+
+def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
+    rigid = tuple(getattr(module, "RIGID", ()))
+    if not rigid:
+        return ["return 0"]
+    if len(rigid) != 1 or rigid[0] not in RIGID_FLAGS:
+        raise ValueError(f"{module.KIND}: RIGID must be one of {tuple(RIGID_FLAGS)} or empty")
+    if rigid[0] == "kink_if_free":
+        return ["return 3 if p[o] == 0.0 else 0"]
+    return [f"return {RIGID_FLAGS[rigid[0]]}"]
+
+
+#: The kernel's dispatch functions ``event_<what>(tag, ...)``: arguments, the branch of
+#: each kind present (printed from its descriptor), the statement for no branch, and doc.
+DISPATCH = (
+    (
+        "stable",
+        "v, b4, p, o, L, EI, mbar",
+        _stable_lines,
+        "return",
+        "v <- the pole-free compound step of the component at row o (docs/components.md).",
+    ),
+    (
+        "count",
+        "Zc, b4, p, o, L, EI, mbar",
+        _count_lines,
+        "return 0",
+        "The negative pivots the component adds to the count; Zc carried across it.",
+    ),
+    (
+        "descriptor",
+        "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
+        _descriptor_lines,
+        "return 0, 0",
+        "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units\n"
+        "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
+    ),
+    ("nq", "p, o", _nq_lines, "return 0", "Number of unknowns of the component (full descriptor)."),
+    (
+        "internal",
+        "p, o, L, EI, mbar, out, n",
+        _internal_lines,
+        "return n",
+        "Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n.",
+    ),
+    (
+        "rigid",
+        "p, o",
+        _rigid_lines,
+        "return 0",
+        "Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink.",
+    ),
+)
+
+
+def _dispatch(kinds: tuple[str, ...]) -> str:
+    """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
+    printed inline (one compiled function per entry, not per kind: compile time)."""
+    parsed = []
+    for k in kinds:
+        module = catalog.kind(k)
+        parsed.append((k, module, _symbolic_descriptor(module)[1]))
+    out = []
+    for what, args, body, tail, doc in DISPATCH:
+        lines = ["", "", "@njit(cache=True)", f"def event_{what}(tag, {args}):", f'    """{doc}"""']
+        for t, (k, module, d) in enumerate(parsed):
+            lines.append(f"    {'if' if t == 0 else 'elif'} tag == {t}:  # {k}")
+            lines += ["        " + line if line else "" for line in body(module, d)]
+        lines.append(f"    {tail}")
+        out.append("\n".join(lines) + "\n")
+    return "".join(out) + "".join(getattr(catalog.kind(k), "FUNCTIONS", "") for k in kinds)
+
+
+def _node_stiffness_lines() -> list[str]:
+    """Zc <- C2(I - kY e_Q e_Y^T + kT e_M e_theta^T) Zc: a node stiffness on the minors."""
+    kY, kT = sp.symbols("kY kT")
+    A = sp.eye(4)
+    A[3, 0] = -kY
+    A[2, 1] = kT
+    return _step_lines(descriptor.point(A), "Zc")
 
 
 def _penalty_lines(end: str) -> list[str]:
@@ -263,68 +281,35 @@ def _penalty_lines(end: str) -> list[str]:
     return [f"S[{d}, {d}] += PENALTY" for d in KNOWN_ZERO[end] if d < 2]
 
 
-def _h_i1_index() -> int:
-    (idx,) = [j for j in range(4) if rigid_body.H_I1()[0, j] != 0]
-    return idx
-
-
-def _u_i2_row() -> int:
-    (row,) = [i for i in range(4) if rigid_body.U_I2()[i, 1] != 0]
-    return row
-
-
 def _parameter_doc(topology: Topology) -> str:
-    names = list(BEAM_PARAMETERS)
-    for kind in topology.kinds:
-        fields = ", ".join(ATTACHMENT_PARAMETERS[kind])
-        names.append(f"then per {kind} ({fields}), sorted by x")
-    return "[" + ", ".join(names) + "]"
+    parts = [
+        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) per segment,"
+        " (tag, x, offset) per component sorted by x, data blocks]"
+    ]
+    for t, name in enumerate(topology.kinds):
+        keys = ", ".join(
+            f"{k.name}{'[]' if k.shape == 'list' else ''} ({k.unit})"
+            for k in catalog.kind(name).KEYS[1:]
+        )
+        parts.append(f"tag {t} = {name}: {keys or 'no values'}")
+    return "; ".join(parts)
 
 
-def regenerate_command(topology: Topology) -> str:
-    """Shell command that writes this kernel again."""
-    return f"python -m mstmm.derive --topology {topology.key} --out DIR"
+def numerics_source() -> str:
+    """The source of the numerics module shared by every kernel (``generated/numerics.py``)."""
+    import numpy as np
 
-
-def kernel_source(topology: Topology) -> str:
-    """The complete source of the kernel module of ``topology``."""
-    kinds = topology.kinds
-    if kinds not in ((), ("spring_mass",)):
-        raise NotImplementedError(f"no emitter for attachment kinds {kinds}")
-    has_sm = "spring_mass" in kinds
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
-    left_unknown = unknown(topology.left)
-    right_unknown = unknown(topology.right)
-    rb_constants = (
-        f"H_I1_INDEX = {_h_i1_index()}  # H_I1 = [1 0 0 0] picks Y (paper Eq. (3))\n"
-        f"U_I2_ROW = {_u_i2_row()}  # U_I2 puts the branch shear into Q (paper Eq. (2))"
-        if has_sm
-        else ""
-    )
-    n_att = "any number of spring-mass branches" if has_sm else "no attachments"
+    gx, gw = np.polynomial.legendre.leggauss(GAUSS_POINTS)
     values = dict(
-        key=topology.key,
-        left=topology.left,
-        right=topology.right,
-        attachments_text=n_att,
         threshold=repr(special.SERIES_THRESHOLD),
-        parameter_doc=_parameter_doc(topology),
-        regenerate=regenerate_command(topology),
+        digest=derive_digest(),
         sympy_version=importlib.metadata.version("sympy"),
-        signature=signature(topology),
-        left_unknown=repr(left_unknown),
-        right_unknown=repr(right_unknown),
-        start_pair=pair_index(left_unknown),
-        end_pair=pair_index(KNOWN_ZERO[topology.right]),
-        rigid_body_modes=topology.rigid_body_modes,
-        stride=len(ATTACHMENT_PARAMETERS["spring_mass"]) if has_sm else 1,
-        rigid_body_constants=rb_constants,
-        formulation_functions="\n\n".join(
-            Template(FORMULATION_TEMPLATE.read_text()).substitute(name=name).strip() + "\n"
-            for name in FORMULATIONS
-        ),
+        head=catalog.HEAD,
+        segment_width=catalog.SEGMENT_WIDTH,
+        event_width=catalog.EVENT_WIDTH,
         krylov_series=_indent(_series_lines(special.KRYLOV), 8),
         krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
         compound_series=_indent(_series_lines(special.COMPOUND), 8),
@@ -333,31 +318,59 @@ def kernel_source(topology: Topology) -> str:
         krylov_scaled=_indent(_closed_lines(special.KRYLOV, scaled=True), 4),
         beam_transfer_scaled=_indent(_matrix_fill(U_nd, "U"), 4),
         clamped_clamped=_indent(_clamped_clamped_lines(), 4),
-        riccati=_indent(_riccati_lines(), 4),
-        left_penalty=_indent(_penalty_lines(topology.left), 4),
-        right_penalty=_indent(_penalty_lines(topology.right), 4),
-        count_attachment_loop=_indent(SPRING_MASS_COUNT_LOOP.splitlines(), 4) if has_sm else "",
-        oscillators=_indent(
-            SPRING_MASS_OSCILLATORS.splitlines() if has_sm else ["return np.empty(0)"], 4
-        ),
         beam_compound=_indent(_compound_step(C_beam), 4),
-        attachment_functions=_spring_mass_functions() if has_sm else "",
-        stable_attachment_loop=_indent(SPRING_MASS_STABLE_LOOP.splitlines(), 4) if has_sm else "",
-        paper_attachment_loop=_indent(SPRING_MASS_PAPER_LOOP.splitlines(), 4) if has_sm else "",
-        shape_functions=_shape_functions(topology, has_sm),
+        node_stiffness=_indent(_node_stiffness_lines(), 4),
+        gauss_x=repr([float(v) for v in 0.5 * (gx + 1.0)]),
+        gauss_w=repr([float(v) for v in 0.5 * gw]),
     )
-    text = Template(TEMPLATE.read_text()).substitute(values)
+    return _clean(Template(NUMERICS_TEMPLATE.read_text()).substitute(values))
+
+
+def _clean(text: str) -> str:
     return "\n".join(line.rstrip() for line in text.splitlines()) + "\n"
 
 
-def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
-    """Derive the kernel of ``topology`` and write it atomically into ``directory`` (as
-    ``name``, default ``<key>_<signature[:16]>.py``); returns its path."""
-    source = kernel_source(topology)
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
-    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".py")
+def regenerate_command(topology: Topology) -> str:
+    """Shell command that writes this kernel again."""
+    return f"python -m mstmm.derive --topology {topology.key} --out DIR"
+
+
+def kernel_source(topology: Topology) -> str:
+    """The complete source of the kernel module of ``topology`` (it imports the shared
+    numerics, ``numerics_source``)."""
+    kinds = topology.kinds
+    left_unknown = unknown(topology.left)
+    right_unknown = unknown(topology.right)
+    kinds_text = (
+        "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
+    )
+    values = dict(
+        key=topology.key,
+        left=topology.left,
+        right=topology.right,
+        attachments_text=kinds_text,
+        kinds=repr(kinds),
+        threshold=repr(special.SERIES_THRESHOLD),
+        parameter_doc=_parameter_doc(topology),
+        regenerate=regenerate_command(topology),
+        sympy_version=importlib.metadata.version("sympy"),
+        signature=signature(topology),
+        digest=derive_digest(),
+        left_unknown=repr(left_unknown),
+        right_unknown=repr(right_unknown),
+        left_known=repr(KNOWN_ZERO[topology.left]),
+        right_known=repr(KNOWN_ZERO[topology.right]),
+        start_pair=pair_index(left_unknown),
+        end_pair=pair_index(KNOWN_ZERO[topology.right]),
+        right_penalty=_indent(_penalty_lines(topology.right), 4),
+        dispatch=_dispatch(kinds),
+    )
+    return _clean(Template(TEMPLATE.read_text()).substitute(values))
+
+
+def _write_atomically(source: str, path: Path) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".py")
     try:
         with os.fdopen(fd, "w") as fh:
             fh.write(source)
@@ -367,3 +380,16 @@ def write_kernel(topology: Topology, directory: Path, name: str | None = None) -
             os.unlink(tmp)
         raise
     return path
+
+
+def write_numerics(directory: Path) -> Path:
+    """Write the shared numerics module (``numerics.py``) into ``directory``."""
+    return _write_atomically(numerics_source(), Path(directory) / "numerics.py")
+
+
+def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
+    """Derive the kernel of ``topology`` and write it atomically into ``directory`` (as
+    ``name``, default ``<key>_<signature[:16]>.py``); returns its path."""
+    directory = Path(directory)
+    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
+    return _write_atomically(kernel_source(topology), path)

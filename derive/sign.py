@@ -1,6 +1,7 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
-``SIGNATURE = sha1(topology key | derive/ sources | SymPy version | KERNEL_FORMAT)``.
+``SIGNATURE = sha1(topology key | derive/ sources | files of kinds registered from outside
+derive/ | SymPy version | KERNEL_FORMAT)``.
 A committed kernel is used only when its ``SIGNATURE`` equals this; a cached one
 carries it in its file name, so numba's on-disk cache (keyed on the file) stays
 valid (DESIGN.md, tool-chain facts). The SymPy version is read from the package
@@ -13,10 +14,10 @@ import hashlib
 import importlib.metadata
 from pathlib import Path
 
-from .catalog import Topology
+from .catalog import Topology, kind_file
 
 #: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
-KERNEL_FORMAT = 1
+KERNEL_FORMAT = 2
 
 _DIGEST: str | None = None
 
@@ -32,12 +33,24 @@ def _derive_digest() -> str:
     return h.hexdigest()
 
 
-def signature(topology: Topology) -> str:
-    """sha1 of the topology, the derive/ sources, the SymPy version and the kernel format."""
+def derive_digest() -> str:
+    """sha1 of every source and template of the derive package (computed once)."""
     global _DIGEST
     if _DIGEST is None:
         _DIGEST = _derive_digest()
+    return _DIGEST
+
+
+def signature(topology: Topology) -> str:
+    """sha1 of the topology, the derive/ sources, the SymPy version and the kernel format."""
+    derive_digest()
+    root = Path(__file__).resolve().parent
+    outside = []
+    for name in topology.kinds:
+        path = kind_file(name)
+        if root not in path.parents:  # a kind registered from outside the package
+            outside.append(hashlib.sha1(path.read_bytes()).hexdigest())
     text = "|".join(
-        [topology.key, _DIGEST, importlib.metadata.version("sympy"), str(KERNEL_FORMAT)]
+        [topology.key, _DIGEST, *outside, importlib.metadata.version("sympy"), str(KERNEL_FORMAT)]
     )
     return hashlib.sha1(text.encode()).hexdigest()

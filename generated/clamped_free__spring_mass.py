@@ -1,263 +1,166 @@
 """Characteristic functions of the MSTMM topology ``clamped_free__spring_mass`` (generated, do not edit).
 
-What: the natural frequencies of a uniform Euler-Bernoulli beam (clamped at x = 0,
-free at x = L) carrying any number of spring-mass branches are the zeros of
+What: the natural frequencies of an Euler-Bernoulli beam of uniform or stepped segments
+(clamped at x = 0, free at x = L) carrying point components of the kinds spring_mass are the zeros of
 
-* ``delta_paper``: det U_bar(omega), paper Eqs. (1)-(4) evaluated as printed
-  (tree algorithm, geometric equations, boundary reduction, LU determinant);
+* ``delta_paper``: det U_bar(omega), paper Eqs. (1)-(4): the tree algorithm with every
+  component's unknowns and geometric equations (its descriptor), the boundary reduction,
+  an LU determinant (units L = EI_0 = mbar_0 = 1);
 * ``delta_stable`` (default): the same roots from the second-compound chain in
-  units L = 1, EI = 1, reduced beam functions (series below x = 1.5),
-  spring-mass poles multiplied out exactly once, renormalised every step.
+  units L = 1, EI_0 = 1, reduced beam functions (series below x = 1.5),
+  every component's pole factor multiplied out exactly once, renormalised every step.
 
 Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
 ``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
-clamped-segment counts plus the negative pivots of the dynamic stiffness,
-eliminated node by node with Riccati transfer steps), independent of both.
+clamped-piece counts plus the negative pivots of the dynamic stiffness, eliminated node
+by node on the minors of the state subspace; each component adds its own), independent
+of both. One event loop walks the components in x order, one branch per kind present.
 
-Parameter vector p (SI): [L, EI, mbar, then per spring_mass (x, k, m), sorted by x]
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) per segment, (tag, x, offset) per component sorted by x, data blocks]; tag 0 = spring_mass: k (N/m), m (kg)
 Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
 
-import math
-
-import numpy as np
-from numba import njit, prange
+from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6618b72687a1a7a7422948ff40bc4578b284e96d"
+SIGNATURE = "f4e9811c0d604399c782acf399ef0ffed4855f4e"
+#: Component kinds of this kernel; a component's tag is its kind's index here.
+KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
+LEFT_KNOWN = (0, 1)
 START_PAIR = 5
 END_PAIR = 5
-RIGID_BODY_MODES = 0
-ATTACHMENT_STRIDE = 3
-#: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
-PENALTY = 1e60
-#: A first segment shorter than this (units of L) is merged into the end node by the count:
-#: its stiffness (~12/rho^3) must stay far below PENALTY.
-MERGE_LENGTH = 1e-15
-#: Nodes closer than this (units of L) to the left end are eliminated on the state subspace.
-PAIR_LENGTH = 1e-3
-#: Longest piece (in lam*l) carried by one Riccati step of the count.
-RICCATI_STEP = 1.0
-#: Scan nodes per pi of beta = lam L in ``lowest`` (beam modes are about pi apart).
-NODES_PER_MODE = 8
-H_I1_INDEX = 0  # H_I1 = [1 0 0 0] picks Y (paper Eq. (3))
-U_I2_ROW = 3  # U_I2 puts the branch shear into Q (paper Eq. (2))
-
-@njit(cache=True)
-def krylov(x):
-    """Reduced Krylov functions K0 = S, K1 = T/x, K2 = G/x^2, K3 = V/x^3 (paper Eq. (1))."""
-    if x < 1.5:
-        z = x**4
-        K0 = 1.0 + z * (0.041666666666666664 + z * (2.48015873015873e-05 + z * (2.08767569878681e-09 + z * (4.779477332387385e-14 + z * (4.110317623312165e-19)))))
-        K1 = 1.0 + z * (0.008333333333333333 + z * (2.7557319223985893e-06 + z * (1.6059043836821613e-10 + z * (2.8114572543455206e-15 + z * (1.9572941063391263e-20)))))
-        K2 = 0.5 + z * (0.001388888888888889 + z * (2.755731922398589e-07 + z * (1.1470745597729725e-11 + z * (1.5619206968586225e-16 + z * (8.896791392450574e-22)))))
-        K3 = 0.16666666666666666 + z * (0.0001984126984126984 + z * (2.505210838544172e-08 + z * (7.647163731819816e-13 + z * (8.22063524662433e-18))))
-    else:
-        K0 = (0.5)*math.cos(x) + (0.5)*math.cosh(x)
-        K1 = (0.5)*(math.sin(x) + math.sinh(x))/x
-        K2 = (0.5)*(-math.cos(x) + math.cosh(x))/x**2
-        K3 = (0.5)*(-math.sin(x) + math.sinh(x))/x**3
-    return K0, K1, K2, K3
+RIGHT_KNOWN = (2, 3)
+#: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
+SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
+#: The ``DIGEST`` of the shared numerics this kernel was printed with.
+NUMERICS = "c4bed8940fd6a4f2d918cd1001acee33ca9a0b6e"
+#: Relative singular value below which a rigid-motion constraint is dependent.
+RIGID_RANK = 1e-9
 
 
 @njit(cache=True)
-def krylov_scaled(x):
-    """krylov(x) times exp(-shift), shift = x above the threshold (no overflow); returns shift."""
-    if x < 1.5:
-        K0, K1, K2, K3 = krylov(x)
-        return 0.0, K0, K1, K2, K3
-    E = math.exp(-x)
-    chs = 0.5 + 0.5 * E * E
-    shs = 0.5 - 0.5 * E * E
-    K0 = (0.5)*E*math.cos(x) + (0.5)*chs
-    K1 = (0.5)*E*math.sin(x)/x + (0.5)*shs/x
-    K2 = -0.5*E*math.cos(x)/x**2 + (0.5)*chs/x**2
-    K3 = -0.5*E*math.sin(x)/x**3 + (0.5)*shs/x**3
-    return x, K0, K1, K2, K3
+def event_stable(tag, v, b4, p, o, L, EI, mbar):
+    """v <- the pole-free compound step of the component at row o (docs/components.md)."""
+    if tag == 0:  # spring_mass
+        val_k = p[o + 0] * L * L * L / EI
+        val_m = p[o + 1] / (L * mbar)
+        v0 = v[0]
+        v1 = v[1]
+        v2 = v[2]
+        v3 = v[3]
+        v4 = v[4]
+        v5 = v[5]
+        t0 = 1.0/val_k
+        t1 = b4*val_m
+        t2 = t1*v0
+        t3 = t1*v1
+        t4 = t0*t1
+        v[0] = t0*t2 - v0
+        v[1] = t0*t3 - v1
+        v[2] = t4*v2 - v2
+        v[3] = t4*v3 - v3
+        v[4] = t2 + t4*v4 - v4
+        v[5] = t3 + t4*v5 - v5
+    return
 
 
 @njit(cache=True)
-def compound_krylov(x):
-    """Compound functions F1..F4 and E, scaled by exp(-x) above the threshold; returns the shift."""
-    if x < 1.5:
-        z = x**4
-        shift = 0.0
-        E = 1.0
-        F1 = 1.0 + z * (-0.03333333333333333 + z * (4.409171075837743e-05 + z * (-1.0277788055565833e-08 + z * (7.197330571124533e-13 + z * (-2.0042691648912653e-17 + z * (2.6406708364838804e-22))))))
-        F2 = 0.5 + z * (-0.005555555555555556 + z * (4.409171075837742e-06 + z * (-7.341277182547024e-10 + z * (3.9985169839580737e-14 + z * (-9.110314385869388e-19)))))
-        F3 = 0.3333333333333333 + z * (-0.0015873015873015873 + z * (8.01667468334135e-07 + z * (-9.788369576729365e-11 + z * (4.208965246271657e-15 + z * (-7.922012509451641e-20)))))
-        F4 = 0.08333333333333333 + z * (-0.0001984126984126984 + z * (6.680562236117792e-08 + z * (-6.117730985455853e-12 + z * (2.1044826231358284e-16 + z * (-3.3008385456048505e-21)))))
-    else:
-        shift = x
-        E = math.exp(-x)
-        chs = 0.5 + 0.5 * E * E
-        shs = 0.5 - 0.5 * E * E
-        F1 = (0.5)*chs*math.sin(x)/x + (0.5)*shs*math.cos(x)/x
-        F2 = (0.5)*shs*math.sin(x)/x**2
-        F3 = (0.5)*chs*math.sin(x)/x**3 - 0.5*shs*math.cos(x)/x**3
-        F4 = (0.5)*E/x**4 - 0.5*chs*math.cos(x)/x**4
-    return shift, E, F1, F2, F3, F4
+def event_count(tag, Zc, b4, p, o, L, EI, mbar):
+    """The negative pivots the component adds to the count; Zc carried across it."""
+    if tag == 0:  # spring_mass
+        val_k = p[o + 0] * L * L * L / EI
+        val_m = p[o + 1] / (L * mbar)
+        pivot = -b4*val_m/val_k + 1.0
+        v0 = Zc[0]
+        v1 = Zc[1]
+        v2 = Zc[2]
+        v3 = Zc[3]
+        v4 = Zc[4]
+        v5 = Zc[5]
+        t0 = 1.0/val_k
+        t1 = b4*val_m
+        t2 = t1*v0
+        t3 = t1*v1
+        t4 = t0*t1
+        Zc[0] = t0*t2 - v0
+        Zc[1] = t0*t3 - v1
+        Zc[2] = t4*v2 - v2
+        Zc[3] = t4*v3 - v3
+        Zc[4] = t2 + t4*v4 - v4
+        Zc[5] = t3 + t4*v5 - v5
+        return 1 if pivot < 0.0 else 0
+    return 0
 
 
 @njit(cache=True)
-def beam_transfer(lam, l, EI, U):
-    """Beam segment transfer matrix exactly as printed in paper Eq. (1)."""
-    t0 = l*lam
-    t1 = (0.5)*math.cos(t0)
-    t2 = math.cosh(t0)
-    t3 = t1 + (0.5)*t2
-    t4 = (0.5)*math.sin(t0)
-    t5 = math.sinh(t0)
-    t6 = t4 + (0.5)*t5
-    t7 = t6/lam
-    t8 = 1.0/EI
-    t9 = lam**2
-    t10 = -t1 + (0.5)*t2
-    t11 = t10*t8/t9
-    t12 = lam**3
-    t13 = -t4 + (0.5)*t5
-    t14 = lam*t13
-    t15 = EI*t10*t9
-    U[0, 0] = t3
-    U[0, 1] = t7
-    U[0, 2] = t11
-    U[0, 3] = t13*t8/t12
-    U[1, 0] = t14
-    U[1, 1] = t3
-    U[1, 2] = t7*t8
-    U[1, 3] = t11
-    U[2, 0] = t15
-    U[2, 1] = EI*t14
-    U[2, 2] = t3
-    U[2, 3] = t7
-    U[3, 0] = EI*t12*t6
-    U[3, 1] = t15
-    U[3, 2] = t14
-    U[3, 3] = t3
+def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
+    """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units
+    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns)."""
+    if tag == 0:  # spring_mass
+        val_k = p[o + 0] * L * L * L / EI
+        val_m = p[o + 1] / (L * mbar)
+        t0 = b4*val_m
+        A[0, 0] = 1.0
+        A[0, 1] = 0.0
+        A[0, 2] = 0.0
+        A[0, 3] = 0.0
+        A[1, 0] = 0.0
+        A[1, 1] = 1.0
+        A[1, 2] = 0.0
+        A[1, 3] = 0.0
+        A[2, 0] = 0.0
+        A[2, 1] = 0.0
+        A[2, 2] = 1.0
+        A[2, 3] = 0.0
+        A[3, 0] = 0.0
+        A[3, 1] = 0.0
+        A[3, 2] = 0.0
+        A[3, 3] = 1.0
+        Cz[0, 0] = 1.0
+        Cz[0, 1] = 0.0
+        Cz[0, 2] = 0.0
+        Cz[0, 3] = 0.0
+        Cq[0, 0] = t0/val_k - 1.0
+        B[0, 0] = 0.0
+        B[1, 0] = 0.0
+        B[2, 0] = 0.0
+        B[3, 0] = t0
+        qmass[0] = val_m
+        return 1, 1
+    return 0, 0
 
 
 @njit(cache=True)
-def beam_transfer_scaled(beta, rho, U):
-    """Eq. (1) in units L = 1, EI = 1, times exp(-shift); returns shift."""
-    shift, K0, K1, K2, K3 = krylov_scaled(beta * rho)
-    t0 = K1*rho
-    t1 = K2*rho**2
-    t2 = K3*rho**3
-    t3 = beta**4
-    t4 = t2*t3
-    t5 = t1*t3
-    U[0, 0] = K0
-    U[0, 1] = t0
-    U[0, 2] = t1
-    U[0, 3] = t2
-    U[1, 0] = t4
-    U[1, 1] = K0
-    U[1, 2] = t0
-    U[1, 3] = t1
-    U[2, 0] = t5
-    U[2, 1] = t4
-    U[2, 2] = K0
-    U[2, 3] = t0
-    U[3, 0] = t0*t3
-    U[3, 1] = t5
-    U[3, 2] = t4
-    U[3, 3] = K0
-    return shift
+def event_nq(tag, p, o):
+    """Number of unknowns of the component (full descriptor)."""
+    if tag == 0:  # spring_mass
+        return 1
+    return 0
 
 
 @njit(cache=True)
-def beam_compound_step(v, beta, rho):
-    """v <- C2(U_beam) v in units L = 1, EI = 1; returns the log of the scale taken out."""
-    x = beta * rho
-    shift, E, F1, F2, F3, F4 = compound_krylov(x)
-    v0 = v[0]
-    v1 = v[1]
-    v2 = v[2]
-    v3 = v[3]
-    v4 = v[4]
-    v5 = v[5]
-    t0 = beta**4
-    t1 = rho**4
-    t2 = F4*t1
-    t3 = t0*t2
-    t4 = E - t3
-    t5 = F1*rho
-    t6 = t5*v1
-    t7 = F2*rho**2
-    t8 = t7*v2
-    t9 = t7*v3
-    t10 = F3*rho**3
-    t11 = t10*v4
-    t12 = E - 2.0*t3
-    t13 = 2.0*t7
-    t14 = t0*v0
-    t15 = t0*t10
-    t16 = -t14*t7 - t15*v1 + t5*v4 + t7*v5
-    v[0] = t11 + t2*v5 + t4*v0 + t6 + t8 + t9
-    v[1] = -t10*t14 + t10*v5 + t12*v1 + t13*v4 + t5*v2 + t5*v3
-    v[2] = t16 - t3*v3 + t4*v2
-    v[3] = t16 - t3*v2 + t4*v3
-    v[4] = F1*rho*v5 - t0*t13*v1 + t12*v4 - t14*t5 - t15*v2 - t15*v3
-    v[5] = F4*beta**8*t1*v0 - t0*t11 - t0*t6 - t0*t8 - t0*t9 + t4*v5
-    return shift
+def event_internal(tag, p, o, L, EI, mbar, out, n):
+    """Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n."""
+    if tag == 0:  # spring_mass
+        val_k = p[o + 0] * L * L * L / EI
+        val_m = p[o + 1] / (L * mbar)
+        b4 = val_k/val_m
+        if b4 > 0.0 and math.isfinite(b4):
+            out[n] = math.sqrt(b4 * EI / mbar) / (L * L)
+            n += 1
+        return n
+    return n
 
 
 @njit(cache=True)
-def spring_mass_compound_step(v, beta, kappa, mu):
-    """v <- (1 - mu beta^4 / kappa) C2(P) v: the condensed spring-mass branch, pole-free."""
-    v0 = v[0]
-    v1 = v[1]
-    v2 = v[2]
-    v3 = v[3]
-    v4 = v[4]
-    v5 = v[5]
-    t0 = beta**4*mu
-    t1 = 1.0 - t0/kappa
-    v[0] = t1*v0
-    v[1] = t1*v1
-    v[2] = t1*v2
-    v[3] = t1*v3
-    v[4] = -t0*v0 + t1*v4
-    v[5] = -t0*v1 + t1*v5
-
-
-@njit(cache=True)
-def spring_mass_tip(k, m, omega):
-    """Geometric (H_I2 B e_Y) and shear (U_I2 B e_Y) of a unit tip displacement, B = U_s U_m."""
-    t0 = m*omega**2
-    geometric = 1.0 - t0/k
-    shear = t0
-    return geometric, shear
-
-
-@njit(cache=True)
-def spring_mass_stiffness(beta, kappa, mu):
-    """Pivot of the mass degree of freedom (k - m w^2 over k) and the condensed stiffness
-    it adds to the node's Y, -shear / pivot (units L = EI = 1, B = U_spring U_mass)."""
-    t0 = beta**4*mu
-    pivot = 1.0 - t0/kappa
-    shear = t0
-    if pivot == 0.0:
-        return 0.0, PENALTY  # at the oscillator frequency the branch pins the node
-    return pivot, -shear / pivot
-
-
-@njit(cache=True)
-def renormalise(v):
-    """Divide v by a power of two near its largest entry; return the natural log taken out."""
-    big = 0.0
-    for a in range(v.shape[0]):
-        big = max(big, abs(v[a]))
-    if big == 0.0 or not math.isfinite(big):
-        return 0.0
-    e = math.frexp(big)[1]
-    f = math.ldexp(1.0, -e)
-    for a in range(v.shape[0]):
-        v[a] *= f
-    return e * 0.6931471805599453
+def event_rigid(tag, p, o):
+    """Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink."""
+    if tag == 0:  # spring_mass
+        return 0
+    return 0
 
 
 @njit(cache=True)
@@ -267,270 +170,72 @@ def delta_stable(omega, p):
     EI = p[1]
     mbar = p[2]
     beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
     v = np.zeros(6)
     v[START_PAIR] = 1.0
     log = 0.0
     pos = 0.0
-    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    for i in range(n):
-        q = 3 + ATTACHMENT_STRIDE * i
-        rho = (p[q] - pos) / L
-        pos = p[q]
-        if rho > 0.0:
-            log += beam_compound_step(v, beta, rho)
-        kappa = p[q + 1] * L**3 / EI
-        mu = p[q + 2] / (mbar * L)
-        spring_mass_compound_step(v, beta, kappa, mu)
+    seg = 0
+    n_ev = int(p[4])
+    for r in range(n_ev + 1):
+        row = event_row(p, r) if r < n_ev else 0
+        x = p[row + 1] if r < n_ev else L
+        step, pos, seg = advance_stable(v, beta, pos, x, seg, p)
+        log += step
+        if r == n_ev:
+            break
+        event_stable(int(p[row]), v, b4, p, int(p[row + 2]), L, EI, mbar)
         log += renormalise(v)
-    rho = (L - pos) / L
-    if rho > 0.0:
-        log += beam_compound_step(v, beta, rho)
     log += renormalise(v)
     return v[END_PAIR], log
-
-
-@njit(cache=True)
-def neg2(a, c, det):
-    """Number of negative eigenvalues of a symmetric 2x2 matrix with diagonal a, c and
-    determinant det."""
-    if det < 0.0:
-        return 1
-    if a + c < 0.0:
-        return 2 if det > 0.0 else 1
-    return 0
-
-
-@njit(cache=True)
-def clamped_clamped_count(x):
-    """Natural frequencies of a segment clamped at both ends below x = lam l (J0 of one member)."""
-    if x < math.pi:
-        return 0
-    E = math.exp(-x)
-    chs = 0.5 + 0.5 * E * E
-    f = E - chs*math.cos(x)
-    i = int(x / math.pi)
-    s = 1 if f > 0.0 else -1
-    return i - (1 - (1 if i % 2 == 0 else -1) * s) // 2
-
-
-@njit(cache=True)
-def riccati_count(S, U, beta, rho):
-    """Riccati step of S across a piece with beta*rho <= RICCATI_STEP; returns its pivot count."""
-    beam_transfer_scaled(beta, rho, U)
-    s00 = S[0, 0]
-    s01 = 0.5 * (S[0, 1] + S[1, 0])
-    s11 = S[1, 1]
-    U00 = U[0, 0]
-    U01 = U[0, 1]
-    U02 = U[0, 2]
-    U03 = U[0, 3]
-    U10 = U[1, 0]
-    U11 = U[1, 1]
-    U12 = U[1, 2]
-    U13 = U[1, 3]
-    U20 = U[2, 0]
-    U21 = U[2, 1]
-    U22 = U[2, 2]
-    U23 = U[2, 3]
-    U30 = U[3, 0]
-    U31 = U[3, 1]
-    U32 = U[3, 2]
-    U33 = U[3, 3]
-    t0 = U12*s11
-    t1 = U13*s01
-    t2 = U11 + t0 - t1
-    t3 = -U30 - U32*s01 + U33*s00
-    t4 = U12*s01
-    t5 = U10 - U13*s00 + t4
-    t6 = -t5
-    t7 = -U31 - U32*s11 + U33*s01
-    t8 = U02*s01
-    t9 = U03*s00
-    t10 = U00 + t8 - t9
-    t11 = U02*s11
-    t12 = -U01 + U03*s01 - t11
-    t13 = U20 + U22*s01 - U23*s00
-    t14 = U21 + U22*s11 - U23*s01
-    t15 = U13*s00
-    t16 = s01**2
-    t17 = U03*U12
-    t18 = U02*U13
-    S00 = t2*t3 + t6*t7
-    S01 = t10*t7 + t12*t3
-    S10 = t13*t2 + t14*t6
-    S11 = t10*t14 + t12*t13
-    detX = U00*U11 + U00*t0 - U00*t1 - U01*U10 + U01*t15 - U01*t4 + U03*U10*s01 - U10*t11 + U11*t8 - U11*t9 - t0*t9 + t11*t15 + t16*t17 - t16*t18
-    detBP = -t17 + t18
-    m00 = -U02*t5 + U12*t10
-    if detX == 0.0:
-        detX = 5e-324  # exactly at a clamped-piece frequency: take one side
-    n = 0
-    if detX * detBP < 0.0:
-        n = 1
-    elif m00 * detBP < 0.0:
-        n = 2
-    S[0, 0] = S00 / detX
-    S[0, 1] = S01 / detX
-    S[1, 0] = S10 / detX
-    S[1, 1] = S11 / detX
-    return n
-
-
-@njit(cache=True)
-def add_node_stiffness(Zc, added):
-    """A stiffness ``added`` on the node's Y (Q -= added Y) acting on the minors Zc of Z.
-
-    Only the minors with a Q row change: Zc(1,3) += added Zc(0,1), Zc(2,3) += added
-    Zc(0,2), so that S00 = Zc(1,3) / Zc(0,1) gains ``added`` (as S[0, 0] += added)."""
-    Zc[4] += added * Zc[0]
-    Zc[5] += added * Zc[1]
-    renormalise(Zc)
-
-
-@njit(cache=True)
-def pair_count(Zc, U, beta, rho):
-    """Carry the node's state subspace across a piece (beta*rho <= RICCATI_STEP); returns
-    the negative pivots of eliminating the near node.
-
-    The subspace of states [Y, theta, M, Q] that everything left of the node admits is
-    held by the 2x2 minors Zc of a basis Z = [Xd; Xf] (Pluecker coordinates, index as
-    ``PAIRS`` of the second compound), carried by the same compound step as the stable
-    chain. Its condensed stiffness S = PI_RIGHT^-1 Xf Xd^-1 is never formed: after a
-    short segment from a pinned end S is huge and near-singular (det Xd ~ rho^3), and
-    neither a Riccati step on S nor an orthonormalised basis Z keeps a digit of det Xd,
-    while Zc(0,1) = det Xd is a coordinate here. The pivot block M = S + k_aa =
-    -(B PI_LEFT)^-1 Xd' Xd^-1, Xd' the d block of U Z, and by Cauchy-Binet
-    W = Xd' adj(Xd) is linear in Zc: W[i, 0] = sum_k U[i, k] Zc(k, 1),
-    W[i, 1] = sum_k U[i, k] Zc(0, k). So det M has the sign of
-    det Xd det Xd' det(B PI_LEFT), and tr M that of -tr(adj(B PI_LEFT) W) / (det Xd
-    det(B PI_LEFT)).
-    """
-    beam_transfer_scaled(beta, rho, U)
-    a = Zc[0]
-    # W = Xd' adj(Xd) from the minors before the step (Zc(2,1) = -Zc[3], Zc(3,1) = -Zc[4])
-    w00 = U[0, 0] * Zc[0] - U[0, 2] * Zc[3] - U[0, 3] * Zc[4]
-    w10 = U[1, 0] * Zc[0] - U[1, 2] * Zc[3] - U[1, 3] * Zc[4]
-    w01 = U[0, 1] * Zc[0] + U[0, 2] * Zc[1] + U[0, 3] * Zc[2]
-    w11 = U[1, 1] * Zc[0] + U[1, 2] * Zc[1] + U[1, 3] * Zc[2]
-    beam_compound_step(Zc, beta, rho)
-    renormalise(Zc)
-    b = Zc[0]
-    # B PI_LEFT = [[U03, -U02], [U13, -U12]]; tr(adj(B PI_LEFT) W):
-    detBP = U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2]
-    tr = -U[1, 2] * w00 + U[0, 2] * w10 - U[1, 3] * w01 + U[0, 3] * w11
-    negative_det = ((a < 0.0) != (b < 0.0)) != (detBP < 0.0)
-    if negative_det and a != 0.0 and b != 0.0:
-        return 1
-    if tr != 0.0 and a != 0.0 and (tr > 0.0) == ((detBP > 0.0) == (a > 0.0)):
-        return 2
-    return 0
-
-
-@njit(cache=True)
-def segment_count(S, Zc, U, beta, rho, started, paired):
-    """Carry the left part across a segment in pieces of beta*rho <= RICCATI_STEP (a long
-    piece's transfer matrix is rank-one to working precision); returns the pivots and
-    J0 it adds. The first piece from the left end (``started`` False) takes its pivots
-    from the Riccati step of S, whose penalties hold the end's constraints, and carries
-    the minors Zc of the state subspace along; near the left end (``paired``) Zc is
-    carried, elsewhere S."""
-    x = beta * rho
-    pieces = max(1, int(math.ceil(x / RICCATI_STEP)))
-    n = 0
-    for _ in range(pieces):
-        if not started:
-            n += riccati_count(S, U, beta, rho / pieces)
-            beam_compound_step(Zc, beta, rho / pieces)
-            renormalise(Zc)
-            started = True
-        elif paired:
-            n += pair_count(Zc, U, beta, rho / pieces)
-        else:
-            n += riccati_count(S, U, beta, rho / pieces)
-        n += clamped_clamped_count(x / pieces)
-    return n
-
-
-@njit(cache=True)
-def det_symmetric(S):
-    """det of the symmetric part of the 2x2 matrix S."""
-    s01 = 0.5 * (S[0, 1] + S[1, 0])
-    return S[0, 0] * S[1, 1] - s01 * s01
-
-
-@njit(cache=True)
-def pair_stiffness(Zc, S):
-    """S = PI_RIGHT^-1 Xf Xd^-1 from the minors of Z = [Xd; Xf] (Cramer's rule); returns
-    det S = (Zc(1,3) Zc(0,2) - Zc(0,3) Zc(1,2)) / Zc(0,1)^2 = Zc(2,3) / Zc(0,1) by the
-    Pluecker relation: no cancellation when S is near-singular (a rigid-body rotation
-    about a pin next to a short segment, its pivot -I omega^2)."""
-    detXd = Zc[0]
-    if detXd == 0.0:
-        detXd = 5e-324  # exactly at a frequency of the node clamped: take one side
-    S[0, 0] = Zc[4] / detXd
-    S[0, 1] = -Zc[2] / detXd
-    S[1, 0] = -Zc[3] / detXd
-    S[1, 1] = Zc[1] / detXd
-    if Zc[0] != 0.0:
-        return Zc[5] / Zc[0]
-    return det_symmetric(S)
-
-
-@njit(cache=True)
-def leave_pairing(Zc, S, pos, L, started, paired):
-    """At a node PAIR_LENGTH or more from the left end the count goes on with S, formed
-    once from the minors; returns the new ``paired``."""
-    if paired and started and pos >= PAIR_LENGTH * L:
-        pair_stiffness(Zc, S)
-        return False
-    return paired
 
 
 @njit(cache=True)
 def count_below(omega, p):
     """Number of natural frequencies below omega (with multiplicity), Wittrick-Williams.
 
-    Nodes within PAIR_LENGTH of the left end are eliminated on the minors of the state
-    subspace (``pair_count``), the others on the condensed stiffness S
-    (``riccati_count``): after a short segment from a pinned end S is huge and
-    near-singular, and a Riccati step on it cancels every digit; further on S is well
-    scaled and its step is cheaper."""
+    The state subspace admitted left of each node is carried as its minors Zc (the
+    stable chain's Pluecker coordinates) from a free end, the left end's constraints
+    added as a stiffness PENALTY; each piece adds the negative pivots of eliminating its
+    near node (``pair_count``) and its clamped-clamped count J0, each component its own
+    (``event_count``: a node stiffness, its own frequencies, a constraint as PENALTY, a
+    hinge's split rotation). At x = L the right end's constraints join as PENALTY."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
     beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
     S = np.zeros((2, 2))
     U = np.zeros((4, 4))
-    # the states the left end admits: the minors of the unit vectors of its unknowns
     Zc = np.zeros(6)
-    Zc[START_PAIR] = 1.0
-    S[0, 0] += PENALTY
-    S[1, 1] += PENALTY
+    Zc[0] = 1.0  # the free end: Y and theta admitted
+    for d in LEFT_KNOWN:
+        if d == 0:
+            node_stiffness_step(Zc, PENALTY, 0.0)
+        elif d == 1:
+            node_stiffness_step(Zc, 0.0, PENALTY)
+    renormalise(Zc)
     count = 0
     pos = 0.0
-    started = False
-    paired = True
-    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    for i in range(n):
-        q = 3 + ATTACHMENT_STRIDE * i
-        rho = (p[q] - pos) / L
-        paired = leave_pairing(Zc, S, pos, L, started, paired)
-        if rho > MERGE_LENGTH or (rho > 0.0 and pos > 0.0):
-            count += segment_count(S, Zc, U, beta, rho, started, paired)
-            started = True
-        pos = p[q]
-        pivot, added = spring_mass_stiffness(beta, p[q + 1] * L**3 / EI, p[q + 2] / (mbar * L))
-        if pivot < 0.0:
-            count += 1
-        S[0, 0] += added
-        if paired:
-            add_node_stiffness(Zc, added)
-    rho = (L - pos) / L
-    paired = leave_pairing(Zc, S, pos, L, started, paired)
-    if rho > 0.0:
-        count += segment_count(S, Zc, U, beta, rho, started, paired)
-        started = True
-    detS = pair_stiffness(Zc, S) if paired and started else det_symmetric(S)
+    seg = 0
+    n_ev = int(p[4])
+    for r in range(n_ev + 1):
+        row = event_row(p, r) if r < n_ev else 0
+        x = p[row + 1] if r < n_ev else L
+        while True:
+            target, after = next_piece(p, seg, x)
+            rho = (target - pos) / L
+            if rho > MERGE_LENGTH:
+                count += segment_count(Zc, U, beta, rho, p, seg)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        count += event_count(int(p[row]), Zc, b4, p, int(p[row + 2]), L, EI, mbar)
+        renormalise(Zc)
+    detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]
     s11 = S[1, 1]
 
@@ -540,97 +245,97 @@ def count_below(omega, p):
 
 
 @njit(cache=True)
-def counts(omegas, p, out):
-    """out[i] = count_below(omegas[i], p)."""
-    for i in range(omegas.shape[0]):
-        out[i] = count_below(omegas[i], p)
+def event_unknowns(p, rows):
+    """Total unknowns of the components' full descriptors, and the most of one."""
+    total = 0
+    most = 0
+    for r in range(rows.shape[0]):
+        nq = event_nq(int(p[rows[r]]), p, int(p[rows[r] + 2]))
+        total += nq
+        most = max(most, nq)
+    return total, most
+
+@njit(cache=True)
+def shape_sizes(p):
+    """Unknowns of the components' full descriptors: (total, most of one)."""
+    return event_unknowns(p, event_order(p))
+
+
+@njit(cache=True)
+def shape_event(p, row, b4, Cz, Cq, A, B, qmass):
+    """The descriptor of the component at event row ``row`` (``event_descriptor``)."""
+    return event_descriptor(
+        int(p[row]), p, int(p[row + 2]), b4, p[0], p[1], p[2], Cz, Cq, A, B, qmass
+    )
 
 
 @njit(cache=True)
 def u_bar_paper(omega, p):
-    """U_bar of paper Eq. (4) after the boundary reduction, rows: main TE then geometric."""
+    """U_bar of paper Eq. (4) after the boundary reduction (units L = EI_0 = mbar_0 = 1).
+
+    The tree algorithm: the state is carried as a linear combination (W, 4 x columns) of
+    the unknowns: the left end's two, then each component's q (paper Eq. (2): Z+ = A Z +
+    B q); each component adds its geometric equations Cz Z + Cq q = 0 (paper Eq. (3)) as
+    rows; at x = L the main transfer equation Z_L = W u is reduced by the right end's
+    conditions (its two unknowns as the last columns). Rows: main TE, then geometric."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
-    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    lam = math.sqrt(math.sqrt(mbar * omega * omega / EI))
-    size = n + 4
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
+    rows = event_order(p)
+    n_ev = rows.shape[0]
+    nq_total, most = shape_sizes(p)
+    size = 4 + nq_total
     A = np.zeros((size, size))
-    W = np.zeros((4, n + 2))
+    W = np.zeros((4, size))
     W[LEFT_UNKNOWN[0], 0] = 1.0
     W[LEFT_UNKNOWN[1], 1] = 1.0
     U = np.zeros((4, 4))
     col = np.zeros(4)
+    nb = max(1, most)
+    Cz = np.zeros((nb, 4))
+    Cq = np.zeros((nb, nb))
+    Ad = np.zeros((4, 4))
+    B = np.zeros((4, nb))
+    qmass = np.zeros(nb)
     pos = 0.0
+    seg = 0
     ncols = 2
-    for i in range(n):
-        q = 3 + ATTACHMENT_STRIDE * i
-        l = p[q] - pos
-        pos = p[q]
-        if l > 0.0:
-            beam_transfer(lam, l, EI, U)
-            apply_columns(U, W, ncols, col)
-        geometric, shear = spring_mass_tip(p[q + 1], p[q + 2], omega)
-        # geometric equation, paper Eq. (3): -H_I1 Z_I1 + H_I2 Z_I2 = 0
+    nrow = 4
+    for r in range(n_ev + 1):
+        x = p[rows[r] + 1] if r < n_ev else L
+        while True:
+            target, after = next_piece(p, seg, x)
+            rho = (target - pos) / L
+            if rho > 0.0:
+                segment_transfer(p, seg, beta, rho, U)
+                apply_columns(U, W, ncols, col)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        nc, nq = shape_event(p, rows[r], b4, Cz, Cq, Ad, B, qmass)
+        for i in range(nc):
+            for j in range(ncols):
+                A[nrow + i, j] = (Cz[i, 0] * W[0, j] + Cz[i, 1] * W[1, j] + Cz[i, 2] * W[2, j]
+                                  + Cz[i, 3] * W[3, j])
+            for j in range(nq):
+                A[nrow + i, ncols + j] = Cq[i, j]
+        apply_columns(Ad, W, ncols, col)
+        for j in range(nq):
+            for i in range(4):
+                W[i, ncols + j] = B[i, j]
+        ncols += nq
+        nrow += nc
+    for i in range(4):
         for j in range(ncols):
-            A[4 + i, j] = -W[H_I1_INDEX, j]
-        A[4 + i, ncols] = geometric
-        # rigid body output, paper Eq. (2): Z_O = U_I1 Z_I1 + U_I2 Z_I2
-        W[U_I2_ROW, ncols] = shear
-        ncols += 1
-    l = L - pos
-    if l > 0.0:
-        beam_transfer(lam, l, EI, U)
-        apply_columns(U, W, ncols, col)
-    for r in range(4):
-        for j in range(n + 2):
-            A[r, j] = W[r, j]
-    A[RIGHT_UNKNOWN[0], n + 2] = -1.0
-    A[RIGHT_UNKNOWN[1], n + 3] = -1.0
+            A[i, j] = W[i, j]
+    A[RIGHT_UNKNOWN[0], ncols] = -1.0
+    A[RIGHT_UNKNOWN[1], ncols + 1] = -1.0
     return A
-
-
-@njit(cache=True)
-def apply_columns(U, W, ncols, col):
-    """W[:, :ncols] <- U W[:, :ncols] (the transfers of all boundaries so far)."""
-    for j in range(ncols):
-        for r in range(4):
-            col[r] = U[r, 0] * W[0, j] + U[r, 1] * W[1, j] + U[r, 2] * W[2, j] + U[r, 3] * W[3, j]
-        for r in range(4):
-            W[r, j] = col[r]
-
-
-@njit(cache=True)
-def lu_logdet(A):
-    """Determinant by LU with partial pivoting, as (sign, log|det|); A is overwritten."""
-    n = A.shape[0]
-    sign = 1.0
-    log = 0.0
-    for k in range(n):
-        piv = k
-        big = abs(A[k, k])
-        for r in range(k + 1, n):
-            if abs(A[r, k]) > big:
-                big = abs(A[r, k])
-                piv = r
-        if big == 0.0:
-            return 0.0, 0.0
-        if piv != k:
-            sign = -sign
-            for j in range(n):
-                tmp = A[k, j]
-                A[k, j] = A[piv, j]
-                A[piv, j] = tmp
-        d = A[k, k]
-        if d < 0.0:
-            sign = -sign
-        log += math.log(abs(d))
-        for r in range(k + 1, n):
-            f = A[r, k] / d
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    A[r, j] -= f * A[k, j]
-    return sign, log
 
 
 @njit(cache=True)
@@ -639,924 +344,65 @@ def delta_paper(omega, p):
     return lu_logdet(u_bar_paper(omega, p))
 
 
-# Scan loop and refinement, one copy per formulation: an entry point compiles only
-# the characteristic function it uses.
-
-
-@njit(cache=True)
-def evaluate_stable(omegas, p, mant, logs):
-    """mant[i], logs[i] = delta_stable(omegas[i], p): the scan loop."""
-    for i in range(omegas.shape[0]):
-        mant[i], logs[i] = delta_stable(omegas[i], p)
-
-
-@njit(cache=True)
-def scaled_stable(omega, p, ref):
-    """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
-    m, g = delta_stable(omega, p)
-    return m * math.exp(min(g - ref, 700.0))
-
-
-@njit(cache=True)
-def refine_stable(a, b, p, rtol, maxiter):
-    """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
-    ma, ga = delta_stable(a, p)
-    mb, gb = delta_stable(b, p)
-    ref = max(ga, gb)
-    fa = ma * math.exp(ga - ref)
-    fb = mb * math.exp(gb - ref)
-    if fa == 0.0:
-        return a, 0, True
-    if fb == 0.0:
-        return b, 0, True
-    if (fa > 0.0) == (fb > 0.0):
-        return 0.5 * (a + b), 0, False
-    c = a
-    fc = fa
-    d = b - a
-    e = d
-    for it in range(maxiter):
-        if (fb > 0.0) == (fc > 0.0):
-            c = a
-            fc = fa
-            d = b - a
-            e = d
-        if abs(fc) < abs(fb):
-            a = b
-            b = c
-            c = a
-            fa = fb
-            fb = fc
-            fc = fa
-        tol = 2.0 * 2.220446049250313e-16 * abs(b) + 0.5 * rtol * abs(b)
-        m = 0.5 * (c - b)
-        if abs(m) <= tol or fb == 0.0:
-            return b, it, True
-        if abs(e) >= tol and abs(fa) > abs(fb):
-            s = fb / fa
-            if a == c:
-                pp = 2.0 * m * s
-                q = 1.0 - s
-            else:
-                q = fa / fc
-                r = fb / fc
-                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
-                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
-            if pp > 0.0:
-                q = -q
-            else:
-                pp = -pp
-            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
-                e = d
-                d = pp / q
-            else:
-                d = m
-                e = d
-        else:
-            d = m
-            e = d
-        a = b
-        fa = fb
-        if abs(d) > tol:
-            b += d
-        else:
-            b += tol if m > 0.0 else -tol
-        fb = scaled_stable(b, p, ref)
-    return b, maxiter, False
-
-
-@njit(cache=True)
-def evaluate_paper(omegas, p, mant, logs):
-    """mant[i], logs[i] = delta_paper(omegas[i], p): the scan loop."""
-    for i in range(omegas.shape[0]):
-        mant[i], logs[i] = delta_paper(omegas[i], p)
-
-
-@njit(cache=True)
-def scaled_paper(omega, p, ref):
-    """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
-    m, g = delta_paper(omega, p)
-    return m * math.exp(min(g - ref, 700.0))
-
-
-@njit(cache=True)
-def refine_paper(a, b, p, rtol, maxiter):
-    """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
-    ma, ga = delta_paper(a, p)
-    mb, gb = delta_paper(b, p)
-    ref = max(ga, gb)
-    fa = ma * math.exp(ga - ref)
-    fb = mb * math.exp(gb - ref)
-    if fa == 0.0:
-        return a, 0, True
-    if fb == 0.0:
-        return b, 0, True
-    if (fa > 0.0) == (fb > 0.0):
-        return 0.5 * (a + b), 0, False
-    c = a
-    fc = fa
-    d = b - a
-    e = d
-    for it in range(maxiter):
-        if (fb > 0.0) == (fc > 0.0):
-            c = a
-            fc = fa
-            d = b - a
-            e = d
-        if abs(fc) < abs(fb):
-            a = b
-            b = c
-            c = a
-            fa = fb
-            fb = fc
-            fc = fa
-        tol = 2.0 * 2.220446049250313e-16 * abs(b) + 0.5 * rtol * abs(b)
-        m = 0.5 * (c - b)
-        if abs(m) <= tol or fb == 0.0:
-            return b, it, True
-        if abs(e) >= tol and abs(fa) > abs(fb):
-            s = fb / fa
-            if a == c:
-                pp = 2.0 * m * s
-                q = 1.0 - s
-            else:
-                q = fa / fc
-                r = fb / fc
-                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
-                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
-            if pp > 0.0:
-                q = -q
-            else:
-                pp = -pp
-            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
-                e = d
-                d = pp / q
-            else:
-                d = m
-                e = d
-        else:
-            d = m
-            e = d
-        a = b
-        fa = fb
-        if abs(d) > tol:
-            b += d
-        else:
-            b += tol if m > 0.0 else -tol
-        fb = scaled_paper(b, p, ref)
-    return b, maxiter, False
-
-
-#: Layout of the search state shared by ``lowest_start``, ``lowest_run`` and
-#: ``lowest_block``: the search has covered (0, state[STATE_W]], whose count is
-#: state[STATE_COUNT]; state[STATE_K] roots are written; state[STATE_LAST] is the
-#: true multiplicity of the last root written (it may exceed the copies written
-#: when the lowest ``modes`` end inside a multiple root).
-STATE_W = 0
-STATE_COUNT = 1
-STATE_K = 2
-STATE_LAST = 3
-STATE_SIZE = 4
-#: Blocks in a row that may end without a new root before the search gives up
-#: (a beam has a natural frequency in every stretch of a few pi of beta = lam L).
-MAX_STALLED_BLOCKS = 4
-
-
-@njit(cache=True)
-def push_halves(lo, hi, nlo, nhi, top, a, mid, b, na, nm, nb):
-    """Push the pieces (mid, b) and (a, mid) with their counts on a bisection stack (the
-    lower one pops first); returns the new top."""
-    lo[top] = mid
-    hi[top] = b
-    nlo[top] = nm
-    nhi[top] = nb
-    lo[top + 1] = a
-    hi[top + 1] = mid
-    nlo[top + 1] = na
-    nhi[top + 1] = nm
-    return top + 2
-
-
-@njit(cache=True)
-def isolate(a, b, na, nb, p, out, k, modes, state):
-    """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
-    by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
-    width is a multiple root. The count at a midpoint is clamped into [na, nb], so that
-    a count off by one at round-off distance from a root cannot add or lose a root.
-    Writes out[k:] (with multiplicity, up to modes) and the true multiplicity of the
-    last root written into state[STATE_LAST]; returns the new k, or -1 if the
-    bisection stack overflows or Brent does not converge."""
-    cap = 256
-    sa = np.empty(cap)
-    sb = np.empty(cap)
-    sna = np.empty(cap, dtype=np.int64)
-    snb = np.empty(cap, dtype=np.int64)
-    sa[0] = a
-    sb[0] = b
-    sna[0] = na
-    snb[0] = nb
-    top = 1
-    while top > 0 and k < modes:
-        top -= 1
-        a = sa[top]
-        b = sb[top]
-        na = sna[top]
-        nb = snb[top]
-        if nb <= na:
-            continue
-        if b - a <= 8.9e-16 * b:
-            if nb - na == 1:
-                # a simple root that the stable function never changed sign across:
-                # the count is off here, not to be trusted (the caller's full search
-                # flags it)
-                ma = delta_stable(a * (1.0 - 1e-12), p)[0]
-                mb = delta_stable(b * (1.0 + 1e-12), p)[0]
-                if (ma > 0.0) == (mb > 0.0):
-                    return -1
-            for _ in range(nb - na):
-                if k < modes:
-                    out[k] = 0.5 * (a + b)
-                    k += 1
-            state[STATE_LAST] = nb - na
-            continue
-        if nb - na == 1:
-            ma = delta_stable(a, p)[0]
-            mb = delta_stable(b, p)[0]
-            if (ma > 0.0) != (mb > 0.0):
-                root, its, ok = refine_stable(a, b, p, 0.0, 200)
-                if not ok:
-                    return -1
-                out[k] = root
-                k += 1
-                state[STATE_LAST] = 1
-                continue
-        if top + 2 > cap:
-            return -1
-        mid = 0.5 * (a + b)
-        # the count may dip or jump by one within an ulp or so of an oscillator
-        # frequency (k - m w^2 at round-off); clamped, the piece keeps its total
-        nm = min(max(count_below(mid, p), na), nb)
-        top = push_halves(sa, sb, sna, snb, top, a, mid, b, na, nm, nb)
-    return k
-
-
 @njit(cache=True)
 def oscillator_frequencies(p):
-    """sqrt(k/m) of every attached oscillator, ascending: roots crowd around them."""
-    n = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    out = np.empty(n)
-    for i in range(n):
-        q = 3 + ATTACHMENT_STRIDE * i
-        out[i] = math.sqrt(p[q + 1] / p[q + 2])
-    return np.sort(out)
+    """The components' own frequencies (rad/s, ascending): roots crowd around them."""
+    rows = event_order(p)
+    total, most = event_unknowns(p, rows)
+    out = np.empty(total)
+    n = 0
+    for r in range(rows.shape[0]):
+        n = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+    order = np.empty(n, dtype=np.int64)
+    insertion_order(out[:n], order)
+    return out[order]
 
 
 @njit(cache=True)
-def lowest_start(p, modes, out, state, certify):
-    """Start the search of the lowest ``modes``: the rigid-body zeros into out, the
-    state at the bottom of the scan (lowest node beta = 1e-3). With ``certify`` the
-    count there must hold exactly the rigid-body modes (else no elastic root below is
-    excluded). Returns the number of values written, or -1 when the count disagrees."""
+def rigid_body_modes(p):
+    """Number of zero natural frequencies: the rigid motions Y = a + b x (plus a kink at
+    each free hinge) that the ends and the components leave free (they store no energy:
+    supports and springs need Y = 0 where they are, rotational springs theta = 0)."""
+    rows = event_order(p)
+    n_ev = rows.shape[0]
     L = p[0]
-    EI = p[1]
-    mbar = p[2]
-    scale = math.sqrt(EI / mbar) / (L * L)  # omega = scale * beta^2
-    k = 0
-    while k < RIGID_BODY_MODES and k < modes:
-        out[k] = 0.0
-        k += 1
-    state[STATE_K] = k
-    state[STATE_LAST] = RIGID_BODY_MODES
-    w_lo = scale * 1e-6
-    if k < modes and certify:
-        # settle the bottom where the count holds exactly the rigid-body modes: lower
-        # when an elastic root (a very soft oscillator) lies below it, higher when the
-        # count has not yet registered a rigid-body mode (its -omega^2 pivot drowns in
-        # round-off at very low frequency next to a constrained end); a count of exactly
-        # the rigid-body modes at the bottom proves that no elastic root lies below it
-        n = count_below(w_lo, p)
-        while n > RIGID_BODY_MODES and w_lo > 1e-300:
-            w_lo *= 1e-3
-            n = count_below(w_lo, p)
-        while n < RIGID_BODY_MODES and w_lo < 1e300:
-            w_lo *= 2.0
-            n = count_below(w_lo, p)
-        if n != RIGID_BODY_MODES:
-            return -1
-    state[STATE_W] = w_lo
-    state[STATE_COUNT] = RIGID_BODY_MODES
-    return k
-
-
-@njit(cache=True)
-def lowest_block(p, modes, out, state, quota, certify, w_stop):
-    """Up to ``quota`` more roots above state[STATE_W], certified by ONE count.
-
-    Scans the stable function (pole-free: each sign change brackets an odd number of
-    roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at each
-    oscillator frequency, with Brent on each sign change, until ``quota`` sign
-    changes are found (or (quota + 2) pi of beta are covered), and stops at the next
-    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``, the count at that node proves the whole block
-    when N(top) - N(bottom) equals the number of sign changes: then each brackets
-    exactly one simple root and no root lies elsewhere. A piece where the two
-    disagree is halved at a uniform node by the count (never at an oscillator
-    frequency, where multiple roots sit and the count is at round-off), down to
-    single pieces whose roots ``isolate`` finds by count bisection. Without
-    ``certify`` the sign-change roots are written unchecked. Writes out[k:] (up to
-    ``modes``), advances ``state``; returns the new k, or -1 (stack overflow, Brent
-    not converged, a count that decreases)."""
-    L = p[0]
-    EI = p[1]
-    mbar = p[2]
-    scale = math.sqrt(EI / mbar) / (L * L)
-    w_a = state[STATE_W]
-    n_a = int(state[STATE_COUNT])
-    k = int(state[STATE_K])
-    b_a = math.sqrt(w_a / scale)
-    h = math.pi / NODES_PER_MODE
-    b_cap = b_a + (quota + 2) * math.pi
-    osc = oscillator_frequencies(p)
-    osc = osc[(osc > w_a) & (osc < scale * b_cap * b_cap * (1.0 + 1e-15))]
-    size = int(math.ceil((b_cap - b_a) / h)) + 3 + osc.shape[0]
-    w = np.empty(size)
-    uniform = np.zeros(size, dtype=np.bool_)
-    change = np.zeros(size, dtype=np.int64)  # change[i]: a sign change in (w[i-1], w[i]]
-    root = np.empty(size)
-    w[0] = w_a
-    uniform[0] = True
-    m_prev = delta_stable(w_a, p)[0]
-    n = 1
-    j = 1
-    io = 0
-    found = 0
-    while n < size:
-        bu = b_a + j * h
-        wu = scale * bu * bu
-        if io < osc.shape[0] and osc[io] < wu:
-            x = osc[io]
-            io += 1
-            is_uniform = False
+    kinks = np.empty(n_ev)
+    h = 0
+    for r in range(n_ev):
+        if event_rigid(int(p[rows[r]]), p, int(p[rows[r] + 2])) == 3:
+            kinks[h] = p[rows[r] + 1] / L
+            h += 1
+    R = np.zeros((4 + n_ev, 2 + h))
+    n = 0
+    for r in range(n_ev + 2):
+        if r < n_ev:
+            flag = event_rigid(int(p[rows[r]]), p, int(p[rows[r] + 2]))
+            x = p[rows[r] + 1] / L
+            y_row = flag == 1
+            t_row = flag == 2
         else:
-            x = wu
-            j += 1
-            is_uniform = True
-        at_stop = x >= w_stop
-        if at_stop:
-            x = w_stop
-            is_uniform = True
-        if x <= w[n - 1]:
-            continue
-        m = delta_stable(x, p)[0]
-        if m == 0.0:
-            x *= 1.0 + 4.4e-16
-            m = delta_stable(x, p)[0]
-        w[n] = x
-        uniform[n] = is_uniform
-        if (m > 0.0) != (m_prev > 0.0):
-            r, its, ok = refine_stable(w[n - 1], x, p, 0.0, 200)
-            if not ok:
-                return -1
-            change[n] = 1
-            root[n] = r
-            found += 1
-        m_prev = m
-        n += 1
-        if at_stop or (is_uniform and (found >= quota or bu >= b_cap)):
-            break
-    top = n - 1
-    state[STATE_W] = w[top]
-    if not certify:
-        for i in range(1, n):
-            if change[i] == 1 and k < modes:
-                out[k] = root[i]
-                k += 1
-                state[STATE_LAST] = 1
-        state[STATE_COUNT] = n_a + found
-        state[STATE_K] = k
-        return k
-    n_b = count_below(w[top], p)
-    if n_b < n_a:
-        return -1
-    state[STATE_COUNT] = n_b
-    changes = np.zeros(n, dtype=np.int64)  # sign changes in (w[0], w[i]]
-    for i in range(1, n):
-        changes[i] = changes[i - 1] + change[i]
-    cap = 128
-    si = np.empty(cap, dtype=np.int64)
-    sj = np.empty(cap, dtype=np.int64)
-    sni = np.empty(cap, dtype=np.int64)
-    snj = np.empty(cap, dtype=np.int64)
-    si[0] = 0
-    sj[0] = top
-    sni[0] = n_a
-    snj[0] = n_b
-    depth = 1
-    while depth > 0 and k < modes:
-        depth -= 1
-        i0 = si[depth]
-        j0 = sj[depth]
-        ni = sni[depth]
-        nj = snj[depth]
-        if nj - ni == changes[j0] - changes[i0]:
-            for i in range(i0 + 1, j0 + 1):
-                if change[i] == 1 and k < modes:
-                    out[k] = root[i]
-                    k += 1
-                    state[STATE_LAST] = 1
-            continue
-        # cut at the uniform node nearest the middle
-        cut = -1
-        mid = (i0 + j0) // 2
-        for d in range(j0 - i0):
-            if i0 < mid + d < j0 and uniform[mid + d]:
-                cut = mid + d
-                break
-            if i0 < mid - d < j0 and uniform[mid - d]:
-                cut = mid - d
-                break
-        if cut < 0:
-            k = isolate(w[i0], w[j0], ni, nj, p, out, k, modes, state)
-            if k < 0:
-                return -1
-            continue
-        if depth + 2 > cap:
-            return -1
-        nm = min(max(count_below(w[cut], p), ni), nj)
-        depth = push_halves(si, sj, sni, snj, depth, i0, cut, j0, ni, nm, nj)
-    state[STATE_K] = k
-    return k
-
-
-@njit(cache=True)
-def lowest_run(p, modes, out, state, k_stop, certify, w_stop):
-    """Blocks of ``lowest_block`` until k_stop values are written (k_stop <= modes) or
-    the search reaches ``w_stop`` (the top of a band; inf for the lowest modes);
-    returns the new k, or -1 (a block failed, or MAX_STALLED_BLOCKS in a row found
-    nothing: the count or the function is broken here)."""
-    k = int(state[STATE_K])
-    stalled = 0
-    while 0 <= k < k_stop and state[STATE_W] < w_stop:
-        k_before = k
-        k = lowest_block(p, modes, out, state, k_stop - k, certify, w_stop)
-        stalled = stalled + 1 if k == k_before else 0
-        if stalled > MAX_STALLED_BLOCKS:
-            return -1
-    return k
-
-
-@njit(cache=True)
-def lowest(p, modes, out, certify=True):
-    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
-
-    ``lowest_start`` then ``lowest_block`` with the whole remaining quota (one count
-    certifies the scan when every root is a sign change). Returns the true
-    multiplicity of the last root written (the count's, even when fewer copies fit
-    in ``out``; 1 without ``certify``), or 0 when the search cannot certify (a root
-    below the lowest grid node, a bisection that overflows, Brent not converged): the
-    caller then runs the full search."""
-    state = np.zeros(STATE_SIZE)
-    k = lowest_start(p, modes, out, state, certify)
-    if k < 0:
-        return 0
-    k = lowest_run(p, modes, out, state, modes, certify, np.inf)
-    if k < modes:
-        return 0
-    return int(state[STATE_LAST])
-
-
-@njit(cache=True, parallel=True)
-def sweep_lowest(P, modes, out, certified):
-    """``lowest`` for every parameter vector (row of P), in parallel over the rows."""
-    for i in prange(P.shape[0]):
-        certified[i] = lowest(P[i], modes, out[i], True) > 0
-
-
-@njit(cache=True)
-def event_position(p, i):
-    """x (SI) of the i-th point component, sorted by x."""
-    return p[3 + ATTACHMENT_STRIDE * i]
-
-
-@njit(cache=True)
-def shape_event(p, i, beta, Cz, Cq, B, qmass):
-    """The i-th point component in descriptor form for the mode-shape march (units
-    L = EI = 1): its geometric equation H_I1 Z = B00 Y_m (paper Eq. (3), B00 = 1 - m w^2/k)
-    as Cz Z + Cq q = 0, and the shear its mass puts into the beam, U_I2 B e_Y Y_m
-    (paper Eq. (2)), as Z+ = Z + B q; q = [Y_m / L], of mass qmass = [mu] (units
-    mbar L). Returns (constraints, unknowns)."""
-    q = 3 + ATTACHMENT_STRIDE * i
-    L = p[0]
-    kappa = p[q + 1] * L**3 / p[1]
-    mu = p[q + 2] / (p[2] * L)
-    qmass[0] = mu
-    t0 = beta**4*mu
-    Cz[0, 0] = 1.0
-    Cz[0, 1] = 0.0
-    Cz[0, 2] = 0.0
-    Cz[0, 3] = 0.0
-    Cq[0, 0] = -1.0 + t0/kappa
-    B[0, 0] = 0.0
-    B[1, 0] = 0.0
-    B[2, 0] = 0.0
-    B[3, 0] = t0
-    return 1, 1
-
-
-# Mode shapes (paper Eq. (5)): an orthonormalisation march with every attached unknown kept.
-#
-# The state Z = [Y, theta, M, Q] (units L = EI = 1) admitted by everything left of a point
-# is a two-dimensional subspace, held by an orthonormal basis W (4 x 2): Z = W a. A point
-# component adds its own unknowns q (the displacement of a hanging mass) and constraints
-# (its geometric equation, paper Eq. (3)); in descriptor form
-#     Cz Z + Cq q = 0,        Z+ = Z + B q,
-# so nothing is divided by a pole factor: at a branch's own frequency (B00 = 0) the
-# constraint says Y = 0 and the mass moves freely. The solutions (a, q) are the null space N
-# of [Cz W, Cq]; the new basis and the map back, (a, q) = G (a+, f), come from an SVD of
-# [W, B] N. Its two largest singular directions carry the state; any further one (a
-# constraint that is degenerate at this omega: a mass moving while the beam point is held)
-# leaves a state that is zero from here on and becomes a "frozen" parameter f, kept to the
-# end: it is a mode of the part left of the point, and so of the whole structure.
-# At x = L the end's two conditions on W a have a null space (SVD); the shapes are walked
-# back by the stored maps G, which are multiplications only: no solve, nothing singular.
-
-#: Longest piece (in lam*l) of the mode-shape march: a piece's transfer matrix has
-#: condition ~ exp(2 lam l), so the basis loses nothing between two orthonormalisations.
-MARCH_STEP = 1.0
-#: A constraint row of a point component (scaled to O(1)) this small is dependent on the
-#: others at this omega: within this relative distance of the component's own frequency.
-#: Roots closer than this are one cluster for the mode shapes (``mstmm.modes``).
-DEGENERATE = 1e-8
-#: Most unknowns a point component of this kernel adds.
-MAX_Q = 1
-#: Conditions of the right end: the state variables that vanish there.
-RIGHT_KNOWN = (2, 3)
-#: Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
-GAUSS_X = np.array([0.019855071751231912, 0.10166676129318664, 0.2372337950418355, 0.4082826787521751, 0.5917173212478248, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681])
-GAUSS_W = np.array([0.05061426814518853, 0.11119051722668721, 0.15685332293894344, 0.18134189168918083, 0.18134189168918083, 0.15685332293894344, 0.11119051722668721, 0.05061426814518853])
-
-
-@njit(cache=True)
-def jacobi_svd(A, V):
-    """One-sided Jacobi SVD: A (n x k) becomes A V with orthogonal columns, V (k x k) the
-    rotations; returns the column norms (the singular values, unsorted; k - n of them ~0 when
-    k > n). Accurate to round-off relative to each column, and small to compile."""
-    n = A.shape[0]
-    k = A.shape[1]
-    for i in range(k):
-        for j in range(k):
-            V[i, j] = 1.0 if i == j else 0.0
-    for _ in range(64):
-        rotated = False
-        for i in range(k - 1):
-            for j in range(i + 1, k):
-                a = 0.0
-                b = 0.0
-                c = 0.0
-                for r in range(n):
-                    a += A[r, i] * A[r, i]
-                    b += A[r, j] * A[r, j]
-                    c += A[r, i] * A[r, j]
-                if c == 0.0 or abs(c) <= 2.2e-16 * math.sqrt(a) * math.sqrt(b):
-                    continue
-                rotated = True
-                if abs(b - a) > 1e150 * abs(c):
-                    t = c / (b - a)  # tan of a negligible angle, 1 / (2 zeta)
-                else:
-                    zeta = (b - a) / (2.0 * c)
-                    t = (1.0 if zeta >= 0.0 else -1.0) / (abs(zeta) + math.hypot(1.0, zeta))
-                cs = 1.0 / math.hypot(1.0, t)
-                sn = cs * t
-                for r in range(n):
-                    ai = A[r, i]
-                    aj = A[r, j]
-                    A[r, i] = cs * ai - sn * aj
-                    A[r, j] = sn * ai + cs * aj
-                for r in range(k):
-                    vi = V[r, i]
-                    vj = V[r, j]
-                    V[r, i] = cs * vi - sn * vj
-                    V[r, j] = sn * vi + cs * vj
-        if not rotated:
-            break
-    s = np.empty(k)
-    for i in range(k):
-        t = 0.0
-        for r in range(n):
-            t += A[r, i] * A[r, i]
-        s[i] = math.sqrt(t)
-    return s
-
-
-@njit(cache=True)
-def carry(S, k, W, G):
-    """New basis W (4 x 2) and map G (k x k) from the states S (4 x k) of k parameters.
-
-    ``S G = [W, 0]`` up to round-off: G's first two columns take the new basis coordinates
-    a+ to the old parameters, the others (k > 2) are frozen directions whose state is zero.
-    Returns the number of frozen directions, k - 2."""
-    V = np.empty((k, k))
-    s = jacobi_svd(S, V)
-    # the two largest singular values carry the state (the admitted subspace is 2-dim)
-    i1 = 0
-    for i in range(k):
-        if s[i] > s[i1]:
-            i1 = i
-    i2 = 1 if i1 == 0 else 0
-    for i in range(k):
-        if i != i1 and s[i] > s[i2]:
-            i2 = i
-    col = 2
-    for i in range(k):
-        if i == i1 or i == i2:
-            c = 0 if i == i1 else 1
-            inv = 1.0 / s[i] if s[i] > 0.0 else 0.0
-            for r in range(4):
-                W[r, c] = S[r, i] * inv
-            for r in range(k):
-                G[r, c] = V[r, i] * inv
-        else:
-            for r in range(k):
-                G[r, col] = V[r, i]
-            col += 1
-    return k - 2
-
-
-@njit(cache=True)
-def piece_step(W, G, beta, rho):
-    """W <- U(rho) W re-orthonormalised; G (2 x 2) takes the new coordinates to the old."""
-    U = np.empty((4, 4))
-    beam_transfer_scaled(beta, rho, U)  # beta*rho <= MARCH_STEP: no scaling, shift 0
-    S = np.empty((4, 2))
-    for r in range(4):
-        for c in range(2):
-            S[r, c] = U[r, 0] * W[0, c] + U[r, 1] * W[1, c] + U[r, 2] * W[2, c] + U[r, 3] * W[3, c]
-    carry(S, 2, W, G)
-
-
-@njit(cache=True)
-def event_step(W, G, Cz, Cq, B, nc, nq):
-    """W <- basis after a point component with constraints Cz Z + Cq q = 0 (nc rows) and
-    jump Z+ = Z + B q (nq unknowns); G ((2 + nq) x (2 + nf)) takes (a+, f) to (a, q).
-    Returns nf, the frozen directions it adds (its constraints degenerate at this omega)."""
-    n = 2 + nq
-    C = np.zeros((max(nc, 1), n))
-    for r in range(nc):
-        scale = 1.0
-        for j in range(nq):
-            scale = max(scale, abs(Cq[r, j]))
-        for j in range(4):
-            scale = max(scale, abs(Cz[r, j]))
-        for c in range(2):
-            C[r, c] = (Cz[r, 0] * W[0, c] + Cz[r, 1] * W[1, c] + Cz[r, 2] * W[2, c]
-                       + Cz[r, 3] * W[3, c]) / scale
-        for j in range(nq):
-            C[r, 2 + j] = Cq[r, j] / scale
-    V = np.empty((n, n))
-    s = jacobi_svd(C, V)
-    if nc == 0:
-        for j in range(n):
-            s[j] = 0.0
-    # null space of the constraints: the columns whose singular value is negligible
-    nn = 0
-    for j in range(n):
-        if s[j] <= DEGENERATE:
-            nn += 1
-    N = np.empty((n, nn))
-    c = 0
-    for j in range(n):
-        if s[j] <= DEGENERATE:
-            for r in range(n):
-                N[r, c] = V[r, j]
-            c += 1
-    S = np.zeros((4, nn))
-    for r in range(4):
-        for j in range(nn):
-            t = 0.0
-            for i in range(2):
-                t += W[r, i] * N[i, j]
-            for i in range(nq):
-                t += B[r, i] * N[2 + i, j]
-            S[r, j] = t
-    H = np.zeros((nn, nn))
-    nf = carry(S, nn, W, H)
-    for r in range(n):
-        for j in range(nn):
-            t = 0.0
-            for i in range(nn):
-                t += N[r, i] * H[i, j]
-            G[r, j] = t
-    return nf
-
-
-@njit(cache=True)
-def svd_2x2(E, V):
-    """SVD of the 2 x 2 end matrix E: V's columns are its right singular vectors, smallest
-    singular value first; returns the singular values in that order."""
-    A = np.empty((2, 2))
-    for r in range(2):
-        for c in range(2):
-            A[r, c] = E[r, c]
-    Vr = np.empty((2, 2))
-    s = jacobi_svd(A, Vr)
-    lo = 0 if s[0] <= s[1] else 1
-    hi = 1 - lo
-    for r in range(2):
-        V[r, 0] = Vr[r, lo]
-        V[r, 1] = Vr[r, hi]
-    out = np.empty(2)
-    out[0] = s[lo]
-    out[1] = s[hi]
-    return out
-
-
-@njit(cache=True)
-def shape_steps(p, beta):
-    """Number of steps of the march: every point component and every piece."""
-    L = p[0]
-    n_ev = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    steps = n_ev
-    pos = 0.0
-    for i in range(n_ev + 1):
-        x = event_position(p, i) if i < n_ev else L
-        rho = (x - pos) / L
-        if rho > 0.0:
-            steps += max(1, int(math.ceil(beta * rho / MARCH_STEP)))
-        pos = x
-    return steps
-
-
-@njit(cache=True)
-def mode_shapes(omega, p, m, xs, Z_out, q_out, gram, part, ratio):
-    """The ``m`` shapes of the eigenspace at omega (a root of multiplicity m, or the centre
-    of a cluster of m roots), units L = EI = mbar = 1.
-
-    Z_out (m, len(xs), 4): state [Y, theta, M, Q] at the sample points xs (SI, ascending,
-    right limits at a point component); q_out (m, n_q): the unknowns of every point
-    component (the displacement of each hanging mass); gram (m, m) and part (m): the mass
-    inner products int Y_i Y_j + sum mu q_i q_j and int Y_i + sum mu q_i (for the
-    participation factor); ratio (m): singular value of each shape over the largest of the
-    end matrix. Shapes are the right singular vectors of the end matrix for its m smallest
-    singular values, walked back to the left end."""
-    L = p[0]
-    EI = p[1]
-    mbar = p[2]
-    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
-    n_ev = (p.shape[0] - 3) // ATTACHMENT_STRIDE
-    n_steps = shape_steps(p, beta)
-    # per step: kind (0 piece, 1 point), rho, nq, nf, offsets of its q and frozen params
-    kind = np.zeros(n_steps, dtype=np.int64)
-    rho_s = np.zeros(n_steps)
-    x_s = np.zeros(n_steps + 1)
-    nq_s = np.zeros(n_steps, dtype=np.int64)
-    nf_s = np.zeros(n_steps, dtype=np.int64)
-    qofs = np.zeros(n_steps, dtype=np.int64)
-    fofs = np.zeros(n_steps, dtype=np.int64)
-    width = 2 + MAX_Q
-    Gbuf = np.zeros((n_steps, width, width))
-    Wbuf = np.zeros((n_steps + 1, 4, 2))
-    qmass = np.zeros(max(1, n_ev * MAX_Q))
-    W = np.zeros((4, 2))
-    W[LEFT_UNKNOWN[0], 0] = 1.0
-    W[LEFT_UNKNOWN[1], 1] = 1.0
-    for r in range(4):
-        for c in range(2):
-            Wbuf[0, r, c] = W[r, c]
-    Cz = np.zeros((MAX_Q + 1, 4))
-    Cq = np.zeros((MAX_Q + 1, MAX_Q))
-    B = np.zeros((4, MAX_Q))
-    ev_mass = np.zeros(MAX_Q)
-    G = np.zeros((width, width))
-    s = 0
-    nq_total = 0
-    nf_total = 0
-    pos = 0.0
-    for i in range(n_ev + 1):
-        x = event_position(p, i) if i < n_ev else L
-        rho = (x - pos) / L
-        if rho > 0.0:
-            pieces = max(1, int(math.ceil(beta * rho / MARCH_STEP)))
-            for j in range(pieces):
-                piece_step(W, G, beta, rho / pieces)
-                kind[s] = 0
-                rho_s[s] = rho / pieces
-                x_s[s + 1] = x_s[s] + rho / pieces
-                for r in range(2):
-                    for c in range(2):
-                        Gbuf[s, r, c] = G[r, c]
-                s += 1
-                for r in range(4):
-                    for c in range(2):
-                        Wbuf[s, r, c] = W[r, c]
-            x_s[s] = x / L
-        pos = x
-        if i == n_ev:
-            break
-        nc, nq = shape_event(p, i, beta, Cz, Cq, B, ev_mass)
-        nf = event_step(W, G, Cz, Cq, B, nc, nq)
-        kind[s] = 1
-        nq_s[s] = nq
-        nf_s[s] = nf
-        qofs[s] = nq_total
-        fofs[s] = nf_total
-        for j in range(nq):
-            qmass[nq_total + j] = ev_mass[j]
-        nq_total += nq
-        nf_total += nf
-        for r in range(2 + nq):
-            for c in range(2 + nf):
-                Gbuf[s, r, c] = G[r, c]
-        s += 1
-        x_s[s] = x / L
-        for r in range(4):
-            for c in range(2):
-                Wbuf[s, r, c] = W[r, c]
-    # the end: its two conditions on Z = W a; frozen parameters are exact null directions
-    E = np.empty((2, 2))
-    for c in range(2):
-        E[0, c] = W[RIGHT_KNOWN[0], c]
-        E[1, c] = W[RIGHT_KNOWN[1], c]
-    Ve = np.empty((2, 2))
-    se = svd_2x2(E, Ve)
-    top = se[1]
-    a = np.zeros((m, 2))
-    f = np.zeros((m, max(1, nf_total)))
-    for k in range(m):
-        if k < nf_total:
-            f[k, k] = 1.0
-            ratio[k] = 0.0
-        else:
-            j = min(k - nf_total, 1)
-            a[k, 0] = Ve[0, j]
-            a[k, 1] = Ve[1, j]
-            ratio[k] = se[j] / top if top > 0.0 else 0.0
-    # walk back: the state at every node, the unknowns of every point component
-    Zn = np.zeros((m, n_steps + 1, 4))
-    for k in range(m):
-        for r in range(4):
-            Zn[k, n_steps, r] = W[r, 0] * a[k, 0] + W[r, 1] * a[k, 1]
-    cols = np.empty(2 + MAX_Q)
-    for t in range(n_steps - 1, -1, -1):
-        nq = nq_s[t]
-        nf = nf_s[t]
-        for k in range(m):
-            cols[0] = a[k, 0]
-            cols[1] = a[k, 1]
-            for j in range(nf):
-                cols[2 + j] = f[k, fofs[t] + j]
-            a0 = 0.0
-            a1 = 0.0
-            for c in range(2 + nf):
-                a0 += Gbuf[t, 0, c] * cols[c]
-                a1 += Gbuf[t, 1, c] * cols[c]
-            for j in range(nq):
-                v = 0.0
-                for c in range(2 + nf):
-                    v += Gbuf[t, 2 + j, c] * cols[c]
-                q_out[k, qofs[t] + j] = v
-            a[k, 0] = a0
-            a[k, 1] = a1
-            for r in range(4):
-                Zn[k, t, r] = Wbuf[t, r, 0] * a0 + Wbuf[t, r, 1] * a1
-    # samples (right limits) and the mass inner products, piece by piece
-    for i in range(m):
-        part[i] = 0.0
-        for j in range(m):
-            gram[i, j] = 0.0
-    U = np.empty((4, 4))
-    Y = np.empty(m)
-    j = 0
-    ns = xs.shape[0]
-    for t in range(n_steps):
-        if kind[t] != 0:
-            continue
-        x0 = x_s[t]
-        x1 = x0 + rho_s[t]
-        while j < ns and xs[j] / L < x1:
-            d = max(xs[j] / L - x0, 0.0)
-            beam_transfer_scaled(beta, d, U)
-            for k in range(m):
-                for r in range(4):
-                    Z_out[k, j, r] = (U[r, 0] * Zn[k, t, 0] + U[r, 1] * Zn[k, t, 1]
-                                      + U[r, 2] * Zn[k, t, 2] + U[r, 3] * Zn[k, t, 3])
-            j += 1
-        for g in range(GAUSS_X.shape[0]):
-            beam_transfer_scaled(beta, rho_s[t] * GAUSS_X[g], U)
-            w = rho_s[t] * GAUSS_W[g]
-            for k in range(m):
-                Y[k] = (U[0, 0] * Zn[k, t, 0] + U[0, 1] * Zn[k, t, 1]
-                        + U[0, 2] * Zn[k, t, 2] + U[0, 3] * Zn[k, t, 3])
-            for k in range(m):
-                part[k] += w * Y[k]
-                for l in range(m):
-                    gram[k, l] += w * Y[k] * Y[l]
-    while j < ns:  # at x = L: the state after every component there
-        for k in range(m):
-            for r in range(4):
-                Z_out[k, j, r] = Zn[k, n_steps, r]
-        j += 1
-    for i in range(nq_total):
-        for k in range(m):
-            part[k] += qmass[i] * q_out[k, i]
-            for l in range(m):
-                gram[k, l] += qmass[i] * q_out[k, i] * q_out[l, i]
-    return nq_total
+            known = LEFT_KNOWN if r == n_ev else RIGHT_KNOWN
+            x = 0.0 if r == n_ev else 1.0
+            y_row = known[0] == 0 or known[1] == 0
+            t_row = known[0] == 1 or known[1] == 1
+        if y_row:
+            R[n, 0] = 1.0
+            R[n, 1] = x
+            for j in range(h):
+                R[n, 2 + j] = max(x - kinks[j], 0.0)
+            n += 1
+        if t_row:
+            R[n, 1] = 1.0
+            for j in range(h):
+                R[n, 2 + j] = 1.0 if x > kinks[j] else 0.0
+            n += 1
+    if n == 0:
+        return 2 + h
+    V = np.empty((2 + h, 2 + h))
+    s = jacobi_svd(R[:n].copy(), V)
+    top = s.max()
+    rank = 0
+    for i in range(s.shape[0]):
+        if s[i] > RIGID_RANK * top:
+            rank += 1
+    return 2 + h - rank

@@ -52,19 +52,64 @@ def check_against_reference(sc, sol, tol, exact=None):
     return worst
 
 
-def check_shapes(sc, sol) -> None:
-    """What every default solve must give, without a reference: one finite shape per
-    frequency, eigenspaces of the sizes the multiplicities say, and each hanging mass
-    obeying its equation of motion (k - m w^2) Y_m = k Y_beam at its point."""
+def hanging_chains(sc) -> list[list[tuple[float, float]]]:
+    """[(k_1, m_1), ...] of every spring-mass (one stage) and oscillator chain, sorted by x
+    (stable): the order of ``ModeShape.mass_x`` / ``mass_Y``."""
+    chains = []
+    for att in sc["attachments"]:
+        kind = att.get("type", "spring_mass")
+        if kind == "spring_mass":
+            chains.append((att["x"], [(att["k"], att["m"])]))
+        elif kind == "oscillator_chain":
+            chains.append((att["x"], list(zip(att["k"], att["m"], strict=True))))
+    return [stages for _x, stages in sorted(chains, key=lambda c: c[0])]
+
+
+def check_shapes(sc, sol, tol: float = 1e-7) -> None:
+    """What every default solve must give for a scene of any kinds: one finite shape per
+    frequency (max |Y| over beam and masses = 1), eigenspaces of the sizes the
+    multiplicities say (a root, or a cluster of roots within 1e-8), one ``mass_Y`` per
+    hanging mass (each stage of a chain) at its attachment point, and every hanging mass
+    obeying its equation of motion
+    ``m_i w^2 u_i + k_i (u_{i-1} - u_i) + k_{i+1} (u_{i+1} - u_i) = 0`` (u_0 = Y of the beam
+    at the attachment point)."""
+    if not isinstance(sc, dict):
+        from mstmm.scene import scene_to_dict
+
+        sc = scene_to_dict(sc)
+    chains = hanging_chains(sc)
+    xs = sorted(a["x"] for a in sc["attachments"] for _ in range(_stage_count(a)))
     assert sol.shapes is not None and len(sol.shapes) == len(sol.omega)
-    for a, b in groups(sol):
-        assert all(s.multiplicity == b - a for s in sol.shapes[a:b])
+    i = 0
+    while i < len(sol.shapes):
+        m = sol.shapes[i].multiplicity
+        assert m >= 1 and all(s.multiplicity == m for s in sol.shapes[i : i + m])
+        # one root of multiplicity m, or a cluster of m roots too close to separate
+        assert np.all(sol.omega[i : i + m] - sol.omega[i] <= 1e-8 * sol.omega[i + m - 1])
+        i += m
     for s, w in zip(sol.shapes, sol.omega, strict=True):
         assert s.omega == w
-        for arr in (s.Y, s.theta, s.M, s.Q, s.mass_Y):
+        for arr in (s.x, s.Y, s.theta, s.M, s.Q, s.mass_x, s.mass_Y):
             assert np.all(np.isfinite(arr))
+        assert len(s.mass_Y) == len(s.mass_x) == len(xs)
+        np.testing.assert_array_equal(s.mass_x, xs)
         assert max(np.max(np.abs(s.Y)), np.max(np.abs(s.mass_Y), initial=0.0)) == 1.0
-        idx = np.searchsorted(s.x, s.mass_x)
-        for att, yb, ym in zip(sc.attachments, s.Y[idx], s.mass_Y, strict=True):
-            residual = (att.k - att.m * w**2) * ym - att.k * yb
-            assert abs(residual) <= 1e-7 * (att.k + att.m * w**2), (w, residual)
+        beam_y = s.Y[np.searchsorted(s.x, s.mass_x)]
+        j = 0
+        for stages in chains:
+            u = [beam_y[j]] + list(s.mass_Y[j : j + len(stages)]) + [0.0]
+            ks = [k for k, _m in stages] + [0.0]
+            for n, (k, mass) in enumerate(stages, start=1):
+                force = mass * w**2 * u[n] + k * (u[n - 1] - u[n]) + ks[n] * (u[n + 1] - u[n])
+                scale = mass * w**2 + k + ks[n]  # the forces of a unit amplitude (max |Y| = 1)
+                assert abs(force) <= tol * scale, (w, n, force, scale)
+            j += len(stages)
+
+
+def _stage_count(att) -> int:
+    kind = att.get("type", "spring_mass")
+    if kind == "spring_mass":
+        return 1
+    if kind == "oscillator_chain":
+        return len(att["k"])
+    return 0

@@ -10,13 +10,14 @@ dispatcher's ``py_func``, rebound by :func:`mstmm.interpret.python_copy`, so
 nothing is compiled), and compares their public functions at random parameter
 vectors and frequencies:
 
-* ``delta_stable``, ``delta_paper`` (the value ``mantissa * exp(log)``),
-  ``u_bar_paper``, ``beam_transfer``, ``beam_transfer_reduced``,
-  ``beam_transfer_scaled``, ``evaluate_*``, ``refine_*`` and ``lowest``:
+* a kernel: ``delta_stable``, ``delta_paper`` (the value ``mantissa * exp(log)``),
+  ``u_bar_paper``, and the shared drivers run with each printing's functions
+  (``evaluate``, ``refine``, ``lowest``, ``mode_shapes``); the shared numerics:
+  ``beam_transfer``, ``beam_transfer_scaled``, ``beam_compound_step``, ``krylov``:
   relative difference at most :data:`RTOL` (next to a root, where the
   characteristic function cancels, relative to the size of its terms: see
   :func:`close`);
-* ``count_below`` / ``counts``: exactly equal;
+* ``count_below``, ``rigid_body_modes``, ``shape_sizes``: exactly equal;
 * the module constants (all upper-case names but ``SIGNATURE``) and the set of
   functions: equal.
 
@@ -43,22 +44,19 @@ import numpy as np
 #: Largest relative difference allowed between the two printings.
 RTOL = 1e-13
 
-#: Functions compared one by one (others are helpers reached through these).
+#: A kernel's functions compared one by one (the shared drivers are run with each).
 PUBLIC = (
     "delta_stable",
     "delta_paper",
     "count_below",
-    "counts",
     "u_bar_paper",
-    "beam_transfer",
-    "beam_transfer_scaled",
-    "evaluate_stable",
-    "evaluate_paper",
-    "refine_stable",
-    "refine_paper",
-    "lowest",
-    "mode_shapes",
+    "oscillator_frequencies",
+    "rigid_body_modes",
+    "shape_event",
+    "shape_sizes",
 )
+#: The shared numerics' printed functions compared one by one.
+NUMERICS_PUBLIC = ("beam_transfer", "beam_transfer_scaled", "beam_compound_step", "krylov")
 
 HEADER = "Derived by mstmm.derive with SymPy "
 
@@ -74,16 +72,19 @@ def printed_by(source: str) -> str | None:
 
 
 def all_topologies() -> list:
-    """Every end pair, bare and with spring-masses (32 topologies)."""
+    """Every end pair, bare and with spring-masses (32 topologies), and two with every kind."""
+    from mstmm.derive.catalog import BUILTIN_KINDS
+
     from mstmm.scene import BOUNDARY_KINDS
     from mstmm.topology import Topology
 
+    every = tuple(sorted(BUILTIN_KINDS))
     return [
         Topology(left, right, kinds)
         for left in BOUNDARY_KINDS
         for right in BOUNDARY_KINDS
         for kinds in ((), ("spring_mass",))
-    ]
+    ] + [Topology("clamped", "free", every), Topology("free", "pinned", every)]
 
 
 def python_kernel(source: str) -> dict:
@@ -120,25 +121,55 @@ def _constants(ns: dict) -> dict:
     }
 
 
-def random_parameters(rng: np.random.Generator, spring_mass: bool) -> np.ndarray:
-    """[L, EI, mbar, (x, k, m)...] over several decades, attachments anywhere (ends included)."""
+def random_parameters(rng: np.random.Generator, kinds: tuple, left: str, right: str) -> np.ndarray:
+    """A parameter vector over several decades: 1..3 segments, 1..5 components of each
+    kind (attachments at the ends and two at one x included), as ``catalog.layout``."""
+    from mstmm.derive.catalog import Component, Topology, layout
+
     L = 10 ** rng.uniform(-1, 1)
     EI = 10 ** rng.uniform(0, 6)
     mbar = 10 ** rng.uniform(-1, 2)
-    p = [L, EI, mbar]
-    if spring_mass:
-        n = int(rng.integers(1, 6))
-        xs = rng.uniform(0, L, n)
-        if n > 2:
-            xs[0], xs[1] = 0.0, L  # at both ends
-            xs[2] = xs[-1]  # two at one x
-        for x in np.sort(xs):
-            p += [
-                float(x),
-                EI / L**3 * 10 ** rng.uniform(-2, 3),
-                mbar * L * 10 ** rng.uniform(-2, 1),
-            ]
-    return np.array(p, dtype=float)
+    n_seg = int(rng.integers(1, 4))
+    cuts = np.sort(rng.uniform(0.1, 0.9, n_seg - 1)) * L
+    lengths = np.diff(np.concatenate([[0.0], cuts, [L]]))
+    segments = [(float(lengths[0]), EI, mbar)] + [
+        (float(ln), EI * 10 ** rng.uniform(-1, 1), mbar * 10 ** rng.uniform(-0.5, 0.5))
+        for ln in lengths[1:]
+    ]
+    k_scale, m_scale = EI / L**3, mbar * L
+    comps = []
+    for kind in kinds:
+        n = int(rng.integers(1, 4)) if kind not in ("support", "hinge") else 1
+        for _ in range(n):
+            x = float(rng.uniform(0.05, 0.95) * L)
+            if kind == "spring_mass":
+                values = {
+                    "k": k_scale * 10 ** rng.uniform(-1, 2),
+                    "m": m_scale * 10 ** rng.uniform(-1, 0),
+                }
+            elif kind == "mass":
+                values = {"m": m_scale * 10 ** rng.uniform(-1, 0), "J": m_scale * L**2 * 0.01}
+            elif kind == "spring":
+                values = {"k": k_scale * 10 ** rng.uniform(-1, 2)}
+            elif kind in ("rotational_spring", "hinge"):
+                values = {"k": EI / L * 10 ** rng.uniform(-1, 1)}
+            elif kind == "oscillator_chain":
+                stages = int(rng.integers(1, 4))
+                values = {
+                    "k": [k_scale * 10 ** rng.uniform(-1, 2) for _ in range(stages)],
+                    "m": [m_scale * 10 ** rng.uniform(-1, 0) for _ in range(stages)],
+                }
+            else:
+                values = {}
+            comps.append(Component(kind, x, values))
+    return layout(segments, comps, Topology(left, right, kinds))[0]
+
+
+def _topology(ns: dict) -> tuple:
+    from mstmm.derive.catalog import Topology
+
+    return Topology.from_key(ns["TOPOLOGY"])
+    """The kernel's topology."""
 
 
 def omega_of(p: np.ndarray, beta: float) -> float:
@@ -171,7 +202,8 @@ def _value_pair(ref, new, fn, omega, p, h):
 
 
 def compare(reference_source: str, candidate_source: str, points: int = 40, seed: int = 0) -> list:
-    """What differs between two printings of one kernel (an empty list: nothing)."""
+    """What differs between two printings of one kernel, or of the shared numerics (an
+    empty list: nothing)."""
     ref = python_kernel(reference_source)
     new = python_kernel(candidate_source)
     problems = []
@@ -180,18 +212,54 @@ def compare(reference_source: str, candidate_source: str, points: int = 40, seed
     cr, cn = _constants(ref), _constants(new)
     if cr != cn:
         problems.append(f"constants differ: {cr} != {cn}")
-    missing = [f for f in PUBLIC if f not in ref]
+    numerics = "TOPOLOGY" not in ref
+    public = NUMERICS_PUBLIC if numerics else PUBLIC
+    missing = [f for f in public if f not in ref]
     if missing:
         problems.append(f"public functions missing: {missing}")
         return problems
     rng = np.random.default_rng(seed)
-    spring_mass = ref["ATTACHMENT_STRIDE"] > 1 or "spring_mass_compound_step" in ref
     for i in range(points):
-        p = random_parameters(rng, spring_mass)
-        problems += _compare_at(ref, new, p, rng, i)
+        if numerics:
+            problems += _compare_numerics_at(ref, new, rng, i)
+        else:
+            t = _topology(ref)
+            p = random_parameters(rng, t.kinds, t.left, t.right)
+            problems += _compare_at(ref, new, p, rng, i)
         if len(problems) > 10:
             break
     return problems
+
+
+def _compare_numerics_at(ref: dict, new: dict, rng: np.random.Generator, i: int) -> list:
+    out = []
+    for beta in np.concatenate([10 ** rng.uniform(-3, 0.3, 3), rng.uniform(2, 45, 3)]):
+        rho = rng.uniform(0.01, 1.0)
+        Ua, Ub = np.empty((4, 4)), np.empty((4, 4))
+        ref["beam_transfer_scaled"](beta, rho, Ua)
+        new["beam_transfer_scaled"](beta, rho, Ub)
+        if not close(Ua, Ub, scale=np.abs(Ua).max()):
+            out.append(f"beam_transfer_scaled({beta}, {rho}) point {i}: {Ua} vs {Ub}")
+        lam, l, EI = beta, rho, 10 ** rng.uniform(0, 4)
+        ref["beam_transfer"](lam, l, EI, Ua)
+        new["beam_transfer"](lam, l, EI, Ub)
+        if not close(Ua, Ub, scale=np.abs(Ua).max()):
+            out.append(f"beam_transfer({lam}, {l}, {EI}) point {i}: {Ua} vs {Ub}")
+        va, vb = rng.normal(size=6), None
+        vb = va.copy()
+        sa, sb = ref["beam_compound_step"](va, beta, rho), new["beam_compound_step"](vb, beta, rho)
+        if sa != sb or not close(va, vb, scale=np.abs(va).max()):
+            out.append(f"beam_compound_step({beta}, {rho}) point {i}: {va} vs {vb}")
+        ka, kb = ref["krylov"](beta * rho), new["krylov"](beta * rho)
+        if not close(ka, kb):
+            out.append(f"krylov({beta * rho}) point {i}: {ka} vs {kb}")
+    return out
+
+
+def _search(ns: dict) -> tuple:
+    return tuple(
+        ns[n] for n in ("delta_stable", "count_below", "oscillator_frequencies", "rigid_body_modes")
+    )
 
 
 def _compare_at(ref: dict, new: dict, p: np.ndarray, rng: np.random.Generator, i: int) -> list:
@@ -208,81 +276,85 @@ def _compare_at(ref: dict, new: dict, p: np.ndarray, rng: np.random.Generator, i
                 out.append(f"{fn}({w!r}) {where}: {va!r} vs {vb!r} (scale {scale:.3g})")
         mant_a, logs_a = np.empty_like(omegas), np.empty_like(omegas)
         mant_b, logs_b = np.empty_like(omegas), np.empty_like(omegas)
-        kind = fn.split("_")[1]
-        ref[f"evaluate_{kind}"](omegas, p, mant_a, logs_a)
-        new[f"evaluate_{kind}"](omegas, p, mant_b, logs_b)
+        ref["evaluate"](ref[fn], omegas, p, mant_a, logs_a)
+        new["evaluate"](new[fn], omegas, p, mant_b, logs_b)
         single = np.array([ref[fn](w, p) for w in omegas])
         if not (np.array_equal(mant_a, single[:, 0]) and np.array_equal(logs_a, single[:, 1])):
-            out.append(f"evaluate_{kind} of the reference printing is not {fn} pointwise")
-        if not (np.array_equal(np.sign(mant_a), np.sign(mant_b))):
-            signs = [
-                k
-                for k in range(len(omegas))
-                if np.sign(mant_a[k]) != np.sign(mant_b[k])
-                and abs(mant_a[k]) > 1e-12
-                and abs(mant_b[k]) > 1e-12
-            ]
-            if signs:
-                out.append(f"evaluate_{kind} signs differ at {omegas[signs]} {where}")
+            out.append(f"evaluate({fn}) of the reference printing is not {fn} pointwise")
+        signs = [
+            k
+            for k in range(len(omegas))
+            if np.sign(mant_a[k]) != np.sign(mant_b[k])
+            and abs(mant_a[k]) > 1e-12
+            and abs(mant_b[k]) > 1e-12
+        ]
+        if signs:
+            out.append(f"evaluate({fn}) signs differ at {omegas[signs]} {where}")
     for w in omegas:
         a, b = ref["count_below"](w, p), new["count_below"](w, p)
         if a != b:
             out.append(f"count_below({w!r}) {where}: {a} vs {b}")
-    ca, cb = np.empty(len(omegas), np.int64), np.empty(len(omegas), np.int64)
-    ref["counts"](omegas, p, ca)
-    new["counts"](omegas, p, cb)
-    if not np.array_equal(ca, cb):
-        out.append(f"counts {where}: {ca} vs {cb}")
+    for fn in ("rigid_body_modes", "shape_sizes"):
+        if ref[fn](p) != new[fn](p):
+            out.append(f"{fn} {where}: {ref[fn](p)} vs {new[fn](p)}")
+    if not close(ref["oscillator_frequencies"](p), new["oscillator_frequencies"](p)):
+        out.append(f"oscillator_frequencies {where}")
     for w in omegas[:4]:
         Ua, Ub = ref["u_bar_paper"](w, p), new["u_bar_paper"](w, p)
         if not close(Ua, Ub, scale=np.abs(Ua).max()):
             out.append(f"u_bar_paper({w!r}) {where}: {Ua} vs {Ub}")
-    for beta in betas:
-        lam = beta / p[0]
-        l = p[0] * rng.uniform(0.01, 1.0)
-        for fn, args in (
-            ("beam_transfer", (lam, l, p[1])),
-            ("beam_transfer_scaled", (beta, l / p[0])),
-        ):
-            Ua, Ub = np.empty((4, 4)), np.empty((4, 4))
-            ref[fn](*args, Ua)
-            new[fn](*args, Ub)
-            if not close(Ua, Ub, scale=np.abs(Ua).max()):
-                out.append(f"{fn}{args} {where}: {Ua} vs {Ub}")
     modes = 6
     oa, ob = np.zeros(modes), np.zeros(modes)
-    ok_a, ok_b = ref["lowest"](p, modes, oa), new["lowest"](p, modes, ob)
+    ok_a = ref["lowest"](*_search(ref), p, modes, oa, True)
+    ok_b = new["lowest"](*_search(new), p, modes, ob, True)
     if ok_a != ok_b or not close(oa, ob):
         out.append(f"lowest {where}: {oa} ({ok_a}) vs {ob} ({ok_b})")
     xs = np.linspace(0.0, p[0], 11)
-    nq = (len(p) - 3) // ref["ATTACHMENT_STRIDE"] * ref["MAX_Q"]
+    nq = ref["shape_sizes"](p)[0]
     for r in oa[oa > 0][:2]:
         shapes = []
         for k in (ref, new):
             Z, q = np.zeros((1, len(xs), 4)), np.zeros((1, nq))
+            q_x, q_mass = np.zeros(nq), np.zeros(nq)
             gram, part, ratio = np.zeros((1, 1)), np.zeros(1), np.zeros(1)
-            k["mode_shapes"](r, p, 1, xs, Z, q, gram, part, ratio)
+            k["mode_shapes"](
+                k["shape_event"],
+                k["shape_sizes"],
+                k["SHAPE_ENDS"],
+                r,
+                p,
+                1,
+                xs,
+                Z,
+                q,
+                q_x,
+                q_mass,
+                gram,
+                part,
+                ratio,
+            )
             v = np.concatenate([Z.ravel(), q.ravel()])
             shapes.append(v / v[np.argmax(np.abs(v))] / np.sqrt(gram[0, 0]) * np.abs(v).max())
         if not close(shapes[0], shapes[1], scale=np.abs(shapes[0]).max()):
             out.append(f"mode_shapes({r!r}) {where}: {shapes[0]} vs {shapes[1]}")
-    for kind in ("stable", "paper"):
-        roots = oa[(oa > 0)][:2] if kind == "stable" else oa[(oa > 0)][:1]
+    for fn in ("delta_stable", "delta_paper"):
+        roots = oa[(oa > 0)][:2] if fn == "delta_stable" else oa[(oa > 0)][:1]
         for r in roots:
             a, b = r * (1 - 1e-3), r * (1 + 1e-3)
-            ra = ref[f"refine_{kind}"](a, b, p, 0.0, 200)
-            rb = new[f"refine_{kind}"](a, b, p, 0.0, 200)
+            ra = ref["refine"](ref[fn], a, b, p, 0.0, 200)
+            rb = new["refine"](new[fn], a, b, p, 0.0, 200)
             if ra[2] != rb[2] or not close(ra[0], rb[0], rtol=1e-12):
-                out.append(f"refine_{kind}({a!r}, {b!r}) {where}: {ra} vs {rb}")
+                out.append(f"refine({fn}, {a!r}, {b!r}) {where}: {ra} vs {rb}")
     return out
 
 
 def derive_all(out_dir: Path) -> list[Path]:
     """Print every topology's kernel with the SymPy of this environment into ``out_dir``."""
-    from mstmm.derive.emit import kernel_source
+    from mstmm.derive.emit import kernel_source, numerics_source
 
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = []
+    paths = [out_dir / "numerics.py"]
+    paths[0].write_text(numerics_source())
     for topology in all_topologies():
         path = out_dir / f"{topology.key}.py"
         path.write_text(kernel_source(topology))

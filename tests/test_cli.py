@@ -358,7 +358,7 @@ def test_show_pattern_is_that_of_the_evaluated_derivation():
     for n, (left, right) in [
         (0, ("pinned", "free")),
         (2, ("clamped", "free")),
-        (3, ("free", "sliding")),
+        (2, ("free", "sliding")),
     ]:
         scene = mstmm.scene_from_dict(
             {

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from mstmm.scene import (
     ATTACHMENT_TYPES,
     BOUNDARY_KINDS,
+    Attachment,
     Beam,
     Scene,
     SceneError,
@@ -79,8 +80,9 @@ def raises_scene_error(path: Path, field: str, value: str | None) -> SceneError:
 
 def test_constants():
     assert BOUNDARY_KINDS == ("clamped", "pinned", "free", "sliding")
-    assert ATTACHMENT_TYPES == ("spring_mass",)
-    assert SpringMass.kind == "spring_mass"
+    assert "spring_mass" in ATTACHMENT_TYPES  # every kind: tests/test_scene_kinds.py
+    assert SpringMass(0.5, 2.0, 3.0).kind == "spring_mass"
+    assert SpringMass(0.5, 2.0, 3.0) == Attachment("spring_mass", 0.5, (("k", 2.0), ("m", 3.0)))
 
 
 def test_load_wu_chou():

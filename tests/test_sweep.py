@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 
@@ -10,7 +11,7 @@ import pytest
 import reference_model as ref
 
 import mstmm
-from mstmm.study import parameter_matrix, parse_range, sweep
+from mstmm.study import column, columns, parameter_matrix, parse_range, sweep
 
 
 def test_sweep_matches_reference_at_every_point():
@@ -26,19 +27,52 @@ def test_sweep_matches_reference_at_every_point():
         assert np.max(np.abs(row - np.array(exact, float)) / np.array(exact, float)) < 1e-13
 
 
-def test_sweep_moving_an_attachment_resorts_the_parameters():
-    """Moving the first spring-mass past the others keeps the parameter vector sorted by x."""
+def wu_chou_vector(x, k, m):
+    """The parameter vector of the paper's scene written out by hand (docs/components.md,
+    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar), the
+    event rows (tag, x, offset) sorted by x, then each spring-mass's (k, m) in scene order."""
+    ei, mbar = 63476.125002707834, 15.3875
+    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar]
+    offsets = [17.0, 19.0, 21.0]  # 5 + 3 + 3 * 3 = 17: after the event table
+    rows = sorted(zip(x, range(3)), key=lambda r: r[0])  # stable, by x
+    events = [v for xi, i in rows for v in (0.0, xi, offsets[i])]
+    return np.array(head + events + [v for i in range(3) for v in (k[i], m[i])])
+
+
+WU_CHOU_K = [190428.3750081235, 285642.56251218525, 380856.750016247]
+WU_CHOU_M = [3.0775, 7.69375, 15.3875]
+
+
+def test_moving_an_attachment_resorts_the_event_rows():
+    """Moving the first spring-mass past the others re-sorts the event rows; its data
+    block stays where it was (the offset travels with the row)."""
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
-    xs = np.array([0.05, 0.5, 0.95])
+    xs = [0.05, 0.5, 0.95]
     P = parameter_matrix(scene, {"attachments[0].x": xs})
-    positions = P[:, 3::3]
-    assert np.all(np.diff(positions, axis=1) >= 0)
-    omega = sweep(scene, {"attachments[0].x": xs}, modes=4)
-    for x, row in zip(xs, omega):
-        atts = list(scene.attachments)
-        atts[0] = {"type": "spring_mass", "x": float(x), "k": atts[0].k, "m": atts[0].m}
-        exact = np.array(ref.frequencies(scene.replace(attachments=atts), 4, dps=30), float)
-        assert np.max(np.abs(row - exact) / exact) < 1e-13
+    for x, row in zip(xs, P):
+        expected = wu_chou_vector([x, 0.4, 0.8], WU_CHOU_K, WU_CHOU_M)
+        assert row.tolist() == expected.tolist()
+
+
+def test_varying_a_stiffness_and_the_beam():
+    scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+    P = parameter_matrix(scene, {"attachments[2].k": [1.0, 2.0], "beam.length": [1.0, 2.0]})
+    for k, length, row in zip([1.0, 2.0], [1.0, 2.0], P):
+        expected = wu_chou_vector([0.1, 0.4, 0.8], [*WU_CHOU_K[:2], k], WU_CHOU_M)
+        expected[0] = expected[5] = length  # the total length and the segment's end
+        assert row.tolist() == expected.tolist()
+    P = parameter_matrix(scene, {"beam.EI": [7.0], "beam.mass_per_length": [3.0]})
+    expected = wu_chou_vector([0.1, 0.4, 0.8], WU_CHOU_K, WU_CHOU_M)
+    expected[[1, 6]] = 7.0  # the kernel's unit EI_0 and the segment's own EI
+    expected[[2, 7]] = 3.0
+    assert P[0].tolist() == expected.tolist()
+
+
+def test_moving_the_last_attachment_outside_a_shorter_beam_is_named():
+    scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+    with pytest.raises(mstmm.SceneError) as info:
+        parameter_matrix(scene, {"beam.length": [1.0, 0.5]})
+    assert info.value.field == "attachments[2].x" and "at point 1" in str(info.value)  # x = 0.8
 
 
 def test_sweep_certifies_double_roots():
@@ -54,11 +88,25 @@ def test_sweep_certifies_double_roots():
         assert np.sum(np.abs(row - np.sqrt(k)) < 1e-12 * np.sqrt(k)) == 2
 
 
-@pytest.mark.parametrize("bad", [{"attachments[9].k": [1.0]}, {"beam.EI": [-1.0]}, {"nope": [1]}])
-def test_sweep_rejects_bad_paths_and_values(bad):
+@pytest.mark.parametrize(
+    "bad, field, words",
+    [
+        ({"attachments[9].k": [1.0]}, "attachments[9].k", "has 3 attachments"),
+        ({"attachments[1].J": [1.0]}, "attachments[1].J", "attachments[1].m"),
+        ({"beam.EI": [-1.0]}, "beam.EI", "must be > 0"),
+        ({"beam.EI": [1.0, math.nan]}, "beam.EI", "at point 1, must be finite"),
+        ({"attachments[0].x": [1.5]}, "attachments[0].x", "must lie in [0, length]"),
+        ({"beam.segments[0].EI": [1.0]}, "beam.segments[0].EI", "beam.mass_per_length"),
+        ({"nope": [1]}, "nope", "not a parameter"),
+    ],
+)
+def test_sweep_rejects_bad_paths_and_values(bad, field, words):
+    """Rejected before any kernel is loaded: one line naming the field."""
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
-    with pytest.raises(mstmm.SceneError):
+    with pytest.raises(mstmm.SceneError) as info:
         sweep(scene, bad, modes=2)
+    assert info.value.field == field
+    assert words in str(info.value) and len(str(info.value).splitlines()) == 1
 
 
 def test_parse_range():
@@ -129,3 +177,132 @@ def test_sweep_on_a_dask_cluster_matches_local():
         atts[2] = {"type": "spring_mass", "x": atts[2].x, "k": float(k), "m": atts[2].m}
         exact = np.array(ref.frequencies(scene.replace(attachments=atts), 4, dps=30), float)
         assert np.max(np.abs(row - exact) / exact) < 1e-13
+
+
+# ---------------------------------------------------------------------------
+# Fields of every kind and of stepped beams (no solving)
+
+EVERY_KIND = {
+    "beam": {
+        "left": "clamped",
+        "right": "free",
+        "segments": [
+            {"length": 0.4, "EI": 2.0e4, "mass_per_length": 12.0},
+            {"length": 0.6, "EI": 1.0e4, "mass_per_length": 8.0},
+        ],
+    },
+    "attachments": [  # in x order, so the indices are those of the scene
+        {"type": "spring", "x": 0.0, "k": 5.0},
+        {"type": "hinge", "x": 0.3},
+        {"type": "oscillator_chain", "x": 0.5, "k": [1.0e4, 2.0e4], "m": [1.0, 2.0]},
+        {"type": "support", "x": 0.7},
+        {"type": "mass", "x": 1.0, "m": 2.0, "J": 0.1},
+        {"type": "rotational_spring", "x": 1.0, "k": 3.0},
+    ],
+}
+
+
+def every_kind_vector() -> list[float]:
+    """The layout of EVERY_KIND written out by hand (tags: the kinds present, sorted)."""
+    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 1.0, 1.0e4, 8.0]
+    events = [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.7, 37, 1, 1.0, 37, 3, 1.0, 39]
+    data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2.0, 0.1, 3.0]
+    return [float(v) for v in head + events + data]
+
+
+@pytest.mark.parametrize(
+    "path, cols",
+    [
+        ("beam.EI", (1, 6)),  # the kernel's unit EI_0 and the first segment's own
+        ("beam.mass_per_length", (2, 7)),
+        ("beam.segments[0].EI", (1, 6)),
+        ("beam.segments[1].EI", (9,)),
+        ("beam.segments[1].mass_per_length", (10,)),
+        ("attachments[0].k", (29,)),
+        ("attachments[1].k", (30,)),
+        ("attachments[2].k[0]", (32,)),
+        ("attachments[2].k[1]", (33,)),
+        ("attachments[2].m[1]", (36,)),
+        ("attachments[3].x", (21,)),
+        ("attachments[4].J", (38,)),
+        ("attachments[5].x", (27,)),
+    ],
+)
+def test_columns_of_every_kind(path, cols):
+    scene = mstmm.scene_from_dict(EVERY_KIND)
+    assert mstmm.parameter_vector(scene).tolist() == every_kind_vector()
+    assert columns(scene, path) == cols
+    assert column(scene, path) == cols[0]
+
+
+def test_varying_values_of_every_kind():
+    scene = mstmm.scene_from_dict(EVERY_KIND)
+    vary = {
+        "beam.EI": [3.0e4],
+        "beam.segments[1].mass_per_length": [9.0],
+        "attachments[2].k[1]": [4.0e4],
+        "attachments[4].J": [0.0],
+        "attachments[1].k": [7.0],
+    }
+    (row,) = parameter_matrix(scene, vary)
+    expected = every_kind_vector()
+    expected[1] = expected[6] = 3.0e4
+    expected[10] = 9.0
+    expected[33] = 4.0e4
+    expected[38] = 0.0
+    expected[30] = 7.0
+    assert row.tolist() == expected
+
+
+def test_moving_a_support_keeps_it_apart_from_the_mass_sharing_its_offset():
+    """A support has no data: its offset equals the next block's (the mass's). Moving it
+    past the mass and the rotational spring re-sorts its row with its own tag."""
+    scene = mstmm.scene_from_dict(EVERY_KIND)
+    P = parameter_matrix(scene, {"attachments[3].x": [0.7, 0.2, 0.95]})
+    rows = [
+        [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.7, 37, 1, 1.0, 37, 3, 1.0, 39],
+        [4, 0.0, 29, 5, 0.2, 37, 0, 0.3, 30, 2, 0.5, 31, 1, 1.0, 37, 3, 1.0, 39],
+        [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.95, 37, 1, 1.0, 37, 3, 1.0, 39],
+    ]
+    for row, events in zip(P, rows):
+        assert row[11:29].tolist() == [float(v) for v in events]
+
+
+@pytest.mark.parametrize(
+    "vary, field, words",
+    [
+        ({"beam.length": [2.0]}, "beam.length", "stepped beam's total length"),
+        ({"beam.segments[2].EI": [1.0]}, "beam.segments[2].EI", "beam.segments[1].EI"),
+        ({"beam.segments[0].length": [1.0]}, "beam.segments[0].length", "not a field"),
+        ({"attachments[2].k[2]": [1.0]}, "attachments[2].k[2]", "attachments[2].k[1]"),
+        ({"attachments[3].k": [1.0]}, "attachments[3].k", "(it has: attachments[3].x)"),
+        ({"attachments[2].k[0]": [1.0, -1.0]}, "attachments[2].k[0]", "at point 1, must be > 0"),
+        ({"attachments[4].J": [1.0, -1.0]}, "attachments[4].J", "at point 1, must be >= 0"),
+        ({"attachments[1].x": [0.5, 1.0]}, "attachments[1].x", "at point 1, must lie inside"),
+        ({"attachments[3].x": [0.5, 0.0]}, "attachments[3].x", "at point 1, a support at"),
+        ({"attachments[4].x": [0.6, 0.3]}, "attachments[4].x", "at point 1, at exactly the x"),
+        ({"attachments[2].m[1]": [1.0, 1e-300]}, "attachments[2].m[1]", "at point 1, must lie"),
+        ({"beam.segments[1].EI": [1.0, 1e300]}, "beam.segments[1].EI", "at point 1, must lie"),
+    ],
+)
+def test_sweep_of_every_kind_rejects(vary, field, words):
+    scene = mstmm.scene_from_dict(EVERY_KIND)
+    with pytest.raises(mstmm.SceneError) as info:
+        parameter_matrix(scene, vary)
+    assert info.value.field == field and info.value.source == "<sweep>"
+    assert words in str(info.value), str(info.value)
+    assert len(str(info.value).splitlines()) == 1
+
+
+def test_rotary_inertia_swept_onto_a_hinge_position_is_rejected():
+    """A mass without J at a hinge is fine; giving it J at one point of a sweep is not."""
+    data = {
+        **EVERY_KIND,
+        "attachments": [*EVERY_KIND["attachments"], {"type": "mass", "x": 0.3, "m": 1.0}],
+    }
+    scene = mstmm.scene_from_dict(data)
+    i = next(i for i, a in enumerate(scene.attachments) if a.kind == "mass" and a.x == 0.3)
+    with pytest.raises(mstmm.SceneError) as info:
+        parameter_matrix(scene, {f"attachments[{i}].J": [0.0, 0.0, 0.5]})
+    assert info.value.field == f"attachments[{i}].x" and "at point 2," in str(info.value)
+    assert "ambiguous" in str(info.value)

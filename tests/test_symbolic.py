@@ -5,6 +5,7 @@ from __future__ import annotations
 import random
 
 import mpmath
+import pytest
 import sympy as sp
 from mstmm.derive import special, symbolic
 from mstmm.derive import symbols as S
@@ -117,7 +118,7 @@ def test_spring_mass_compound_is_pole_free_and_exact():
 
 
 def test_paper_example_structure():
-    """Three branches: U_all is 7x14 and U_bar 7x7 (paper Eq. (4))."""
+    """Three branches: U_all is 7x11 (one unknown per branch) and U_bar 7x7 (paper Eq. (4))."""
     scene = scene_from_dict(
         {
             "beam": {
@@ -133,7 +134,7 @@ def test_paper_example_structure():
         }
     )
     der = symbolic(scene)
-    assert der.U_all.shape == (7, 14)
+    assert der.U_all.shape == (7, 11)
     assert der.U_bar.shape == (7, 7)
     assert [str(z) for z in der.Z_bar] == [
         "M_1",
@@ -144,3 +145,47 @@ def test_paper_example_structure():
         "Y_root",
         "theta_root",
     ]
+
+
+KIND_SCENES = {
+    "mass": [{"type": "mass", "x": 0.6, "m": 0.4, "J": 0.02}],
+    "spring": [{"type": "spring", "x": 0.3, "k": 40.0}],
+    "rotational_spring": [{"type": "rotational_spring", "x": 0.3, "k": 4.0}],
+    "support": [{"type": "support", "x": 0.45}],
+    "hinge": [{"type": "hinge", "x": 0.45, "k": 2.0}],
+    "oscillator_chain": [
+        {"type": "oscillator_chain", "x": 0.7, "k": [300.0, 90.0], "m": [0.2, 0.1]}
+    ],
+    "stepped": [],
+}
+
+
+@pytest.mark.parametrize("kind", sorted(KIND_SCENES))
+def test_symbolic_u_bar_of_every_kind_vanishes_at_the_reference_frequencies(kind):
+    """``symbolic(scene)`` (paper Eqs. (2)-(4) for any chain of kinds): det U_bar, evaluated
+    in mpmath, is zero at the reference model's frequencies and not 1e-6 away."""
+    import reference_model as ref
+
+    beam = {"left": "clamped", "right": "pinned"}
+    if kind == "stepped":
+        beam["segments"] = [
+            {"length": 0.4, "EI": 2.0, "mass_per_length": 1.5},
+            {"length": 0.6, "EI": 0.7, "mass_per_length": 0.8},
+        ]
+    else:
+        beam.update(length=1.0, EI=1.0, mass_per_length=1.0)
+    data = {"beam": beam, "attachments": KIND_SCENES[kind]}
+    der = symbolic(scene_from_dict(data))
+    values = der.parameters(scene_from_dict(data))
+    U = der.U_bar.subs(values)
+    if kind != "stepped":
+        U = U.subs(S.lam, S.lam_of_omega().subs(values))
+    f = sp.lambdify(S.omega, U, "mpmath")
+    with mpmath.workdps(40):
+        for w in ref.frequencies(data, 3, dps=40):
+            at = abs(mpmath.det(mpmath.matrix(f(w))))
+            near = min(
+                abs(mpmath.det(mpmath.matrix(f(w * (1 + s * mpmath.mpf("1e-6")))))) for s in (-1, 1)
+            )
+            # the root within ~1e-12 relative (the scene values are doubles)
+            assert at < mpmath.mpf("1e-6") * near, (kind, w, at, near)

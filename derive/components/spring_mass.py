@@ -1,38 +1,72 @@
-"""Spring-mass branch: paper Eq. (1) spring and lumped mass on ``[Y, Q]``.
+"""Spring-mass branch: a point mass hung from the beam by a linear spring.
 
-The branch hangs from a massless rigid body on the beam; its tip (the free side
-of the mass) is ``Z = [Y_m, 0]``.
+Paper Eq. (1) spring and lumped mass on ``[Y, Q]``; the branch hangs from a massless
+rigid body on the beam; its tip (the free side of the mass) is ``Z = [Y_m, 0]``.
+As a descriptor (docs/components.md): ``q = [Y_m]``, ``Cz = e_Y``,
+``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``.
+SymPy is imported inside the functions: the catalog reads this file's keys without it.
 """
 
 from __future__ import annotations
 
-import sympy as sp
+from ..catalog import Key
 
-from ..compound import second_compound
-from . import rigid_body
+KIND = "spring_mass"
+DOC = "point mass m hung from the beam at x by a linear spring k"
+KEYS = (
+    Key("x", "m", check="position", doc="position from the left end"),
+    Key("k", "N/m", doc="spring stiffness"),
+    Key("m", "kg", doc="hanging mass"),
+)
+#: The count adds the branch's stiffness at the node and one pivot below its own frequency.
+COUNT = "stiffness"
+#: Name of its unknown in Z_all (the hanging mass's displacement, the branch tip).
+UNKNOWNS = "Y_tip"
+#: The branch moves with a rigid beam without force: no kinematic constraint.
+RIGID = ()
 
 
-def spring(k: sp.Expr) -> sp.Matrix:
+def descriptor(v: dict):
+    """``Y - (1 - mu b4/kappa) Y_m = 0`` (paper Eq. (3)), ``Q+ = Q + mu b4 Y_m`` (Eq. (2))."""
+    import sympy as sp
+
+    from ..descriptor import Descriptor, b4, unit
+
+    kappa, mu = v["k"], v["m"]
+    return Descriptor(
+        Cz=unit(0).T,
+        Cq=sp.Matrix([[-(1 - mu * b4 / kappa)]]),
+        A=sp.eye(4),
+        B=mu * b4 * unit(3),
+        qmass=(mu,),
+    )
+
+
+def spring(k):
     """Linear translational spring, paper Eq. (1): ``[[1, -1/k], [0, 1]]``."""
+    import sympy as sp
+
     return sp.Matrix([[1, -1 / k], [0, 1]])
 
 
-def mass(m: sp.Expr, omega: sp.Expr) -> sp.Matrix:
+def mass(m, omega):
     """Lumped mass, paper Eq. (1): ``[[1, 0], [m w^2, 1]]``."""
+    import sympy as sp
+
     return sp.Matrix([[1, 0], [m * omega**2, 1]])
 
 
-def branch(k: sp.Expr, m: sp.Expr, omega: sp.Expr) -> sp.Matrix:
+def branch(k, m, omega):
     """Tip-to-beam transfer of the branch, ``U_spring U_mass`` (mass first, paper Eq. (2))."""
     return spring(k) * mass(m, omega)
 
 
-def tip_column(k: sp.Expr, m: sp.Expr, omega: sp.Expr) -> sp.Matrix:
+def tip_column(k, m, omega):
     """State delivered at the rigid body per unit tip displacement: ``B [1, 0]^T``."""
     return branch(k, m, omega)[:, 0]
 
 
-def condensed_compound(k: sp.Expr, m: sp.Expr, omega: sp.Expr) -> tuple[sp.Matrix, sp.Expr]:
+def condensed_compound(k, m, omega):
     """Pole-free second compound of the branch point, and the pole factor taken out.
 
     Eliminating the tip displacement with the geometric equation
@@ -43,6 +77,11 @@ def condensed_compound(k: sp.Expr, m: sp.Expr, omega: sp.Expr) -> tuple[sp.Matri
     multiplied out exactly once, and the roots of the chain stay those of the
     paper's determinant, multiplicities included.
     """
+    import sympy as sp
+
+    from ..compound import second_compound
+    from . import rigid_body
+
     col = tip_column(k, m, omega)
     B00, B10 = col[0], col[1]
     ratio = sp.Symbol("ratio")

@@ -50,7 +50,9 @@ FORMULATION_HELP = (
     " (default: %(default)s)"
 )
 RANGE_HELP = (
-    "PATH=RANGE: a field (beam.length|EI|mass_per_length, attachments[i].x|k|m, i in x order)"
+    "PATH=RANGE: a field (beam.length|EI|mass_per_length, beam.segments[s].EI|mass_per_length,"
+    " attachments[i].x or any key of its kind, e.g. attachments[i].k, attachments[i].J,"
+    " attachments[i].k[j] of a chain; i in x order)"
     " and its values: LOG:lo:hi:n, LIN:lo:hi:n or a list 1,2,3"
 )
 
@@ -407,7 +409,7 @@ def _show(args) -> int:
     render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
     beam = scene.beam
     n = len(scene.attachments)
-    print(f"{scene.name}: {beam.left} - {beam.right}, {n} spring-mass attachment(s)")
+    print(f"{scene.name}: {beam.left} - {beam.right}, {n} point component(s)")
     print("component matrices (paper Eqs. (1)-(3)); beam state [Y, theta, M, Q]:")
     for title, matrix in component_matrices():
         print(f"{title} =")

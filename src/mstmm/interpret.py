@@ -59,6 +59,11 @@ def mark_compiled() -> None:
     _Process.compiled = True
 
 
+def machine_code_loaded() -> bool:
+    """Whether this process has loaded machine code for any kernel yet."""
+    return _Process.compiled
+
+
 def set_budget(seconds: float) -> None:
     """Seconds of interpreted kernel work allowed in this process (0: always compiled)."""
     _Process.budget = max(0.0, float(seconds))

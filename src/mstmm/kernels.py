@@ -29,6 +29,7 @@ from types import ModuleType
 
 import numpy as np
 
+from mstmm.derive.catalog import EVENT_WIDTH, event_rows
 from mstmm.derive.sign import signature
 
 from . import interpret, progress
@@ -80,6 +81,24 @@ def _bundled(topology: Topology, sig: str) -> ModuleType | None:
     return module if getattr(module, "SIGNATURE", None) == sig else None
 
 
+def numerics() -> ModuleType:
+    """The numerics every kernel shares (``generated/numerics.py``): the drivers that take a
+    kernel's characteristic functions as arguments."""
+    return importlib.import_module("mstmm.generated.numerics")
+
+
+def _check_numerics() -> None:
+    """The shared numerics (``mstmm.generated.numerics``) must be the ones the derive code
+    prints: every kernel is derived against them."""
+    from mstmm.derive.sign import derive_digest
+
+    if numerics().DIGEST != derive_digest():
+        raise KernelError(
+            "mstmm/generated/numerics.py is older than the derive code: regenerate it with"
+            " python -m mstmm.derive --bundled"
+        )
+
+
 def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:
     """Derive the kernel of ``topology`` into ``directory`` (``mstmm.derive.emit``; SymPy
     is imported only now)."""
@@ -94,6 +113,7 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
     The origin is a package name (bundled) or a path (user cache); the derive
     time is 0 unless SymPy had to write the kernel now.
     """
+    _check_numerics()
     sig = signature(topology)
     module = _bundled(topology, sig)
     if module is not None:
@@ -128,6 +148,8 @@ class Kernel:
     warmed: set = field(default_factory=set)
     #: The module's functions as plain Python, built on first use (:mod:`mstmm.interpret`).
     _python: dict | None = field(default=None, repr=False)
+    #: Addresses of the compiled functions the shared drivers call (:meth:`_addresses`).
+    _fa: np.ndarray | None = field(default=None, repr=False)
 
     def warm_up(self, p: np.ndarray, what: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve calls, once per process.
@@ -155,7 +177,8 @@ class Kernel:
         omegas = np.ascontiguousarray(omegas, dtype=np.float64)
         mant = np.empty_like(omegas)
         logs = np.empty_like(omegas)
-        self._entry("evaluate", formulation)(omegas, _params(p), mant, logs)
+        at = self._delta(formulation)
+        self._entry("evaluate")(self._fa, at, omegas, _params(p), mant, logs)
         return mant, logs
 
     def delta(
@@ -175,22 +198,74 @@ class Kernel:
         maxiter: int = 200,
     ) -> tuple[float, int, bool]:
         """Root in a sign-change bracket ``[a, b]``: ``(omega, iterations, converged)``."""
-        refine = self._entry("refine", formulation)
-        root, its, ok = refine(float(a), float(b), _params(p), float(rtol), int(maxiter))
+        at = self._delta(formulation)
+        refine = self._entry("refine")
+        root, its, ok = refine(
+            self._fa, at, float(a), float(b), _params(p), float(rtol), int(maxiter)
+        )
         return float(root), int(its), bool(ok)
 
-    def _entry(self, kind: str, formulation: str):
+    def _delta(self, formulation: str) -> int:
+        """Where the addresses of a formulation's characteristic function sit in
+        :meth:`_addresses` (they are compiled on the way)."""
         if formulation not in FORMULATIONS:
             raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
-        return self._compiled(f"{kind}_{formulation}")
+        name = f"delta_{formulation}"
+        self._addresses(name)
+        return numerics().FUNCTION_TYPES[name][0]
+
+    def _entry(self, name: str):
+        """A shared driver of ``generated/numerics.py`` (``entry_<name>``)."""
+        interpret.mark_compiled()
+        return getattr(numerics(), f"entry_{name}")
+
+    def _addresses(self, *names: str) -> np.ndarray:
+        """The array ``fa`` the shared drivers take: the addresses of this kernel's compiled
+        functions (C wrapper, numba entry), those in ``names`` compiled or loaded from
+        numba's cache first (once per process)."""
+        from numba.experimental.function_type import _get_jit_address, _get_wrapper_address
+
+        n = numerics()
+        if self._fa is None:
+            self._fa = np.zeros(n.FA_SIZE, dtype=np.int64)
+        for name in names:
+            at, ftype = n.FUNCTION_TYPES[name]
+            if self._fa[at] == 0:
+                f = self._compiled(name)
+                sig = ftype.signature
+                self._fa[at] = _get_wrapper_address(f, sig)
+                self._fa[at + 1] = _get_jit_address(f, sig)
+        return self._fa
 
     def _compiled(self, name: str):
         interpret.mark_compiled()
         return getattr(self.module, name)
 
+    #: The kernel functions the shared search calls.
+    SEARCH = ("delta_stable", "count_below", "oscillator_frequencies", "rigid_body_modes")
+
+    def _search_functions(self) -> tuple:
+        """The search's functions as plain Python (the interpreted path)."""
+        return tuple(self._python_function(n) for n in self.SEARCH)
+
     def attachments(self, p: np.ndarray) -> int:
-        """Number of attachments a parameter vector describes."""
-        return (len(p) - 3) // self.module.ATTACHMENT_STRIDE
+        """Number of point components a parameter vector describes."""
+        return int(p[4])
+
+    def oscillator_frequencies(self, p: np.ndarray) -> np.ndarray:
+        """The components' own frequencies (rad/s, ascending), where roots crowd."""
+        return np.asarray(self._cheapest("oscillator_frequencies")(_params(p)))
+
+    def rigid_body_modes(self, p: np.ndarray) -> int:
+        """Number of zero natural frequencies (rigid motions the ends and components allow)."""
+        return int(self._cheapest("rigid_body_modes")(_params(p)))
+
+    def _cheapest(self, name: str):
+        """A small kernel function: as plain Python until this process has loaded machine
+        code (loading it costs a fresh process far more than the call)."""
+        if interpret.machine_code_loaded():
+            return self._compiled(name)
+        return self._python_function(name)
 
     def interprets(self, p: np.ndarray, modes: int, what: str = "lowest") -> bool:
         """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`); for
@@ -198,7 +273,8 @@ class Kernel:
         return what not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
 
     def _python_function(self, name: str):
-        """The module's function ``name`` as plain Python (:func:`interpret.python_copy`)."""
+        """The kernel's (or the shared numerics') function ``name`` as plain Python
+        (:func:`interpret.python_copy`)."""
         if self._python is None:
             self._python = interpret.python_copy(self.module)
         return self._python[name]
@@ -217,10 +293,14 @@ class Kernel:
         modes = int(modes)
         out = np.zeros(modes)
         p = _params(p)
+        certify = bool(certify)
         if self.interprets(p, modes):
-            last = interpret.timed_call(self._python_function("lowest"), p, modes, out, certify)
+            f = self._search_functions()
+            lowest = self._python_function("lowest")
+            last = interpret.timed_call(lowest, *f, p, modes, out, certify)
         elif modes <= BLOCK_MODES:
-            last = self._compiled("lowest")(p, modes, out, certify)
+            fa = self._addresses(*self.SEARCH)
+            last = self._entry("lowest")(fa, p, modes, out, certify)
         else:
             last = self._lowest_in_blocks(p, modes, out, certify)
         return out, int(last)
@@ -233,15 +313,16 @@ class Kernel:
         (about 0.25 us per mode below it on the paper's example, against about
         12 us per mode for the scan and Brent), so the counts add under 10% and
         the cost stays linear in ``modes``."""
+        fa = self._addresses(*self.SEARCH)
         state = np.zeros(self.module.STATE_SIZE)
-        k = int(self._compiled("lowest_start")(p, modes, out, state, certify))
-        run = self._compiled("lowest_run")
+        k = int(self._entry("lowest_start")(fa, p, modes, out, state, certify))
+        run = self._entry("lowest_run")
         bar = progress.Bar(modes, "modes")
         try:
             bar.update(max(k, 0))
             while 0 <= k < modes:
                 stop = min(modes, k + max(BLOCK_MODES, k // 4))
-                k_new = int(run(p, modes, out, state, stop, certify, np.inf))
+                k_new = int(run(fa, p, modes, out, state, stop, certify, np.inf))
                 bar.update(max(k_new - k, 0))
                 k = k_new
         finally:
@@ -260,11 +341,12 @@ class Kernel:
         band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
         p = _params(p)
         m = self.module
+        fa = self._addresses(*self.SEARCH)
         state = np.zeros(m.STATE_SIZE)
         n_hi = int(self.count_below(hi, p)[0])
         if from_bottom:
             out = np.zeros(n_hi)
-            k = int(self._compiled("lowest_start")(p, n_hi, out, state, True))
+            k = int(self._entry("lowest_start")(fa, p, n_hi, out, state, True))
         else:
             n_lo = int(self.count_below(lo, p)[0])
             if n_hi < n_lo:
@@ -273,7 +355,8 @@ class Kernel:
             state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
             k = 0
         if 0 <= k < out.size:
-            k = int(self._compiled("lowest_run")(p, out.size, out, state, out.size, True, hi))
+            run = self._entry("lowest_run")
+            k = int(run(fa, p, out.size, out, state, out.size, True, float(hi)))
         return out if k == out.size else None
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -281,45 +364,59 @@ class Kernel:
         P = np.ascontiguousarray(P, dtype=np.float64)
         out = np.zeros((P.shape[0], int(modes)))
         certified = np.zeros(P.shape[0], dtype=np.bool_)
-        self._compiled("sweep_lowest")(P, int(modes), out, certified)
+        fa = self._addresses(*self.SEARCH)
+        self._entry("sweep_lowest")(fa, P, int(modes), out, certified)
         return out, certified
 
     def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
         """Number of natural frequencies below each ``omega`` (Wittrick-Williams)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.empty(omegas.shape, dtype=np.int64)
-        self._compiled("counts")(omegas, _params(p), out)
+        fa = self._addresses("count_below")
+        self._entry("counts")(fa, omegas, _params(p), out)
         return out
 
     def event_positions(self, p: np.ndarray) -> np.ndarray:
         """x (m) of every point component of a parameter vector, sorted by x."""
-        stride = self.module.ATTACHMENT_STRIDE
-        return np.array(p[3 : 3 + self.attachments(p) * stride : stride])
+        rows = np.asarray(p[event_rows(p)]).reshape(-1, EVENT_WIDTH)
+        return np.sort(rows[:, 1], kind="stable")
 
     def mode_shapes(self, omega: float, p: np.ndarray, m: int, xs: np.ndarray):
-        """The kernel's ``mode_shapes`` at ``omega`` for an ``m``-dimensional eigenspace.
+        """The shared ``mode_shapes`` at ``omega`` for an ``m``-dimensional eigenspace.
 
-        Returns ``(Z, q, gram, part, ratio)`` in units ``L = EI = mbar = 1``: the states
-        ``[Y, theta, M, Q]`` at ``xs`` (m, len(xs), 4), every point component's unknowns
-        (m, n_q), the mass Gram matrix, the mass-weighted integrals of Y, and each shape's
-        singular value over the end matrix's largest (see :mod:`mstmm.modes`).
+        Returns ``(Z, q, q_x, q_mass, gram, part, ratio)`` in units ``L = EI_0 = mbar_0 =
+        1``: the states ``[Y, theta, M, Q]`` at ``xs`` (m, len(xs), 4), every point
+        component's unknowns (m, n_q) with the x (m) of their component and the mass
+        moving with each (0 for a reaction or a rotation), the mass Gram matrix, the
+        mass-weighted integrals of Y, and each shape's singular value over the end
+        matrix's largest (see :mod:`mstmm.modes`).
         """
         p = _params(p)
         xs = np.ascontiguousarray(xs, dtype=np.float64)
         m = int(m)
-        nq = self.attachments(p) * self.module.MAX_Q
+        python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
+        names = ("shape_event", "shape_sizes")
+        if python:
+            event, sizes = (self._python_function(n) for n in names)
+        else:
+            event, sizes = (self._compiled(n) for n in names)
+            fa = self._addresses(*names)
+        nq = int(sizes(p)[0])
         Z = np.zeros((m, xs.shape[0], 4))
         q = np.zeros((m, nq))
+        q_x = np.zeros(nq)
+        q_mass = np.zeros(nq)
         gram = np.zeros((m, m))
         part = np.zeros(m)
         ratio = np.zeros(m)
-        args = (float(omega), p, m, xs, Z, q, gram, part, ratio)
-        if self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes"):
-            interpret.timed_call(self._python_function("mode_shapes"), *args)
+        args = (self.module.SHAPE_ENDS, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part)
+        args += (ratio,)
+        if python:
+            interpret.timed_call(self._python_function("mode_shapes"), event, sizes, *args)
         else:
-            self._compiled("mode_shapes")(*args)
+            self._entry("mode_shapes")(fa, *args)
             self.warmed.add("mode_shapes")
-        return Z, q, gram, part, ratio
+        return Z, q, q_x, q_mass, gram, part, ratio
 
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""

@@ -145,7 +145,7 @@ def _eigenspace(kernel, p, omegas, xs):
     best = None
     for w in trials:
         got = kernel.mode_shapes(float(w), p, m, xs)
-        if best is None or np.max(got[4]) < np.max(best[4]):
+        if best is None or np.max(got[6]) < np.max(best[6]):
             best = got
     return best
 
@@ -153,7 +153,7 @@ def _eigenspace(kernel, p, omegas, xs):
 def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
     L, EI, mbar = float(p[0]), float(p[1]), float(p[2])
     m = len(omegas)
-    Z, q, gram, part, ratio = _eigenspace(kernel, p, omegas, xs)
+    Z, q, q_x, q_mass, gram, part, ratio = _eigenspace(kernel, p, omegas, xs)
     # mass-orthonormal basis of the cluster's space: C^T gram C = I (gram is m x m)
     lam, vec = np.linalg.eigh(0.5 * (gram + gram.T))
     lam = np.maximum(lam, np.finfo(float).tiny)
@@ -164,11 +164,12 @@ def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
     # how singular the end matrix is on the whole space (the worst of its m directions)
     worst = float(np.max(ratio))
     units = np.array([L, 1.0, EI / L, EI / L**2])
-    mass_x = kernel.event_positions(p)
+    carried = q_mass > 0.0  # the unknowns that are displacements of carried masses
+    mass_x = q_x[carried]
     out = []
     for j in range(m):
         Y = Z[j, :, 0] * L
-        mass_Y = q[j, : len(mass_x)] * L
+        mass_Y = q[j, carried] * L
         big = np.concatenate([Y, mass_Y])
         k = int(np.argmax(np.abs(big)))
         top = big[k] if big[k] != 0.0 else 1.0

@@ -126,9 +126,18 @@ def _shapes(sol: Solution) -> list:
 
 
 def total_mass(sol: Solution) -> float:
-    """Mass of the beam plus every carried mass (kg)."""
+    """Mass of the beam (every segment) plus every mass the components carry (kg): the
+    values of their keys in kg (a chain's every stage)."""
+    from mstmm.derive.catalog import kind
+
     beam = sol.scene.beam
-    return beam.mass_per_length * beam.length + sum(a.m for a in sol.scene.attachments)
+    segments = beam.segments or (beam,)
+    total = sum(s.mass_per_length * s.length for s in segments)
+    for a in sol.scene.attachments:
+        for key in kind(a.kind).KEYS:
+            if key.unit == "kg":
+                total += float(np.sum(getattr(a, key.name)))
+    return total
 
 
 def shapes_table(sol: Solution) -> str:

@@ -141,6 +141,11 @@ def _distinct(sol: Solution) -> list[tuple[int, float, int]]:
     return out
 
 
+def _rigid_body_modes(scene: Scene) -> int:
+    """Number of zero natural frequencies of the scene."""
+    return load_kernel(topology_of(scene)).rigid_body_modes(parameter_vector(scene))
+
+
 def _modes_below(scene: Scene, omega: float) -> int:
     """How many natural frequencies lie below ``omega`` (numbers the modes of a band)."""
     if omega <= 0.0:
@@ -161,7 +166,7 @@ def _band_solution(
     lowest = solve(scene, modes=modes or 10, formulation=formulation, shapes=False)
     top = float(np.max(lowest.omega)) if len(lowest.omega) else 0.0
     if top <= 0.0:  # only rigid-body modes asked for: show up to the first elastic one
-        first = solve(scene, modes=topology_of(scene).rigid_body_modes + 1, shapes=False)
+        first = solve(scene, modes=_rigid_body_modes(scene) + 1, shapes=False)
         top = float(first.omega[-1])
     # every root in the plotted band is marked, not only the lowest ``modes``
     hi = MARGIN * top
@@ -399,7 +404,7 @@ def veering(
     from .study import sweep
 
     values = np.asarray(values, dtype=float).ravel()
-    nrigid = topology_of(scene).rigid_body_modes
+    nrigid = _rigid_body_modes(scene)
     omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
     fig, ax = _axes(ax)
     order = np.argsort(values, kind="stable")
@@ -412,8 +417,8 @@ def veering(
     top = float(finite.max()) if finite.size else 1.0
     bottom = float(finite.min()) if finite.size else 0.0
     match = _ATTACHMENT_FIELD.match(path_name)
-    if uncoupled and match:
-        a = scene.attachments[int(match.group(1))]
+    a = scene.attachments[int(match.group(1))] if match else None
+    if uncoupled and a is not None and a.kind == "spring_mass":
         k = v if match.group(2) == "k" else np.full_like(v, a.k)
         m = v if match.group(2) == "m" else np.full_like(v, a.m)
         ax.plot(

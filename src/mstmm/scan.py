@@ -90,11 +90,9 @@ def omega_of(beta, p):
 
 
 def oscillator_frequencies(kernel: Kernel, p: np.ndarray) -> np.ndarray:
-    """``sqrt(k/m)`` of every spring-mass, the places where roots crowd."""
-    if "spring_mass" not in kernel.topology.kinds:
-        return np.empty(0)
-    rec = np.asarray(p[3:]).reshape(-1, 3)
-    return np.unique(np.sqrt(rec[:, 1] / rec[:, 2]))
+    """The components' own frequencies (a spring-mass's ``sqrt(k/m)``, a chain's with its
+    beam point held), the places where roots crowd."""
+    return np.unique(kernel.oscillator_frequencies(p))
 
 
 def grid(w_lo: float, w_hi: float, p: np.ndarray, oscillators: np.ndarray) -> np.ndarray:
@@ -273,7 +271,7 @@ def band_roots(
         if formulation == "stable" and certify:  # the kernel's search, as for modes=
             w = kernel.roots_in_band(p, *wide, from_bottom=wide[0] <= float(omega_of(1e-3, p)))
             if w is not None:
-                found = Roots(simple_roots(w, kernel.topology.rigid_body_modes), True, [])
+                found = Roots(simple_roots(w, kernel.rigid_body_modes(p)), True, [])
         if found is None:
             found = _search_roots(kernel, p, wide, None, formulation, rtol, certify)
         if not any(
@@ -299,7 +297,7 @@ def _search_roots(
     """:func:`find_roots` on exactly ``band`` (edges as the count sees them), or ``modes``."""
     search = _Search(kernel, p, formulation, rtol)
     osc = oscillator_frequencies(kernel, p)
-    rigid = kernel.topology.rigid_body_modes
+    rigid = kernel.rigid_body_modes(p)
     floor = _floor(p, osc)
     notes: list[str] = []
     if certify:  # nothing but rigid-body modes may lie below the scan

@@ -1,26 +1,37 @@
-"""Scene files: a beam with its boundary conditions and its spring-mass attachments.
+"""Scene files: a beam with its boundary conditions and the components it carries.
 
 A scene is a TOML file (SI units), read as data and never evaluated::
 
     name = "wu_chou_1998"          # optional; default: the file stem
     [beam]
-    length = 1.0
-    EI = 63476.125002707834        # N m^2
-    mass_per_length = 15.3875      # kg/m
     left = "clamped"               # clamped | pinned | free | sliding
     right = "free"
-    [[attachments]]                # zero or more
-    type = "spring_mass"
-    x = 0.1                        # m from the left end, 0 <= x <= length
-    k = 190428.3750081235          # N/m, > 0
-    m = 3.0775                     # kg, > 0
+    length = 1.0                   # a uniform beam: length (m), EI (N m^2) and
+    EI = 63476.125002707834        # mass_per_length (kg/m), OR a stepped beam:
+    mass_per_length = 15.3875      # [[beam.segments]] from the left end, each with
+                                   # length, EI and mass_per_length (then none of the three here)
+    [[attachments]]                # zero or more components
+    type = "spring_mass"           # any kind of mstmm.derive.catalog.kinds()
+    x = 0.1                        # m from the left end
+    k = 190428.3750081235          # the kind's keys (derive/components/<kind>.py, KEYS)
+    m = 3.0775
+
+Every kind is read from its declared keys (``KEYS``: name, unit, check, default,
+shape): there is no per-kind code here. A key of another kind is an unknown key; a
+key without a default is required; a list key (an oscillator chain's ``k`` and ``m``)
+is a non-empty list of numbers, and the keys a kind names in ``SAME_LENGTH`` have equal
+lengths. Placement rules that hold for any kind of a given ``COUNT``: a constraint
+(a support) may not sit where an end already fixes Y, nor two at one x, nor two hinges
+at one x; a component
+that acts on the rotation (a key in N m/rad or kg m^2 with a value > 0) may not sit
+at exactly the x of a hinge (``COUNT = "split"``), whose two sides rotate apart.
 
 Every problem found in a scene raises :class:`SceneError`, whose message is a
 single line ``{source}: {field}: {problem} (got {value!r})``, where ``field`` is
-the TOML path of the offending entry (``beam.EI``, ``attachments[2].k``; the
-index is the position in the file, counted from 0) or ``-`` when the file as a
-whole is at fault.  For a missing key there is no value and the ``(got ...)``
-part is left out.
+the TOML path of the offending entry (``beam.EI``, ``beam.segments[1].EI``,
+``attachments[2].k``, ``attachments[2].k[1]``; the index is the position in the
+file, counted from 0) or ``-`` when the file as a whole is at fault.  For a
+missing key there is no value and the ``(got ...)`` part is left out.
 
 This module only reads; it writes nothing anywhere.
 """
@@ -33,21 +44,30 @@ import numbers
 import os
 import re
 import tomllib
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
+from mstmm.derive import catalog
+
+from .events import read_events
+from .topology import parameter_vector, topology_of
+
 __all__ = [
-    "ATTACHMENT_TYPES",
+    "ATTACHMENT_TYPES",  # noqa: F822 (module __getattr__: read from the registry)
     "BOUNDARY_KINDS",
+    "Attachment",
     "Beam",
     "Scene",
     "SceneError",
+    "Segment",
     "SpringMass",
+    "attachment_types",
     "check_band",
+    "check_placement",
     "check_representable",
     "load_scene",
     "scene_from_dict",
@@ -55,11 +75,24 @@ __all__ = [
 ]
 
 BOUNDARY_KINDS: tuple[str, ...] = ("clamped", "pinned", "free", "sliding")
-ATTACHMENT_TYPES: tuple[str, ...] = ("spring_mass",)
+
+
+def attachment_types() -> tuple[str, ...]:
+    """The component kinds a scene may use: built-in and registered, read now."""
+    return tuple(catalog.kinds())
+
+
+def __getattr__(name: str) -> Any:
+    # ATTACHMENT_TYPES is read from the kind registry when asked for, so a kind
+    # registered after this module was imported is listed (PEP 562).
+    if name == "ATTACHMENT_TYPES":
+        return attachment_types()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 _TOP_KEYS: tuple[str, ...] = ("name", "beam", "attachments")
-_BEAM_KEYS: tuple[str, ...] = ("length", "EI", "mass_per_length", "left", "right")
-_ATTACHMENT_KEYS: dict[str, tuple[str, ...]] = {"spring_mass": ("type", "x", "k", "m")}
+_UNIFORM_KEYS: tuple[str, ...] = ("length", "EI", "mass_per_length")
+_BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, "left", "right", "segments")
 
 _NAME_RE = re.compile(r"[A-Za-z0-9_.-]+")
 _NAME_MAX = 128
@@ -122,24 +155,62 @@ class SceneError(ValueError):
 
 
 @dataclass(frozen=True)
+class Segment:
+    """One piece of a stepped beam (SI): its length, bending stiffness, mass per length."""
+
+    length: float
+    EI: float
+    mass_per_length: float
+
+
+@dataclass(frozen=True)
 class Beam:
-    """Uniform Euler-Bernoulli beam: SI values and the two boundary kinds."""
+    """Euler-Bernoulli beam: SI values and the two boundary kinds.
+
+    ``length`` is the total length; ``EI`` and ``mass_per_length`` are those of a
+    uniform beam, or of the first segment of a stepped beam. ``segments`` lists a
+    stepped beam's pieces from the left end, and is empty for a uniform beam.
+    """
 
     length: float
     EI: float
     mass_per_length: float
     left: str
     right: str
+    segments: tuple[Segment, ...] = ()
+
+
+Value = float | tuple[float, ...]
 
 
 @dataclass(frozen=True)
-class SpringMass:
-    """Point mass ``m`` hung from the beam at ``x`` by a linear spring ``k``."""
+class Attachment:
+    """A component on the beam: its kind (``catalog.kinds()``), position ``x`` (m) and
+    its other values in the order of the kind's ``KEYS`` (defaults filled in; a list
+    key as a tuple). The values read as attributes: ``a.k``, ``a.m``, ``a.J``."""
 
+    kind: str
     x: float
-    k: float
-    m: float
-    kind: ClassVar[str] = "spring_mass"
+    values: tuple[tuple[str, Value], ...] = ()
+
+    def __getattr__(self, name: str) -> Value:
+        # Only called when ordinary lookup fails; reads __dict__ directly so that
+        # copying and unpickling (which probe a half-built object) never recurse.
+        if not name.startswith("__"):
+            for key, value in self.__dict__.get("values", ()):
+                if key == name:
+                    return value
+        kind = self.__dict__.get("kind", "?")
+        raise AttributeError(f"a {kind} attachment has no value {name!r}")
+
+
+def SpringMass(x: float, k: float, m: float) -> Attachment:  # noqa: N802 (the old class name)
+    """Point mass ``m`` (kg) hung from the beam at ``x`` (m) by a linear spring ``k`` (N/m)."""
+    return Attachment("spring_mass", x, (("k", k), ("m", m)))
+
+    @property
+    def values(self) -> dict[str, float]:
+        return {"k": self.k, "m": self.m}
 
 
 @dataclass(frozen=True)
@@ -155,14 +226,14 @@ class Scene:
 
     name: str
     beam: Beam
-    attachments: tuple[SpringMass, ...]
+    attachments: tuple[Attachment, ...]
     source: str = field(default=_DICT_SOURCE, compare=False)
 
     def replace(self, **changes: Any) -> Scene:
         """Return a copy with ``changes`` applied (as ``dataclasses.replace``), re-validated.
 
         ``beam`` may be given as a :class:`Beam` or as a ``[beam]`` mapping;
-        ``attachments`` as any sequence of :class:`SpringMass` or attachment
+        ``attachments`` as any sequence of :class:`Attachment` or attachment
         mappings; they are sorted again.  Raises :class:`SceneError`.
         """
         new = dataclasses.replace(self, **changes)
@@ -241,56 +312,231 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
         _attachment(item, f"attachments[{i}]", beam, source)
         for i, item in enumerate(raw_attachments)
     ]
-    raw_index = {id(a): i for i, a in enumerate(attachments)}  # file position, for messages
+    in_file = {id(a): i for i, a in enumerate(attachments)}  # messages name the file's index
     attachments.sort(key=lambda a: a.x)  # list.sort is stable
-    check_representable(
-        np.array(
-            [
-                [beam.length, beam.EI, beam.mass_per_length]
-                + [v for a in attachments for v in (a.x, a.k, a.m)]
-            ]
-        ),
-        source,
-        [raw_index[id(a)] for a in attachments],
-    )
-    return Scene(name=name, beam=beam, attachments=tuple(attachments), source=source)
+    scene = Scene(name=name, beam=beam, attachments=tuple(attachments), source=source)
+    P = parameter_vector(scene)
+    labels = [in_file[id(a)] for a in attachments]
+    check_placement(P, source, scene, labels=labels)
+    check_representable(P, source, scene, labels=labels)
+    return scene
 
 
 def scene_to_dict(scene: Scene) -> dict[str, Any]:
     """Return the plain-data form of ``scene``; ``scene_from_dict`` inverts it.
 
     The result holds only str, float, list and dict, in the key order of the
-    file format, so it can also be written out as TOML.
+    file format, so it can also be written out as TOML. A uniform beam gives
+    ``length``, ``EI`` and ``mass_per_length``; a stepped beam its ``segments``.
     """
-    beam = scene.beam
     return {
         "name": scene.name,
-        "beam": {
+        "beam": _beam_dict(scene.beam),
+        "attachments": [_attachment_dict(a) for a in scene.attachments],
+    }
+
+
+def _beam_dict(beam: Beam) -> dict[str, Any]:
+    if not beam.segments:
+        return {
             "length": beam.length,
             "EI": beam.EI,
             "mass_per_length": beam.mass_per_length,
             "left": beam.left,
             "right": beam.right,
-        },
-        "attachments": [{"type": a.kind, "x": a.x, "k": a.k, "m": a.m} for a in scene.attachments],
+        }
+    return {
+        "left": beam.left,
+        "right": beam.right,
+        "segments": [
+            {"length": s.length, "EI": s.EI, "mass_per_length": s.mass_per_length}
+            if isinstance(s, Segment)
+            else s
+            for s in beam.segments
+        ],
     }
+
+
+def _attachment_dict(a: Attachment) -> dict[str, Any]:
+    data: dict[str, Any] = {"type": a.kind, "x": a.x}
+    for key, value in a.values:
+        data[key] = list(value) if isinstance(value, tuple) else value
+    return data
+
+
+# ---------------------------------------------------------------------------
+# Where components may sit
+
+
+def _fixes_y(end: str) -> bool:
+    return 0 in catalog.KNOWN_ZERO[end]
+
+
+def _acts_on_rotation(key: catalog.Key) -> bool:
+    return key.unit in ("N m/rad", "kg m^2")
+
+
+def check_placement(
+    P: np.ndarray,
+    source: str,
+    scene: Scene,
+    point: str = "",
+    labels: Sequence[int] | None = None,
+) -> None:
+    """Reject components placed where the transfer chain is degenerate or ambiguous.
+
+    ``P`` holds parameter vectors of ``scene`` (one per row). Read from the kinds'
+    declarations, for any kind: a constraint (``COUNT = "constraint"``, which fixes Y)
+    at an end whose condition already fixes Y, or two constraints at one x, fix
+    nothing more and leave the chain singular; a component acting on the rotation
+    (a key in N m/rad or kg m^2 with a value > 0) at exactly the x of a hinge
+    (``COUNT = "split"``) is ambiguous, since the two sides of the hinge rotate apart.
+    Raises :class:`SceneError` on ``attachments[i].x``; ``P``, ``point`` and ``labels``
+    as for :func:`check_representable`.
+    """
+    P = np.atleast_2d(np.asarray(P, dtype=float))
+    if not scene.attachments:
+        return
+    labels = range(len(scene.attachments)) if labels is None else labels
+    events = read_events(P, topology_of(scene).kinds)
+    where = (lambda row: f"at {point} {row}, ") if point else (lambda row: "")
+    modules = [catalog.kind(b.kind) for b in events.blocks]
+    x = events.positions
+
+    constraints = [c for c, m in enumerate(modules) if m.COUNT == "constraint"]
+    for c in constraints:
+        for end, at_end, fixes in (
+            (scene.beam.left, x[:, c] == 0.0, _fixes_y(scene.beam.left)),
+            (scene.beam.right, x[:, c] == P[:, 0], _fixes_y(scene.beam.right)),
+        ):
+            if fixes and at_end.any():
+                row = int(np.argmax(at_end))
+                kind = events.blocks[c].kind
+                raise SceneError(
+                    source,
+                    f"attachments[{labels[c]}].x",
+                    f"{where(row)}a {kind} at the {end} end, which already fixes Y there:"
+                    f" leave the {kind} out",
+                    float(x[row, c]),
+                )
+    if len(constraints) > 1:
+        _no_coincidence(
+            x[:, constraints],
+            None,
+            np.ones((len(P), len(constraints)), bool),
+            [labels[c] for c in constraints],
+            [],
+            lambda other: (
+                f"at the same x as the attachments[{other}]"
+                " constraint: a second constraint there fixes nothing more;"
+                " leave one out"
+            ),
+            source,
+            where,
+        )
+    hinges = [c for c, m in enumerate(modules) if m.COUNT == "split"]
+    if len(hinges) > 1:
+        _no_coincidence(
+            x[:, hinges],
+            None,
+            np.ones((len(P), len(hinges)), bool),
+            [labels[c] for c in hinges],
+            [],
+            lambda other: (
+                f"at the same x as the hinge attachments[{other}]: two hinges at one point"
+                " are one hinge (give one, with the stiffness of the two in series)"
+            ),
+            source,
+            where,
+        )
+    turning = [
+        c
+        for c, m in enumerate(modules)
+        if m.COUNT != "split" and any(_acts_on_rotation(k) for k in m.KEYS)
+    ]
+    if hinges and turning:
+        active = np.zeros((len(P), len(turning)), bool)
+        for t, c in enumerate(turning):
+            for key, cols in events.blocks[c].columns:
+                if _acts_on_rotation(key):
+                    active[:, t] |= (P[:, np.atleast_1d(cols)] > 0.0).any(axis=1)
+        _no_coincidence(
+            x[:, turning],
+            x[:, hinges],
+            active,
+            [labels[c] for c in turning],
+            [labels[c] for c in hinges],
+            lambda other: (
+                f"at exactly the x of the hinge attachments[{other}]: which side of"
+                f" the hinge it acts on is ambiguous; move it off the hinge"
+            ),
+            source,
+            where,
+        )
+
+
+def _no_coincidence(
+    xa: np.ndarray,
+    xb: np.ndarray | None,
+    active: np.ndarray,
+    labels_a: Sequence[int],
+    labels_b: Sequence[int],
+    problem: Callable[[int], str],
+    source: str,
+    where: Callable[[int], str],
+) -> None:
+    """Raise on the first row where an active component of ``xa`` sits at the x of a
+    component of ``xb`` (columns named by ``labels``). ``xb`` None: ``xa`` against itself,
+    and the later of two at one x (the larger label) is named. Sorted per row, so the
+    cost grows as n log n with the number of components, not n^2."""
+    n_a = xa.shape[1]
+    if xb is None:
+        x, label, active_all = xa, np.asarray(labels_a), active
+        is_b = np.zeros(n_a, bool)
+    else:
+        x = np.concatenate([xa, xb], axis=1)
+        label = np.concatenate([np.asarray(labels_a), np.asarray(labels_b)])
+        active_all = np.concatenate([active, np.zeros_like(xb, bool)], axis=1)
+        is_b = np.arange(x.shape[1]) >= n_a
+    # per row: by x, then the b's first, then by label
+    rank = np.lexsort((np.broadcast_to(label, x.shape), np.broadcast_to(~is_b, x.shape), x))
+    xs = np.take_along_axis(x, rank, axis=1)
+    starts = np.ones(xs.shape, bool)
+    starts[:, 1:] = xs[:, 1:] != xs[:, :-1]
+    first = np.maximum.accumulate(np.where(starts, np.arange(xs.shape[1]), 0), axis=1)
+    head = np.take_along_axis(rank, first, axis=1)  # column of the first of each run
+    conflict = np.take_along_axis(active_all, rank, axis=1) & ~starts
+    if xb is not None:
+        conflict &= is_b[head]
+    if not conflict.any():
+        return
+    row = int(np.argmax(conflict.any(axis=1)))
+    named = label[rank[row]]
+    i = int(np.argmin(np.where(conflict[row], named, np.iinfo(np.int64).max)))
+    raise SceneError(
+        source,
+        f"attachments[{named[i]}].x",
+        where(row) + problem(int(label[head[row, i]])),
+        float(xs[row, i]),
+    )
 
 
 # ---------------------------------------------------------------------------
 # What float64 arithmetic can carry
 
 #: Every value a scene gives, and every product the numerics form from them (the
-#: frequency scale, the nondimensional stiffness and mass of each attachment, ...),
-#: must lie within [REPRESENTABLE_MIN, REPRESENTABLE_MAX]. float64 is normal from
-#: 2.2e-308 to 1.8e308; the margin of 58 decades leaves room for the powers of
-#: lam L up to the 4th that the root search forms on top of these.
+#: frequency scale, the nondimensional value of each key, ...), must lie within
+#: [REPRESENTABLE_MIN, REPRESENTABLE_MAX] (zero is allowed where a key allows it).
+#: float64 is normal from 2.2e-308 to 1.8e308; the margin of 58 decades leaves room
+#: for the powers of lam L up to the 4th that the root search forms on top of these.
 REPRESENTABLE_MIN = 1e-250
 REPRESENTABLE_MAX = 1e250
 _LOG_MIN, _LOG_MAX = math.log10(REPRESENTABLE_MIN), math.log10(REPRESENTABLE_MAX)
 
-#: Products of the parameters that the kernels and mode shapes form, as exponents of
-#: (length, EI, mass_per_length, k, m): name, exponents.
-_BEAM_PRODUCTS: tuple[tuple[str, tuple[float, float, float]], ...] = (
+#: Products of the beam's parameters that the kernels and mode shapes form, as
+#: exponents of (length, EI, mass_per_length) (the first segment's EI and mass per
+#: length: the kernel's units).
+_BEAM_PRODUCTS: tuple[tuple[str, tuple[int, int, int]], ...] = (
     ("length", (1, 0, 0)),
     ("EI", (0, 1, 0)),
     ("mass_per_length", (0, 0, 1)),
@@ -300,68 +546,228 @@ _BEAM_PRODUCTS: tuple[tuple[str, tuple[float, float, float]], ...] = (
     ("EI/length^4", (-4, 1, 0)),
     ("mass_per_length length", (1, 0, 1)),
 )
-_ATTACHMENT_PRODUCTS: tuple[tuple[str, tuple[float, float, float, float, float]], ...] = (
-    ("k", (0, 0, 0, 1, 0)),
-    ("m", (0, 0, 0, 0, 1)),
-    ("k/m", (0, 0, 0, 1, -1)),
-    ("k length^3", (3, 0, 0, 1, 0)),
-    ("k length^3/EI", (3, -1, 0, 1, 0)),
-    ("m/(mass_per_length length)", (-1, 0, -1, 0, 1)),
-)
-_BEAM_FIELDS: tuple[str, ...] = ("length", "EI", "mass_per_length")
+#: Stiffness and inertia units whose ratio within one component is a squared
+#: frequency the numerics form (an oscillator's k/m).
+_RATIOS = {"N/m": "kg", "N m/rad": "kg m^2"}
+_BEAM_LABELS = ("length", "EI", "mass_per_length")
+
+
+@dataclass(frozen=True)
+class _Factor:
+    """One factor of a product: values (rows x elements, either may be 1 to broadcast),
+    the field path of each element, its name in the product and its exponent."""
+
+    label: str
+    values: np.ndarray
+    paths: tuple[str, ...]
+    exponent: int = 1
+    zero_ok: bool = False
+
+    def __pow__(self, exponent: int) -> _Factor:
+        return dataclasses.replace(self, exponent=exponent)
+
+
+def _product_name(factors: Sequence[_Factor]) -> str:
+    def term(f: _Factor) -> str:
+        e = abs(f.exponent)
+        return f.label if e == 1 else f"{f.label}^{e}"
+
+    top = " ".join(term(f) for f in factors if f.exponent > 0) or "1"
+    bottom = [term(f) for f in factors if f.exponent < 0]
+    if not bottom:
+        return top
+    return f"{top}/{bottom[0]}" if len(bottom) == 1 else f"{top}/({' '.join(bottom)})"
+
+
+def _beam_factors(P: np.ndarray, beam: Beam) -> list[_Factor]:
+    """The kernel's units: total length, the first segment's EI and mass per length."""
+    paths = (
+        ("beam.segments", "beam.segments[0].EI", "beam.segments[0].mass_per_length")
+        if beam.segments
+        else ("beam.length", "beam.EI", "beam.mass_per_length")
+    )
+    return [_Factor(n, P[:, [j]], (p,)) for j, (n, p) in enumerate(zip(_BEAM_LABELS, paths))]
+
+
+def _beam_checks(
+    P: np.ndarray, beam: Beam, head: Sequence[_Factor]
+) -> list[tuple[str, list[_Factor]]]:
+    """The beam's values and products; for a stepped beam each segment's values and
+    their ratios to the kernel's units."""
+    checks = [
+        (name, [f**e for f, e in zip(head, exponents) if e]) for name, exponents in _BEAM_PRODUCTS
+    ]
+    if beam.segments:
+        n = len(beam.segments)
+        rows = catalog.HEAD + catalog.SEGMENT_WIDTH * np.arange(n)
+        paths = [tuple(f"beam.segments[{s}].{k}" for s in range(n)) for k in _BEAM_LABELS]
+        lengths = np.array([[s.length for s in beam.segments]], dtype=float)
+        length = _Factor("length", lengths, paths[0])
+        ei = _Factor("EI", P[:, rows + 1], paths[1])
+        mu = _Factor("mass_per_length", P[:, rows + 2], paths[2])
+        total = dataclasses.replace(head[0], label="(total length)")
+        ei0 = dataclasses.replace(head[1], label="(first segment's EI)")
+        mu0 = dataclasses.replace(head[2], label="(first segment's mass_per_length)")
+        checks += [
+            ("length", [length]),
+            ("EI", [ei]),
+            ("mass_per_length", [mu]),
+            ("", [length, total**-1]),
+            ("", [ei, ei0**-1]),
+            ("", [mu, mu0**-1]),
+            ("EI/mass_per_length", [ei, mu**-1]),
+            ("", [mu, ei**-1, ei0, mu0**-1]),
+        ]
+    return checks
+
+
+def _component_checks(
+    P: np.ndarray, scene: Scene, head: Sequence[_Factor], labels: Sequence[int]
+) -> list[tuple[str, list[_Factor]]]:
+    """Each key's value and its dimensionless form (``Key.scale``), the scale itself, and
+    each stiffness/inertia ratio within a component with its dimensionless form;
+    vectorised over the components of one kind.
+
+    Positions are left out: the numerics use them only as x/L <= 1 and as differences,
+    so a tiny x rounds towards the end it is next to, which is what it means."""
+    kinds = topology_of(scene).kinds
+    events = read_events(P, kinds)
+    checks: list[tuple[str, list[_Factor]]] = []
+
+    def scaled(exponents) -> list[_Factor]:
+        return [h ** int(e) for h, e in zip(head, exponents) if e]
+
+    for kind in kinds:
+        blocks = [b for b in events.blocks if b.kind == kind]
+        keys = catalog.kind(kind).KEYS[1:]
+        for k, key in enumerate(keys):
+            cols, paths = _key_columns(blocks, k, key.name, labels)
+            f = _Factor(key.name, P[:, cols], paths, zero_ok=key.check == "nonnegative")
+            scale = scaled(key.scale)
+            checks += [(key.name, [f])] + ([("", scale), ("", [f, *scale])] if scale else [])
+        for stiff in keys:
+            for inert in keys:
+                if _RATIOS.get(stiff.unit) == inert.unit:
+                    ratio = _ratio(blocks, keys, stiff, inert, P, labels)
+                    scale = scaled(np.subtract(stiff.scale, inert.scale))
+                    checks += [("", ratio), ("", [*ratio, *scale])] if ratio else []
+    return checks
+
+
+def _key_columns(
+    blocks, k: int, name: str, labels: Sequence[int]
+) -> tuple[list[int], tuple[str, ...]]:
+    """Columns and field paths of key number ``k`` (after x) of ``blocks``, list
+    elements flattened."""
+    cols: list[int] = []
+    paths: list[str] = []
+    for b in blocks:
+        c = b.columns[k][1]
+        if isinstance(c, tuple):
+            cols += c
+            paths += [f"attachments[{labels[b.label]}].{name}[{j}]" for j in range(len(c))]
+        else:
+            cols.append(c)
+            paths.append(f"attachments[{labels[b.label]}].{name}")
+    return cols, tuple(paths)
+
+
+def _ratio(
+    blocks, keys, stiff: catalog.Key, inert: catalog.Key, P: np.ndarray, labels: Sequence[int]
+) -> list[_Factor]:
+    """``stiff/inert`` of each component; for list keys, of each inertia with the
+    stiffness on either side of it (an oscillator chain's k[j]/m[j], k[j+1]/m[j])."""
+    ks = keys.index(stiff)
+    ms = keys.index(inert)
+    top: list[tuple[int, str]] = []
+    bottom: list[tuple[int, str]] = []
+    for b in blocks:
+        kc, mc = b.columns[ks][1], b.columns[ms][1]
+        if isinstance(kc, tuple) != isinstance(mc, tuple):
+            continue
+        if not isinstance(kc, tuple):
+            kc, mc, fmt = (kc,), (mc,), "attachments[{}].{}"
+        else:
+            fmt = "attachments[{}].{}[{}]"
+        for j, m in enumerate(mc):
+            for i in (j, j + 1):
+                if i < len(kc):
+                    top.append((kc[i], fmt.format(labels[b.label], stiff.name, i)))
+                    bottom.append((m, fmt.format(labels[b.label], inert.name, j)))
+    if not top:
+        return []
+    zero_ok = [k.check == "nonnegative" for k in (stiff, inert)]
+    f_top = _Factor(stiff.name, P[:, [c for c, _ in top]], tuple(p for _, p in top), 1, zero_ok[0])
+    f_bottom = _Factor(
+        inert.name, P[:, [c for c, _ in bottom]], tuple(p for _, p in bottom), -1, zero_ok[1]
+    )
+    return [f_top, f_bottom]
 
 
 def check_representable(
-    P: np.ndarray, source: str, labels: Sequence[int] | None = None, point: str = ""
+    P: np.ndarray,
+    source: str,
+    scene: Scene,
+    point: str = "",
+    labels: Sequence[int] | None = None,
 ) -> None:
-    """Reject parameter rows whose values or derived products float64 cannot carry.
+    """Reject parameter vectors whose values or derived products float64 cannot carry.
 
-    ``P`` holds one parameter vector per row, ``[L, EI, mbar, x1, k1, m1, ...]``
-    (all > 0 except positions). ``labels`` gives the index each attachment is
-    named by in messages (default: its column order). Raises :class:`SceneError`
-    naming the field whose value is the most extreme contributor to the first
-    product out of range, with that value; ``point`` (e.g. ``"point"``) makes the
-    message say which row.
+    ``P`` holds parameter vectors of ``scene`` (one per row) whose event row ``r`` is
+    ``scene.attachments[r]``, as :func:`mstmm.topology.parameter_vector` gives them (a
+    sweep checks before it re-sorts the rows); ``scene`` gives the kinds the event tags
+    index. ``labels[r]`` is the index attachment ``r`` is named by in messages (default
+    ``r``; the place in the file when loading). Every
+    beam and segment value, every component value but positions (zero allowed for
+    nonnegative keys), each value's dimensionless form and the products the numerics
+    form must lie in [:data:`REPRESENTABLE_MIN`, :data:`REPRESENTABLE_MAX`]. Raises
+    :class:`SceneError` naming the field whose value is the most extreme contributor
+    to the first product out of range, with that value; ``point`` (e.g. ``"point"``)
+    makes the message say which row.
     """
-    P = np.asarray(P, dtype=float)
-    n_att = (P.shape[1] - 3) // 3
-    labels = list(range(n_att)) if labels is None else list(labels)
+    P = np.atleast_2d(np.asarray(P, dtype=float))
+    head = _beam_factors(P, scene.beam)
+    checks = _beam_checks(P, scene.beam, head)
+    if scene.attachments:
+        labels = range(len(scene.attachments)) if labels is None else labels
+        checks += _component_checks(P, scene, head, labels)
+    for name, factors in checks:
+        _check_product(name, factors, source, point)
+
+
+def _check_product(name: str, factors: Sequence[_Factor], source: str, point: str) -> None:
     with np.errstate(divide="ignore", invalid="ignore"):
-        logs = np.log10(P)
-    beam_logs = logs[:, :3]
-    checks = [
-        (name, np.array(e, float), beam_logs, list(_BEAM_FIELDS), None)
-        for name, e in _BEAM_PRODUCTS
-    ]
-    for j in range(n_att):
-        cols = np.concatenate([beam_logs, logs[:, 4 + 3 * j : 6 + 3 * j]], axis=1)
-        fields = [*_BEAM_FIELDS, "k", "m"]
-        checks += [(name, np.array(e, float), cols, fields, j) for name, e in _ATTACHMENT_PRODUCTS]
-    for name, exponents, cols, fields, j in checks:
-        value = cols @ exponents
-        bad = ~((value >= _LOG_MIN) & (value <= _LOG_MAX))
-        if not bad.any():
-            continue
-        row = int(np.argmax(bad))
-        used = np.flatnonzero(exponents)
-        worst = int(used[np.argmax(np.abs(cols[row, used] * exponents[used]))])
-        field_path = (
-            f"beam.{fields[worst]}" if worst < 3 else f"attachments[{labels[j]}].{fields[worst]}"
-        )
-        column = worst if worst < 3 else 4 + 3 * j + (worst - 3)
-        where = f"at {point} {row}, " if point else ""
-        size = f"1e{value[row]:+.0f}" if np.isfinite(value[row]) else "0"
+        logs = [f.exponent * np.log10(f.values) for f in factors]
+        total = sum(logs[1:], logs[0])
+        ok = (total >= _LOG_MIN) & (total <= _LOG_MAX)
+        for f in factors:
+            if f.zero_ok:
+                ok = ok | (f.values == 0.0)
+    if ok.all():
+        return
+    row, el = (int(i) for i in np.argwhere(~np.broadcast_to(ok, np.shape(total)))[0])
+
+    def at(a: np.ndarray) -> float:
+        return float(a[min(row, a.shape[0] - 1), min(el, a.shape[1] - 1)])
+
+    size = np.nan_to_num(np.abs([at(g) for g in logs]), nan=np.inf)
+    worst = factors[int(np.argmax(size))]
+    where = f"at {point} {row}, " if point else ""
+    value = at(np.broadcast_to(total, np.shape(total)))
+    if len(factors) == 1 and factors[0].exponent == 1:
         problem = (
-            f"{where}{name} is about {size}, beyond what float64 arithmetic can carry"
-            f" (every value and product must lie in [{REPRESENTABLE_MIN:g},"
-            f" {REPRESENTABLE_MAX:g}])"
+            f"{where}must lie in [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}]"
+            " (what float64 arithmetic can carry with room for the products formed)"
         )
-        if name in (*_BEAM_FIELDS, "k", "m"):
-            problem = (
-                f"{where}must lie in [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}]"
-                " (what float64 arithmetic can carry with room for the products formed)"
-            )
-        raise SceneError(source, field_path, problem, float(P[row, column]))
+    else:
+        size_text = f"1e{value:+.0f}" if np.isfinite(value) else "0"
+        problem = (
+            f"{where}{name or _product_name(factors)} is about {size_text}, beyond what"
+            f" float64 arithmetic can carry (every value and product must lie in"
+            f" [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}])"
+        )
+    path = worst.paths[min(el, len(worst.paths) - 1)]
+    raise SceneError(source, path, problem, at(worst.values))
 
 
 #: Most beam modes (lam L / pi) a band may span: the search evaluates the characteristic
@@ -369,29 +775,38 @@ def check_representable(
 MAX_BAND_MODES = 100_000
 
 
+def _pieces(beam: Beam) -> list[tuple[float, float, float]]:
+    """``(length, EI, mass_per_length)`` of each piece of the beam from the left end."""
+    if beam.segments:
+        return [(s.length, s.EI, s.mass_per_length) for s in beam.segments]
+    return [(beam.length, beam.EI, beam.mass_per_length)]
+
+
 def check_band(scene: Scene, band: tuple[float, float], source: str, option: str) -> None:
     """Reject a band (rad/s) that the numerics cannot carry or search for ``scene``.
 
-    ``omega^2``, ``mass_per_length omega^2`` and ``(lam L)^4`` at the top of the band
-    must lie below :data:`REPRESENTABLE_MAX`, and the band may span at most
-    :data:`MAX_BAND_MODES` beam modes (``lam L / pi``).
+    ``omega^2``, ``mass_per_length omega^2`` and ``(lam L)^4`` of every segment at the
+    top of the band must lie below :data:`REPRESENTABLE_MAX`, and the band may span at
+    most :data:`MAX_BAND_MODES` beam modes (``sum of lam l / pi`` over the segments).
     """
     lo, hi = band
     if hi <= 0.0:
         return
     beam = scene.beam
-    log_mw2 = math.log10(beam.mass_per_length) + 2.0 * math.log10(hi)
-    log_beta = math.log10(beam.length) + 0.25 * (log_mw2 - math.log10(beam.EI))
-    if 2.0 * math.log10(hi) > _LOG_MAX or log_mw2 > _LOG_MAX or 4.0 * log_beta > _LOG_MAX:
-        raise SceneError(
-            source,
-            option,
-            "HI is beyond what float64 arithmetic can carry for this beam (omega^2,"
-            f" mass_per_length omega^2 and (lam L)^4 must stay below {REPRESENTABLE_MAX:g})",
-            [lo, hi],
-        )
-    scale = math.sqrt(math.sqrt(beam.mass_per_length / beam.EI)) * beam.length
-    span = scale * (math.sqrt(hi) - math.sqrt(lo)) / math.pi
+    span = 0.0
+    for length, ei, mu in _pieces(beam):
+        log_mw2 = math.log10(mu) + 2.0 * math.log10(hi)
+        log_beta = math.log10(beam.length) + 0.25 * (log_mw2 - math.log10(ei))
+        if 2.0 * math.log10(hi) > _LOG_MAX or log_mw2 > _LOG_MAX or 4.0 * log_beta > _LOG_MAX:
+            raise SceneError(
+                source,
+                option,
+                "HI is beyond what float64 arithmetic can carry for this beam (omega^2,"
+                f" mass_per_length omega^2 and (lam L)^4 must stay below {REPRESENTABLE_MAX:g})",
+                [lo, hi],
+            )
+        scale = math.sqrt(math.sqrt(mu / ei)) * length
+        span += scale * (math.sqrt(hi) - math.sqrt(lo)) / math.pi
     if span > MAX_BAND_MODES:
         raise SceneError(
             source,
@@ -454,11 +869,29 @@ def _number(value: Any, field_path: str, source: str) -> float:
     return number
 
 
-def _positive(value: Any, field_path: str, source: str) -> float:
+#: A key's check: whether a value passes (for a float or an array, given the beam's
+#: length) and what the message says when it does not.
+CHECKS: dict[str, tuple[Callable[[Any, Any], Any], str]] = {
+    "positive": (lambda v, length: v > 0.0, "must be > 0"),
+    "nonnegative": (lambda v, length: v >= 0.0, "must be >= 0"),
+    "position": (
+        lambda v, length: (v >= 0.0) & (v <= length),
+        "must lie in [0, length] with beam length {length!r}",
+    ),
+    "interior": (
+        lambda v, length: (v > 0.0) & (v < length),
+        "must lie inside the beam, 0 < x < length, with beam length {length!r}",
+    ),
+}
+
+
+def _checked(value: Any, check: str, field_path: str, source: str, length: float = 0.0) -> float:
+    """``value`` as a float that passes ``check`` (a key of :data:`CHECKS`)."""
     number = _number(value, field_path, source)
-    if number <= 0.0:
-        raise SceneError(source, field_path, "must be > 0", value)
-    return number
+    passes, problem = CHECKS[check]
+    if not passes(number, length):
+        raise SceneError(source, field_path, problem.format(length=length), value)
+    return number + 0.0  # + 0.0 turns -0.0 into 0.0
 
 
 def _choice(value: Any, allowed: tuple[str, ...], field_path: str, source: str) -> str:
@@ -498,51 +931,109 @@ def _default_name(source: str) -> str:
 def _beam(value: Any, source: str) -> Beam:
     table = _table(value, "beam", source)
     _reject_unknown(table, _BEAM_KEYS, "beam", source)
-    length, ei, mu = (
-        _positive(_require(table, key, "beam", source), f"beam.{key}", source)
-        for key in ("length", "EI", "mass_per_length")
-    )
+    if "segments" in table:
+        for key in _UNIFORM_KEYS:
+            if key in table:
+                raise SceneError(
+                    source,
+                    f"beam.{key}",
+                    "not with [[beam.segments]]: a stepped beam gives length, EI and"
+                    " mass_per_length per segment",
+                    table[key],
+                )
+        segments = _segments(table["segments"], source)
+        # the total as the parameter layout forms it (catalog.layout)
+        length = float(sum(s.length for s in segments))
+        ei, mu = segments[0].EI, segments[0].mass_per_length
+        if not math.isfinite(length):
+            raise SceneError(source, "beam.segments", "the total length must be finite", length)
+    else:
+        segments = ()
+        length, ei, mu = (
+            _checked(_require(table, key, "beam", source), "positive", f"beam.{key}", source)
+            for key in _UNIFORM_KEYS
+        )
     left, right = (
         _choice(_require(table, key, "beam", source), BOUNDARY_KINDS, f"beam.{key}", source)
         for key in ("left", "right")
     )
-    return Beam(length=length, EI=ei, mass_per_length=mu, left=left, right=right)
+    return Beam(length, ei, mu, left, right, segments)
 
 
-def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> SpringMass:
+def _segments(value: Any, source: str) -> tuple[Segment, ...]:
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, (list, tuple)):
+        raise SceneError(
+            source, "beam.segments", "must be an array of tables ([[beam.segments]])", value
+        )
+    if not value:
+        raise SceneError(source, "beam.segments", "must hold at least one segment", value)
+    segments = []
+    for s, item in enumerate(value):
+        prefix = f"beam.segments[{s}]"
+        table = _table(item, prefix, source)
+        _reject_unknown(table, _UNIFORM_KEYS, prefix, source)
+        values = (_require(table, key, prefix, source) for key in _UNIFORM_KEYS)
+        segments.append(
+            Segment(
+                *(
+                    _checked(v, "positive", f"{prefix}.{key}", source)
+                    for key, v in zip(_UNIFORM_KEYS, values)
+                )
+            )
+        )
+    return tuple(segments)
+
+
+def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
     table = _table(value, prefix, source)
     kind = _choice(
-        _require(table, "type", prefix, source), ATTACHMENT_TYPES, f"{prefix}.type", source
+        _require(table, "type", prefix, source), attachment_types(), f"{prefix}.type", source
     )
-    _reject_unknown(table, _ATTACHMENT_KEYS[kind], prefix, source)
-    raw_x = _require(table, "x", prefix, source)
-    x = _number(raw_x, f"{prefix}.x", source)
-    if not 0.0 <= x <= beam.length:
-        raise SceneError(
-            source,
-            f"{prefix}.x",
-            f"must lie in [0, length] with beam.length = {beam.length!r}",
-            raw_x,
-        )
-    k = _positive(_require(table, "k", prefix, source), f"{prefix}.k", source)
-    m = _positive(_require(table, "m", prefix, source), f"{prefix}.m", source)
-    return SpringMass(x=x + 0.0, k=k, m=m)  # + 0.0 turns -0.0 into 0.0
+    module = catalog.kind(kind)
+    _reject_unknown(table, ("type", *(key.name for key in module.KEYS)), prefix, source)
+    values: dict[str, Value] = {}
+    for key in module.KEYS:
+        path = f"{prefix}.{key.name}"
+        if key.name in table:
+            raw = table[key.name]
+        elif key.default is None:
+            raise SceneError(source, path, "missing")
+        else:
+            raw = key.default
+        if key.shape == "list":
+            if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, (list, tuple)):
+                raise SceneError(source, path, "must be a list of numbers", raw)
+            if not raw:
+                raise SceneError(source, path, "must be a non-empty list of numbers", raw)
+            values[key.name] = tuple(
+                _checked(v, key.check, f"{path}[{j}]", source, beam.length)
+                for j, v in enumerate(raw)
+            )
+        else:
+            values[key.name] = _checked(raw, key.check, path, source, beam.length)
+    same = getattr(module, "SAME_LENGTH", ())
+    for name in same[1:]:
+        n = len(values[same[0]])  # type: ignore[arg-type]
+        if len(values[name]) != n:  # type: ignore[arg-type]
+            raise SceneError(
+                source,
+                f"{prefix}.{name}",
+                f"must have as many entries as {same[0]} ({n})",
+                table.get(name, values[name]),
+            )
+    x = values.pop("x")
+    return Attachment(kind, x, tuple(values.items()))  # type: ignore[arg-type]
 
 
 def _loose_dict(scene: Scene) -> dict[str, Any]:
     """Like ``scene_to_dict`` but passes through parts that are not dataclasses yet."""
-    data: dict[str, Any] = {"name": scene.name}
-    beam = scene.beam
-    if isinstance(beam, Beam):
-        data["beam"] = {f.name: getattr(beam, f.name) for f in dataclasses.fields(Beam)}
-    else:
-        data["beam"] = beam
-    attachments = scene.attachments
-    if isinstance(attachments, (list, tuple)):
-        data["attachments"] = [
-            {"type": a.kind, "x": a.x, "k": a.k, "m": a.m} if isinstance(a, SpringMass) else a
-            for a in attachments
+    beam, attachments = scene.beam, scene.attachments
+    return {
+        "name": scene.name,
+        "beam": _beam_dict(beam) if isinstance(beam, Beam) else beam,
+        "attachments": [
+            _attachment_dict(a) if isinstance(a, Attachment) else a for a in attachments
         ]
-    else:
-        data["attachments"] = attachments
-    return data
+        if isinstance(attachments, (list, tuple))
+        else attachments,
+    }

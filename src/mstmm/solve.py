@@ -145,7 +145,7 @@ def solve(
             # each root is Brent's converged bracket of a sign change of the stable
             # function inside a piece where the count says exactly one root: that is
             # already what scan.verify checks, no second pass needed
-            found = Roots(simple_roots(w, kernel.topology.rigid_body_modes, last), True, [])
+            found = Roots(simple_roots(w, kernel.rigid_body_modes(p), last), True, [])
     if found is None:
         if interpreted:  # the general search runs compiled
             kernel.warm_up(p, formulation)

@@ -18,57 +18,146 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from mstmm.derive import catalog
+
+from .events import read_events, sort_events
 from .kernels import Kernel, load_kernel
 from .progress import Bar
 from .scan import find_roots
-from .scene import Scene, SceneError, check_representable
-from .topology import ATTACHMENT_PARAMETERS, parameter_vector, topology_of
+from .scene import CHECKS, Scene, SceneError, check_placement, check_representable
+from .topology import field_index, parameter_vector, topology_of
 
-_BEAM_FIELDS = {"length": 0, "EI": 1, "mass_per_length": 2}
-_ATTACHMENT = re.compile(r"attachments\[(\d+)\]\.(\w+)$")
+_ATTACHMENT = re.compile(r"attachments\[(\d+)\]\.(\w+)(?:\[(\d+)\])?$")
 SOURCE = "<sweep>"
 
 
+def _paths(scene: Scene) -> dict[str, int]:
+    """The field paths a sweep may vary and their index in the parameter vector."""
+    fields = field_index(scene)
+    if scene.beam.segments:
+        del fields["beam.length"]
+    else:
+        fields = {f: i for f, i in fields.items() if not f.startswith("beam.segments[")}
+    return fields
+
+
+#: Columns of the parameter vector that repeat another: the head holds the first
+#: segment's EI and mass per length (the kernel's units) and a uniform beam's length is
+#: also its segment's end.
+_TWINS = {
+    0: (0, catalog.HEAD),
+    1: (1, catalog.HEAD + 1),
+    2: (2, catalog.HEAD + 2),
+    catalog.HEAD + 1: (1, catalog.HEAD + 1),
+    catalog.HEAD + 2: (2, catalog.HEAD + 2),
+}
+
+
+def columns(scene: Scene, path: str) -> tuple[int, ...]:
+    """Every index in the parameter vector a value of the field ``path`` is written to.
+
+    Paths: ``beam.length`` (a uniform beam only), ``beam.EI``, ``beam.mass_per_length``
+    (of a stepped beam: its first segment's), ``beam.segments[s].EI|mass_per_length``
+    (a stepped beam), ``attachments[i].x``, ``attachments[i].<key>`` and
+    ``attachments[i].<key>[j]`` (``i`` in x order, as ``scene.attachments``). Raises
+    :class:`SceneError` for a path the scene does not have, saying what it has there.
+    """
+    fields = _paths(scene)
+    if path in fields:
+        return _TWINS.get(fields[path], (fields[path],))
+    if path == "beam.length":
+        problem = (
+            "a stepped beam's total length is not a sweep parameter, nor is a segment's"
+            " length; sweep beam.segments[s].EI|mass_per_length"
+        )
+    else:
+        problem = _what_exists(scene, path, fields)
+    raise SceneError(SOURCE, path, problem, path)
+
+
 def column(scene: Scene, path: str) -> int:
-    """Index in the parameter vector of a field path like ``beam.EI`` or ``attachments[2].k``."""
-    if path.startswith("beam.") and path[5:] in _BEAM_FIELDS:
-        return _BEAM_FIELDS[path[5:]]
+    """Index in the parameter vector of a field path like ``beam.EI`` or
+    ``attachments[2].k[1]`` (:func:`columns` gives every index a sweep writes)."""
+    return columns(scene, path)[0]
+
+
+def _what_exists(scene: Scene, path: str, fields: Mapping[str, int]) -> str:
     match = _ATTACHMENT.match(path)
     if match:
-        i, name = int(match.group(1)), match.group(2)
-        if i >= len(scene.attachments):
-            raise SceneError(SOURCE, path, f"the scene has {len(scene.attachments)} attachments", i)
-        fields = ATTACHMENT_PARAMETERS[scene.attachments[i].kind]
-        if name in fields:
-            return 3 + 3 * i + fields.index(name)
-    raise SceneError(
-        SOURCE, path, "not a parameter (beam.length|EI|mass_per_length, attachments[i].x|k|m)", path
+        i = int(match.group(1))
+        n = len(scene.attachments)
+        if i >= n:
+            return f"not a parameter: the scene has {n} attachments"
+        own = [f for f in fields if f.startswith(f"attachments[{i}].")]
+        return f"not a field of this {scene.attachments[i].kind} (it has: {', '.join(own)})"
+    if path.startswith("beam."):
+        own = [f for f in fields if f.startswith("beam.")]
+        return f"not a field of this beam (it has: {', '.join(own)})"
+    return (
+        "not a parameter (beam.length|EI|mass_per_length, beam.segments[s].EI|mass_per_length,"
+        " attachments[i].x|<key>|<key>[j])"
     )
 
 
+def _check_of(scene: Scene, path: str) -> str:
+    """The check a field's values must pass (:data:`mstmm.scene.CHECKS`)."""
+    match = _ATTACHMENT.match(path)
+    if match:
+        kind = catalog.kind(scene.attachments[int(match.group(1))].kind)
+        return next(k.check for k in kind.KEYS if k.name == match.group(2))
+    return "positive"
+
+
 def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray:
-    """One parameter vector per point, attachments re-sorted by ``x`` where ``x`` varies."""
+    """One parameter vector per point: the scene's vector with the varied fields set.
+
+    Each value is checked as its key declares (positive, nonnegative, a position within
+    [0, L] or inside the beam, with L of that point); where an ``x`` varies the event rows
+    are re-sorted by x per point (stable; each row's tag and offset travel with it).
+    Placement (:func:`mstmm.scene.check_placement`) and what float64 can carry
+    (:func:`mstmm.scene.check_representable`) are checked at every point.
+    """
     values = {path: np.atleast_1d(np.asarray(v, dtype=float)) for path, v in vary.items()}
     sizes = {v.shape[0] for v in values.values()}
+    if not values:
+        raise SceneError(SOURCE, "-", "nothing is varied", dict(vary))
     if len(sizes) != 1:
         raise SceneError(SOURCE, ",".join(values), "varied arrays differ in length", sorted(sizes))
     n = sizes.pop()
     P = np.tile(parameter_vector(scene), (n, 1))
     for path, v in values.items():
-        bad = ~np.isfinite(v) | (v <= 0.0 if not path.endswith(".x") else v < 0.0)
-        if bad.any():
-            raise SceneError(SOURCE, path, "values must be finite and > 0", float(v[bad][0]))
-        P[:, column(scene, path)] = v
-    if len(scene.attachments):
-        rec = P[:, 3:].reshape(n, -1, 3)
-        outside = rec[:, :, 0] > P[:, :1]
-        if outside.any():
-            i, j = np.argwhere(outside)[0]
-            raise SceneError(SOURCE, f"attachments[{j}].x", "must lie in [0, length]", rec[i, j, 0])
-        order = np.argsort(rec[:, :, 0], axis=1, kind="stable")
-        P[:, 3:] = np.take_along_axis(rec, order[:, :, None], axis=1).reshape(n, -1)
-    check_representable(P, SOURCE, point="point")
+        P[:, list(columns(scene, path))] = v[:, None]
+    for path, v in values.items():
+        passes, problem = CHECKS[_check_of(scene, path)]
+        finite = np.isfinite(v)
+        for ok, text in ((finite, "must be finite"), (finite & passes(v, P[:, 0]), problem)):
+            if not ok.all():
+                i = int(np.argmin(ok))
+                problem_at = f"at point {i}, " + text.format(length=float(P[i, 0]))
+                raise SceneError(SOURCE, path, problem_at, float(v[i]))
+    if "beam.length" in values:
+        _check_positions(scene, P)
+    check_placement(P, SOURCE, scene, point="point")
+    check_representable(P, SOURCE, scene, point="point")
+    sort_events(P)
     return P
+
+
+def _check_positions(scene: Scene, P: np.ndarray) -> None:
+    """Every component's x within the beam at every point (the length varies)."""
+    events = read_events(P, topology_of(scene).kinds)
+    for block in events.blocks:
+        key = catalog.kind(block.kind).KEYS[0]
+        passes, problem = CHECKS[key.check]
+        ok = passes(events.positions[:, block.label], P[:, 0])
+        if not ok.all():
+            i = int(np.argmin(ok))
+            raise SceneError(
+                SOURCE,
+                f"attachments[{block.label}].x",
+                f"at point {i}, " + problem.format(length=float(P[i, 0])),
+                float(events.positions[i, block.label]),
+            )
 
 
 def sweep(

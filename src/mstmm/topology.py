@@ -1,24 +1,25 @@
-"""Topology of a scene and its run-time parameter vector (the catalog: ``mstmm.derive.catalog``)."""
+"""A scene's topology and its run-time parameter vector (the layout is ``derive.catalog``'s)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from mstmm.derive.catalog import (
-    ATTACHMENT_PARAMETERS,
     BEAM_PARAMETERS,
     KNOWN_ZERO,
     STATE,
+    Component,
     Topology,
+    layout,
     unknown,
 )
 
 __all__ = [
-    "ATTACHMENT_PARAMETERS",
     "BEAM_PARAMETERS",
     "KNOWN_ZERO",
     "STATE",
     "Topology",
+    "field_index",
     "parameter_vector",
     "topology_of",
     "unknown",
@@ -26,19 +27,35 @@ __all__ = [
 
 
 def topology_of(scene) -> Topology:
-    """The topology of a :class:`mstmm.scene.Scene`."""
+    """The topology of a :class:`mstmm.scene.Scene`: its end conditions and component kinds."""
     kinds = tuple(sorted({a.kind for a in scene.attachments}))
     return Topology(scene.beam.left, scene.beam.right, kinds)
 
 
-def parameter_vector(scene) -> np.ndarray:
-    """Run-time parameters of a scene: ``[L, EI, mbar, x_1, k_1, m_1, x_2, ...]``.
-
-    Attachments follow in the order of the scene (sorted by ``x``); each
-    contributes the fields :data:`ATTACHMENT_PARAMETERS` lists for its kind.
-    """
+def _segments(scene) -> list[tuple[float, float, float]]:
     beam = scene.beam
-    values = [beam.length, beam.EI, beam.mass_per_length]
-    for a in scene.attachments:
-        values.extend(float(getattr(a, name)) for name in ATTACHMENT_PARAMETERS[a.kind])
-    return np.asarray(values, dtype=np.float64)
+    segments = getattr(beam, "segments", ()) or ()
+    if segments:
+        return [(s.length, s.EI, s.mass_per_length) for s in segments]
+    return [(beam.length, beam.EI, beam.mass_per_length)]
+
+
+def _components(scene) -> list[Component]:
+    return [Component(a.kind, a.x, dict(a.values)) for a in scene.attachments]
+
+
+def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
+    return layout(_segments(scene), _components(scene), topology_of(scene))
+
+
+def parameter_vector(scene) -> np.ndarray:
+    """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
+    (x_end, EI, mbar), event rows (tag, x, offset) sorted by x, data...]``
+    (:func:`mstmm.derive.catalog.layout`)."""
+    return _layout(scene)[0]
+
+
+def field_index(scene) -> dict[str, int]:
+    """Index in the parameter vector of every field path of the scene (``beam.EI``,
+    ``beam.segments[1].EI``, ``attachments[3].J``, ``attachments[2].k[1]``)."""
+    return _layout(scene)[1]

@@ -1,0 +1,39 @@
+"""Point mass fixed to the beam, with rotary inertia.
+
+At its node ``EI [W'''] = m w^2 W`` and ``EI [W''] = -J w^2 W'`` (``[.]`` the jump, right
+minus left; issue 13's sign conventions). As a descriptor: no unknowns,
+``A = I + mu b4 e_Q e_Y^T - j b4 e_M e_theta^T`` (paper Eq. (1), the lumped mass
+``[[1, 0], [m w^2, 1]]`` on ``[Y, Q]`` and its rotary twin on ``[theta, M]``).
+"""
+
+from __future__ import annotations
+
+from ..catalog import Key
+
+KIND = "mass"
+DOC = "point mass m fixed to the beam at x, rotary inertia J"
+KEYS = (
+    Key("x", "m", check="position", doc="position from the left end"),
+    Key("m", "kg", doc="mass"),
+    Key(
+        "J",
+        "kg m^2",
+        check="nonnegative",
+        default=0.0,
+        doc="rotary inertia about the beam axis normal",
+    ),
+)
+COUNT = "stiffness"
+RIGID = ()
+
+
+def descriptor(v: dict):
+    """``Q+ = Q + mu b4 Y``, ``M+ = M - j b4 theta``."""
+    import sympy as sp
+
+    from ..descriptor import b4, point
+
+    A = sp.eye(4)
+    A[3, 0] = v["m"] * b4
+    A[2, 1] = -v["J"] * b4
+    return point(A)

@@ -1,0 +1,31 @@
+"""Translational spring from the beam to the ground.
+
+At its node ``EI [W'''] = -k W``. As a descriptor: no unknowns,
+``A = I - kappa e_Q e_Y^T`` (paper Eq. (1)'s spring, grounded). An elastically
+restrained end is a free end with a spring (and a rotational spring) at x = 0 or L.
+"""
+
+from __future__ import annotations
+
+from ..catalog import Key
+
+KIND = "spring"
+DOC = "translational spring k from the beam at x to the ground"
+KEYS = (
+    Key("x", "m", check="position", doc="position from the left end"),
+    Key("k", "N/m", doc="stiffness"),
+)
+COUNT = "stiffness"
+#: A rigid-body motion does no work on it only where Y = 0.
+RIGID = ("Y",)
+
+
+def descriptor(v: dict):
+    """``Q+ = Q - kappa Y``."""
+    import sympy as sp
+
+    from ..descriptor import point
+
+    A = sp.eye(4)
+    A[3, 0] = -v["k"]
+    return point(A)

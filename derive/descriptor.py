@@ -1,0 +1,124 @@
+"""A point component in descriptor form, and what every generic stage derives from it.
+
+A point component (docs/components.md, section 2) adds unknowns ``q`` (n_q) and
+constraints on the beam state ``Z = [Y, theta, M, Q]`` (units L = EI_0 = mbar_0 = 1,
+``b4 = beta^4`` the squared frequency)::
+
+    Cz Z + Cq q = 0          (n_c rows: geometric equations, paper Eq. (3))
+    Z+ = A Z + B q           (the jump it causes: paper Eq. (2))
+
+From this, once and for every kind:
+
+* the point matrix ``P = A - B Cq^-1 Cz`` and its pole factor ``det Cq`` (paper Eq. (1)
+  style, for ``show`` and ``symbolic``);
+* the pole-free compound step of the stable chain: for ``v = a ^ b`` and
+  ``n_q = n_c = 1``, ``v+ = Cq C2(A) v + (A i_Cz v) ^ B`` with
+  ``i_Cz (a ^ b) = (Cz a) b - (Cz b) a``; it equals ``Cq C2(P) v`` where Cq != 0 and
+  is the constrained map where Cq = 0: the pole factor is taken out exactly once;
+* the internal frequencies (zeros of ``det Cq`` in ``b4``), extra scan nodes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .compound import PAIRS, second_compound
+
+#: The squared frequency in the kernel's units: beta^4 = mbar_0 omega^2 L^4 / EI_0.
+b4 = sp.Symbol("b4", nonnegative=True)
+
+
+@dataclass(frozen=True)
+class Descriptor:
+    """``Cz Z + Cq q = 0``, ``Z+ = A Z + B q``; ``qmass[j]`` is the mass (units mbar_0 L)
+    moving with ``q[j]`` (0 for a reaction or a rotation)."""
+
+    Cz: sp.Matrix
+    Cq: sp.Matrix
+    A: sp.Matrix
+    B: sp.Matrix
+    qmass: tuple
+
+    @property
+    def n_q(self) -> int:
+        return self.B.cols
+
+    def __post_init__(self) -> None:
+        if self.A.shape != (4, 4) or self.B.rows != 4 or self.Cz.cols != 4:
+            raise ValueError("descriptor: A is 4x4, B has 4 rows, Cz 4 columns")
+        if self.Cq.shape != (self.Cz.rows, self.B.cols) or len(self.qmass) != self.B.cols:
+            raise ValueError("descriptor: Cq is n_c x n_q and qmass has n_q entries")
+        if self.Cz.rows != self.B.cols:
+            raise ValueError("descriptor: as many constraints as unknowns (n_c = n_q)")
+
+
+def point(A: sp.Matrix) -> Descriptor:
+    """A component with no unknowns: ``Z+ = A Z``."""
+    return Descriptor(sp.zeros(0, 4), sp.zeros(0, 0), A, sp.zeros(4, 0), ())
+
+
+def unit(i: int) -> sp.Matrix:
+    """The i-th unit column of the state space."""
+    e = sp.zeros(4, 1)
+    e[i] = 1
+    return e
+
+
+def point_matrix(d: Descriptor) -> tuple[sp.Matrix, sp.Expr]:
+    """``P = A - B Cq^-1 Cz`` with its pole factor ``det Cq`` multiplied out: returns
+    ``(det(Cq) P, det Cq)`` (for a constraint, ``Cq = 0``, P alone does not exist)."""
+    if d.n_q == 0:
+        return d.A, sp.Integer(1)
+    det = sp.factor(d.Cq.det())
+    adj = d.Cq.adjugate()
+    return (det * d.A - d.B * adj * d.Cz).applyfunc(sp.expand), det
+
+
+def _wedge(a: sp.Matrix, b: sp.Matrix) -> sp.Matrix:
+    return sp.Matrix([a[i] * b[j] - a[j] * b[i] for i, j in PAIRS])
+
+
+def _interior(v: sp.Matrix, c: sp.Matrix) -> sp.Matrix:
+    """``i_c (a ^ b) = (c.a) b - (c.b) a`` as a linear map of the Pluecker vector v."""
+    out = sp.zeros(4, 1)
+    for a, (i, j) in enumerate(PAIRS):
+        # e_i ^ e_j -> c_i e_j - c_j e_i
+        out[j] += c[i] * v[a]
+        out[i] -= c[j] * v[a]
+    return out
+
+
+def compound_step(d: Descriptor, v: sp.Matrix) -> sp.Matrix:
+    """The pole-free compound step ``v -> v+`` of paper Eqs. (2)-(3) for one component."""
+    C = second_compound(d.A)
+    if d.n_q == 0:
+        return C * v
+    if d.n_q != 1:
+        raise ValueError("the compound step needs n_q = n_c = 1 (reduce a chain first)")
+    Cz = d.Cz.T
+    return (d.Cq[0, 0] * C * v + _wedge(d.A * _interior(v, Cz), d.B[:, 0])).applyfunc(sp.expand)
+
+
+def node_stiffness(d: Descriptor) -> tuple[sp.Expr, sp.Expr]:
+    """``(k_Y, k_theta)`` of a component with no unknowns whose ``A = I + N`` only acts
+    node-wise: ``Q+ = Q - k_Y Y``, ``M+ = M + k_theta theta`` (EI [W'''] = -k_Y W,
+    EI [W''] = k_theta W')."""
+    N = d.A - sp.eye(4)
+    k_y, k_t = -N[3, 0], N[2, 1]
+    N[3, 0] = 0
+    N[2, 1] = 0
+    if d.n_q or any(e != 0 for e in N):
+        raise ValueError("not a node stiffness: A - I has entries besides (Q, Y), (M, theta)")
+    return sp.expand(k_y), sp.expand(k_t)
+
+
+def internal_b4(d: Descriptor) -> list[sp.Expr]:
+    """The component's own squared frequencies (b4 where det Cq = 0), when they exist."""
+    if d.n_q == 0:
+        return []
+    det = sp.expand(d.Cq.det())
+    if not det.has(b4):
+        return []
+    return [r for r in sp.solve(det, b4)]
