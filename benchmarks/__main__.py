@@ -279,49 +279,32 @@ def _median(xs):
 
 
 def _profile_remark(prof: dict, n: int | None = None, family: str | None = None) -> str:
+    """Where a solve's time went: the kernel's root search, the checks after it, Python."""
     from .workprecision import fmt_time
 
     c = prof["calls"]
+    parts = []
     if "lowest" in c:
         v = c["lowest"]
         g = prof.get("lowest_grid") or {}
         text = (
-            f"profile: kernel `lowest` {fmt_time(v['seconds'])} "
-            f"({'certified' if v['its'] else 'not certified, full search follows'})"
+            f"kernel search {fmt_time(v['seconds'])} "
+            f"({'certified' if v['its'] else 'NOT certified by the count'})"
         )
         if g:
             from .workprecision import lowest_split
 
             text += ": " + lowest_split(v["seconds"], g)
-        text += f"; Python around it {fmt_time(prof['python'])}"
-        if v["its"]:
-            return text
-        text += "; then "
-    else:
-        text = ""
+        parts.append(text)
     ev = c.get("evaluate", {"points": 0, "seconds": 0.0})
-    rf = c.get("refine", {"calls": 0, "its": 0, "seconds": 0.0})
     ct = c.get("count_below", {"points": 0, "seconds": 0.0})
-    parts = [
-        f"profile: scan {ev['points']} points {fmt_time(ev['seconds'])}",
-        f"Brent {rf['calls']} roots / ~{rf['its']} evaluations {fmt_time(rf['seconds'])}",
-        f"count {ct['points']} points {fmt_time(ct['seconds'])}",
-        f"Python {fmt_time(prof['python'])}",
-    ]
-    text += ", ".join(parts)
-    if n and family == "in band":
-        try:
-            from mstmm import scan
-
-            per = len(getattr(scan, "CLUSTER", ())) or 19
-            text += (
-                f". Each oscillator frequency in the band adds {per} scan nodes "
-                f"(`CLUSTER` in src/mstmm/scan.py): with N oscillators in the band, "
-                f"O(N) nodes of O(N) each, O(N^2) per solve"
-            )
-        except ImportError:
-            pass
-    return text
+    if ev["points"] or ct["points"]:
+        parts.append(
+            f"checks after it: count {ct['points']} points {fmt_time(ct['seconds'])}, "
+            f"function {ev['points']} points {fmt_time(ev['seconds'])}"
+        )
+    parts.append(f"Python around it {fmt_time(prof['python'])}")
+    return "profile: " + "; ".join(parts)
 
 
 def findings(wp, sc) -> list[str]:
@@ -346,20 +329,15 @@ def findings(wp, sc) -> list[str]:
                     f"Lowest {modes}, stable: asking for less accuracy is slower. rtol = 0 takes "
                     f"{fmt_time(zero[0].time)}, rtol = 1e-4 .. 1e-12 take "
                     f"{fmt_time(min(p.time for p in other))} .. "
-                    f'{fmt_time(max(p.time for p in other))}: only `formulation="stable", '
-                    "rtol=0` uses the kernel's compiled `lowest` scan (src/mstmm/solve.py); "
-                    "any rtol > 0, and the paper formulation, go through the Python search of "
-                    "src/mstmm/scan.py."
+                    f"{fmt_time(max(p.time for p in other))}."
                 )
         failed = [p for p in wp.points if p.family == "mstmm-warm" and not math.isfinite(p.error)]
         for p in failed:
             out.append(
                 f"{p.series}, lowest {p.modes} ({p.setting}): {p.note}. The paper's det U_bar "
                 "loses about one digit per pi of lambda L, so above about the 10th mode it is "
-                "noise, and the recursive minimum search of src/mstmm/scan.py (`_Search.minimum` "
-                "-> `scan_values` -> `minimum`, up to MAX_DEPTH = 12 levels) branches on it: "
-                "every level's 17-point grid shows new sign changes and local minima, each "
-                "searched again."
+                "noise: its sign changes are spurious, the count drops them and bisects to each "
+                "root, but a root taken from the noise is flagged NOT TRUSTED, not corrected."
             )
         for series in dict.fromkeys(p.series for p in wp.points if p.family in ("fe", "opensees")):
             for modes in (5, 20):

@@ -344,7 +344,86 @@ def _cases() -> list[Case]:
             WELL,
         ),
     ]
-    return out
+    return out + _kind_cases()
+
+
+def _beam(left, right, segments=None) -> dict:
+    """A unit beam (L = EI = mbar = 1), or the given ``(length, EI, mbar)`` segments."""
+    beam = {"left": left, "right": right}
+    if segments:
+        beam["segments"] = [{"length": a, "EI": b, "mass_per_length": c} for a, b, c in segments]
+    else:
+        beam.update(length=1.0, EI=1.0, mass_per_length=1.0)
+    return beam
+
+
+def _kind_cases() -> list[Case]:
+    """Extremes of the component library (issue 13), on a unit beam (so the values are
+    dimensionless: k in EI/L^3 or EI/L, J in mbar L^3)."""
+    chain = {"type": "oscillator_chain", "x": 0.7, "k": [400.0, 150.0], "m": [0.05, 0.02]}
+    data = [
+        (
+            "kind_spring_nearly_a_support",
+            _beam("pinned", "free"),
+            [{"type": "spring", "x": 0.5, "k": 1e12}, {"type": "spring", "x": 0.8, "k": 1e-6}],
+            8,
+            "springs to ground k = 1e12 (nearly a support) and 1e-6 EI/L^3",
+        ),
+        (
+            "kind_soft_spring_free_free",
+            _beam("free", "free"),
+            [{"type": "spring", "x": 0.3, "k": 1e-6}, {"type": "spring", "x": 0.9, "k": 1e12}],
+            8,
+            "free-free on a 1e-6 and a 1e12 EI/L^3 spring: one frequency 1e-3 of the rest",
+        ),
+        (
+            "kind_rotary_inertia_1e3",
+            _beam("clamped", "free"),
+            [{"type": "mass", "x": 1.0, "m": 1.0, "J": 1e3}, {"type": "mass", "x": 0.5, "m": 1e-3}],
+            8,
+            "tip mass with rotary inertia J = 1e3 mbar L^3",
+        ),
+        (
+            "kind_ei_ratio_1e6",
+            _beam("clamped", "free", [(0.3, 1.0, 1.0), (0.4, 1e6, 10.0), (0.3, 1.0, 1.0)]),
+            [],
+            8,
+            "three segments, EI ratio 1e6 (a nearly rigid middle)",
+        ),
+        (
+            "kind_hinge_1e-9_from_support",
+            _beam("pinned", "pinned"),
+            [{"type": "support", "x": 0.5}, {"type": "hinge", "x": 0.5 + 1e-9}],
+            8,
+            "a free hinge 1e-9 L from an inner support",
+        ),
+        (
+            "kind_twenty_identical_chains",
+            _beam("clamped", "free"),
+            [dict(chain) for _ in range(20)],
+            45,
+            "20 identical two-stage chains at one point (roots of multiplicity 19)",
+        ),
+        (
+            "kind_every_kind_stepped",
+            _beam("free", "free", [(0.35, 1.0, 1.0), (0.4, 30.0, 4.0), (0.25, 0.05, 0.3)]),
+            [
+                {"type": "spring_mass", "x": 0.35, "k": 1e9, "m": 1e-4},
+                {"type": "mass", "x": 1.0, "m": 1e3, "J": 1e-6},
+                {"type": "spring", "x": 0.0, "k": 1e10},
+                {"type": "rotational_spring", "x": 0.0, "k": 1e-5},
+                {"type": "support", "x": 0.6},
+                {"type": "hinge", "x": 0.35, "k": 1e-6},
+                {"type": "oscillator_chain", "x": 0.75, "k": [1e6, 1e-3], "m": [1e-2, 1e-6]},
+            ],
+            10,
+            "every kind at extreme values on a free-free stepped beam, several at one point",
+        ),
+    ]
+    return [
+        Case(name, {"name": name, "beam": beam, "attachments": atts}, modes, condition, WELL)
+        for name, beam, atts, modes, condition in data
+    ]
 
 
 CASES: list[Case] = _cases()

@@ -283,10 +283,16 @@ class Probe:
         self._add("refine", 1, t, its=out[1] + 2)
         return out
 
-    def lowest(self, p, modes):
+    def lowest(self, p, modes, certify=True, formulation="stable", rtol=0.0):
         t = time.perf_counter()
-        out = self._kernel.lowest(p, modes)
-        self._add("lowest", int(modes), t, its=int(bool(out[1])))
+        out = self._kernel.lowest(p, modes, certify, formulation, rtol)
+        self._add("lowest", int(modes), t, its=int(out.certified))
+        return out
+
+    def roots_in_band(self, p, lo, hi, from_bottom, formulation="stable", rtol=0.0):
+        t = time.perf_counter()
+        out = self._kernel.roots_in_band(p, lo, hi, from_bottom, formulation, rtol)
+        self._add("lowest", len(out.omega), t, its=int(out.certified))
         return out
 
     def count_below(self, omegas, p):

@@ -24,7 +24,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "f4e9811c0d604399c782acf399ef0ffed4855f4e"
+SIGNATURE = "c8dfe6bac65546ddfcbefe8a85ccc3d20d2dddfe"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -36,7 +36,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "c4bed8940fd6a4f2d918cd1001acee33ca9a0b6e"
+NUMERICS = "414b3431af2dd0dd6caf100308360eb732017c3f"
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
 

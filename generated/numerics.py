@@ -22,7 +22,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "c4bed8940fd6a4f2d918cd1001acee33ca9a0b6e"
+DIGEST = "414b3431af2dd0dd6caf100308360eb732017c3f"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 3
@@ -590,15 +590,24 @@ def refine(delta, a, b, p, rtol, maxiter):
 #: ``lowest_block``: the search has covered (0, state[STATE_W]], whose count is
 #: state[STATE_COUNT]; state[STATE_K] roots are written; state[STATE_LAST] is the
 #: true multiplicity of the last root written (it may exceed the copies written
-#: when the lowest ``modes`` end inside a multiple root).
+#: when the lowest ``modes`` end inside a multiple root); state[STATE_CERTIFIED] is 1
+#: while the count certifies every root written, 0 once it could not (the search then
+#: goes on without it, and state[STATE_FAILED] is the frequency where it stopped).
 STATE_W = 0
 STATE_COUNT = 1
 STATE_K = 2
 STATE_LAST = 3
-STATE_SIZE = 4
+STATE_CERTIFIED = 4
+STATE_FAILED = 5
+STATE_SIZE = 6
 #: Blocks in a row that may end without a new root before the search gives up
 #: (a beam has a natural frequency in every stretch of a few pi of beta = lam L).
 MAX_STALLED_BLOCKS = 4
+#: Flag of a root in ``flags``: 0 trusted; 1 the count holds exactly one root in a piece
+#: of round-off width across which the function does not change sign, or Brent's
+#: method did not converge (the caller checks it again, and reports it NOT TRUSTED
+#: if nothing confirms it).
+UNTRUSTED = 1
 
 
 @njit(cache=True)
@@ -617,14 +626,28 @@ def push_halves(lo, hi, nlo, nhi, top, a, mid, b, na, nm, nb):
 
 
 @njit(cache=True)
-def isolate(delta, count, a, b, na, nb, p, out, k, modes, state):
+def write_root(out, flags, k, modes, root, flag, copies, state):
+    """Write ``copies`` copies of a root (up to ``modes`` values) with its flag; its
+    multiplicity becomes state[STATE_LAST]. Returns the new k."""
+    for _ in range(copies):
+        if k < modes:
+            out[k] = root
+            flags[k] = flag
+            k += 1
+    state[STATE_LAST] = copies
+    return k
+
+
+@njit(cache=True)
+def isolate(delta, count, a, b, na, nb, p, out, flags, k, modes, state, rtol):
     """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
     by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
     width is a multiple root. The count at a midpoint is clamped into [na, nb], so that
     a count off by one at round-off distance from a root cannot add or lose a root.
-    Writes out[k:] (with multiplicity, up to modes) and the true multiplicity of the
-    last root written into state[STATE_LAST]; returns the new k, or -1 if the
-    bisection stack overflows or Brent does not converge."""
+    A simple root that the function never changes sign across, or on which Brent does
+    not converge, is written flagged UNTRUSTED. Writes out[k:] and flags[k:] (with
+    multiplicity, up to modes) and the true multiplicity of the last root written into
+    state[STATE_LAST]; returns the new k, or -1 if the bisection stack overflows."""
     cap = 256
     sa = np.empty(cap)
     sb = np.empty(cap)
@@ -644,30 +667,22 @@ def isolate(delta, count, a, b, na, nb, p, out, k, modes, state):
         if nb <= na:
             continue
         if b - a <= 8.9e-16 * b:
+            flag = 0
             if nb - na == 1:
-                # a simple root that the stable function never changed sign across:
-                # the count is off here, not to be trusted (the caller's full search
-                # flags it)
+                # a simple root that the function never changed sign across: the count
+                # and the function disagree here
                 ma = delta(a * (1.0 - 1e-12), p)[0]
                 mb = delta(b * (1.0 + 1e-12), p)[0]
                 if (ma > 0.0) == (mb > 0.0):
-                    return -1
-            for _ in range(nb - na):
-                if k < modes:
-                    out[k] = 0.5 * (a + b)
-                    k += 1
-            state[STATE_LAST] = nb - na
+                    flag = UNTRUSTED
+            k = write_root(out, flags, k, modes, 0.5 * (a + b), flag, nb - na, state)
             continue
         if nb - na == 1:
             ma = delta(a, p)[0]
             mb = delta(b, p)[0]
             if (ma > 0.0) != (mb > 0.0):
-                root, its, ok = refine(delta, a, b, p, 0.0, 200)
-                if not ok:
-                    return -1
-                out[k] = root
-                k += 1
-                state[STATE_LAST] = 1
+                root, its, ok = refine(delta, a, b, p, rtol, 200)
+                k = write_root(out, flags, k, modes, root, 0 if ok else UNTRUSTED, 1, state)
                 continue
         if top + 2 > cap:
             return -1
@@ -680,22 +695,22 @@ def isolate(delta, count, a, b, na, nb, p, out, k, modes, state):
 
 
 @njit(cache=True)
-def lowest_start(count, rigid_modes, p, modes, out, state, certify):
+def lowest_start(count, rigid_modes, p, modes, out, flags, state, certify):
     """Start the search of the lowest ``modes``: the rigid-body zeros into out, the
     state at the bottom of the scan (lowest node beta = 1e-3). With ``certify`` the
     count there must hold exactly the rigid-body modes (else no elastic root below is
-    excluded). Returns the number of values written, or -1 when the count disagrees."""
+    excluded); where it does not, the search goes on uncertified from the lowest node
+    (state[STATE_CERTIFIED] = 0). Returns the number of values written."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
     scale = math.sqrt(EI / mbar) / (L * L)  # omega = scale * beta^2
     rigid = rigid_modes(p)
-    k = 0
-    while k < rigid and k < modes:
-        out[k] = 0.0
-        k += 1
+    state[STATE_K] = 0
+    k = write_root(out, flags, 0, modes, 0.0, 0, rigid, state)
     state[STATE_K] = k
-    state[STATE_LAST] = rigid
+    state[STATE_CERTIFIED] = 1.0 if certify else 0.0
+    state[STATE_FAILED] = 0.0
     w_lo = scale * 1e-6
     if k < modes and certify:
         # settle the bottom where the count holds exactly the rigid-body modes: lower
@@ -703,15 +718,19 @@ def lowest_start(count, rigid_modes, p, modes, out, state, certify):
         # count has not yet registered a rigid-body mode (its -omega^2 pivot drowns in
         # round-off at very low frequency next to a constrained end); a count of exactly
         # the rigid-body modes at the bottom proves that no elastic root lies below it
-        n = count(w_lo, p)
-        while n > rigid and w_lo > 1e-300:
-            w_lo *= 1e-3
-            n = count(w_lo, p)
-        while n < rigid and w_lo < 1e300:
-            w_lo *= 2.0
-            n = count(w_lo, p)
-        if n != rigid:
-            return -1
+        w = w_lo
+        n = count(w, p)
+        while n > rigid and w > 1e-300:
+            w *= 1e-3
+            n = count(w, p)
+        while n < rigid and w < 1e300:
+            w *= 2.0
+            n = count(w, p)
+        if n == rigid:
+            w_lo = w
+        else:
+            state[STATE_CERTIFIED] = 0.0
+            state[STATE_FAILED] = w_lo
     state[STATE_W] = w_lo
     state[STATE_COUNT] = rigid
     return k
@@ -732,22 +751,27 @@ def right_of_zero(delta, x, p):
 
 
 @njit(cache=True)
-def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, certify, w_stop):
+def lowest_block(
+    delta, count, osc_frequencies, p, modes, out, flags, state, quota, certify, w_stop, rtol
+):
     """Up to ``quota`` more roots above state[STATE_W], certified by ONE count.
 
-    Scans the stable function (pole-free: each sign change brackets an odd number of
-    roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at each
-    oscillator frequency, with Brent on each sign change, until ``quota`` sign
+    Scans the characteristic function (pole-free: each sign change brackets an odd
+    number of roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at
+    each oscillator frequency, with Brent on each sign change, until ``quota`` sign
     changes are found (or (quota + 2) pi of beta are covered), and stops at the next
-    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``, the count at that node proves the whole block
-    when N(top) - N(bottom) equals the number of sign changes: then each brackets
-    exactly one simple root and no root lies elsewhere. A piece where the two
-    disagree is halved at a uniform node by the count (never at an oscillator
-    frequency, where multiple roots sit and the count is at round-off), down to
-    single pieces whose roots ``isolate`` finds by count bisection. Without
-    ``certify`` the sign-change roots are written unchecked. Writes out[k:] (up to
-    ``modes``), advances ``state``; returns the new k, or -1 (stack overflow, Brent
-    not converged, a count that decreases)."""
+    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``,
+    the count at that node proves the whole block when N(top) - N(bottom) equals the
+    number of sign changes: then each brackets exactly one simple root and no root lies
+    elsewhere. A piece where the two disagree is halved at a uniform node by the count
+    (never at an oscillator frequency, where multiple roots sit and the count is at
+    round-off), down to single pieces whose roots ``isolate`` finds by count bisection:
+    so a spurious sign change (a function that has lost its digits) is dropped and a
+    root without one (a double root) is found. Without ``certify`` the sign-change roots
+    are written unchecked. A root on which Brent does not converge is flagged UNTRUSTED.
+    Writes out[k:] and flags[k:] (up to ``modes``), advances ``state``; returns the new
+    k, or -1 with the state unchanged (a count that decreases, a bisection that
+    overflows)."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -765,6 +789,7 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
     uniform = np.zeros(size, dtype=np.bool_)
     change = np.zeros(size, dtype=np.int64)  # change[i]: a sign change in (w[i-1], w[i]]
     root = np.empty(size)
+    root_flag = np.zeros(size, dtype=np.int64)
     w[0] = w_a
     uniform[0] = True
     m_prev = delta(w_a, p)[0]
@@ -799,11 +824,10 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
         w[n] = x
         uniform[n] = is_uniform
         if (m > 0.0) != (m_prev > 0.0):
-            r, its, ok = refine(delta, a_left, x, p, 0.0, 200)
-            if not ok:
-                return -1
+            r, its, ok = refine(delta, a_left, x, p, rtol, 200)
             change[n] = 1
             root[n] = r
+            root_flag[n] = 0 if ok else UNTRUSTED
             found += 1
         a_left = x
         m_prev = m
@@ -815,20 +839,17 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
         if at_stop or (is_uniform and (found >= quota or bu >= b_cap)):
             break
     top = n - 1
-    state[STATE_W] = w[top]
     if not certify:
         for i in range(1, n):
-            if change[i] == 1 and k < modes:
-                out[k] = root[i]
-                k += 1
-                state[STATE_LAST] = 1
+            if change[i] == 1:
+                k = write_root(out, flags, k, modes, root[i], root_flag[i], 1, state)
+        state[STATE_W] = w[top]
         state[STATE_COUNT] = n_a + found
         state[STATE_K] = k
         return k
     n_b = count(w[top], p)
     if n_b < n_a:
         return -1
-    state[STATE_COUNT] = n_b
     changes = np.zeros(n, dtype=np.int64)  # sign changes in (w[0], w[i]]
     for i in range(1, n):
         changes[i] = changes[i - 1] + change[i]
@@ -850,10 +871,8 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
         nj = snj[depth]
         if nj - ni == changes[j0] - changes[i0]:
             for i in range(i0 + 1, j0 + 1):
-                if change[i] == 1 and k < modes:
-                    out[k] = root[i]
-                    k += 1
-                    state[STATE_LAST] = 1
+                if change[i] == 1:
+                    k = write_root(out, flags, k, modes, root[i], root_flag[i], 1, state)
             continue
         # cut at the uniform node nearest the middle
         cut = -1
@@ -866,7 +885,7 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
                 cut = mid - d
                 break
         if cut < 0:
-            k = isolate(delta, count, w[i0], w[j0], ni, nj, p, out, k, modes, state)
+            k = isolate(delta, count, w[i0], w[j0], ni, nj, p, out, flags, k, modes, state, rtol)
             if k < 0:
                 return -1
             continue
@@ -874,23 +893,39 @@ def lowest_block(delta, count, osc_frequencies, p, modes, out, state, quota, cer
             return -1
         nm = min(max(count(w[cut], p), ni), nj)
         depth = push_halves(si, sj, sni, snj, depth, i0, cut, j0, ni, nm, nj)
+    state[STATE_W] = w[top]
+    state[STATE_COUNT] = n_b
     state[STATE_K] = k
     return k
 
 
 @njit(cache=True)
-def lowest_run(delta, count, osc_frequencies, p, modes, out, state, k_stop, certify, w_stop):
+def lowest_run(
+    delta, count, osc_frequencies, p, modes, out, flags, state, k_stop, certify, w_stop, rtol
+):
     """Blocks of ``lowest_block`` until k_stop values are written (k_stop <= modes) or
-    the search reaches ``w_stop`` (the top of a band; inf for the lowest modes);
-    returns the new k, or -1 (a block failed, or MAX_STALLED_BLOCKS in a row found
-    nothing: the count or the function is broken here)."""
+    the search reaches ``w_stop`` (the top of a band; inf for the lowest modes). A block
+    the count cannot certify runs again without it, and so does the rest of the search
+    (state[STATE_CERTIFIED] = 0, state[STATE_FAILED] = where it stopped). Returns the new
+    k, or -1 when MAX_STALLED_BLOCKS blocks in a row found nothing (the count or the
+    function is broken here)."""
     k = int(state[STATE_K])
+    certify = certify and state[STATE_CERTIFIED] == 1.0
     stalled = 0
     while 0 <= k < k_stop and state[STATE_W] < w_stop:
         k_before = k
         k = lowest_block(
-            delta, count, osc_frequencies, p, modes, out, state, k_stop - k, certify, w_stop
+            delta, count, osc_frequencies, p, modes, out, flags, state, k_stop - k, certify,
+            w_stop, rtol
         )
+        if k < 0 and certify:
+            certify = False
+            state[STATE_CERTIFIED] = 0.0
+            state[STATE_FAILED] = state[STATE_W]
+            k = k_before
+            continue
+        if k < 0:
+            return -1
         stalled = stalled + 1 if k == k_before else 0
         if stalled > MAX_STALLED_BLOCKS:
             return -1
@@ -898,23 +933,19 @@ def lowest_run(delta, count, osc_frequencies, p, modes, out, state, k_stop, cert
 
 
 @njit(cache=True)
-def lowest(delta, count, osc_frequencies, rigid_modes, p, modes, out, certify):
-    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``.
+def lowest(delta, count, osc_frequencies, rigid_modes, p, modes, out, flags, state, certify, rtol):
+    """The lowest ``modes`` frequencies (rad/s, repeated by multiplicity) into ``out``, a
+    flag for each in ``flags`` (0 trusted, UNTRUSTED), the search state in ``state``.
 
-    ``lowest_start`` then ``lowest_block`` with the whole remaining quota (one count
-    certifies the scan when every root is a sign change). Returns the true
-    multiplicity of the last root written (the count's, even when fewer copies fit
-    in ``out``; 1 without ``certify``), or 0 when the search cannot certify (a root
-    below the lowest grid node, a bisection that overflows, Brent not converged): the
-    caller then runs the full search."""
-    state = np.zeros(STATE_SIZE)
-    k = lowest_start(count, rigid_modes, p, modes, out, state, certify)
-    if k < 0:
-        return 0
-    k = lowest_run(delta, count, osc_frequencies, p, modes, out, state, modes, certify, np.inf)
-    if k < modes:
-        return 0
-    return int(state[STATE_LAST])
+    ``lowest_start`` then ``lowest_run`` with the whole remaining quota (one count
+    certifies the scan when every root is a sign change). Returns the number of values
+    written (``modes`` unless the search stalled); state[STATE_LAST] is the true
+    multiplicity of the last root (the count's, even when fewer copies fit in ``out``),
+    state[STATE_CERTIFIED] whether the count certified them all."""
+    k = lowest_start(count, rigid_modes, p, modes, out, flags, state, certify)
+    return lowest_run(
+        delta, count, osc_frequencies, p, modes, out, flags, state, modes, certify, np.inf, rtol
+    )
 
 
 # Mode shapes (paper Eq. (5)): an orthonormalisation march with every attached unknown kept.
@@ -1438,22 +1469,25 @@ def entry_counts(fa, omegas, p, out):
 
 
 @njit(cache=True)
-def entry_lowest(fa, p, modes, out, certify):
-    """``lowest`` with the kernel's functions."""
+def entry_lowest(fa, at, p, modes, out, flags, state, certify, rtol):
+    """``lowest`` with the kernel's functions (the characteristic function at fa[at])."""
     return lowest(
-        as_delta(fa[FA_STABLE], fa[FA_STABLE + 1]),
+        as_delta(fa[at], fa[at + 1]),
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
         as_osc(fa[FA_OSC], fa[FA_OSC + 1]),
         as_rigid(fa[FA_RIGID], fa[FA_RIGID + 1]),
         p,
         modes,
         out,
+        flags,
+        state,
         certify,
+        rtol,
     )
 
 
 @njit(cache=True)
-def entry_lowest_start(fa, p, modes, out, state, certify):
+def entry_lowest_start(fa, p, modes, out, flags, state, certify):
     """``lowest_start`` with the kernel's functions."""
     return lowest_start(
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
@@ -1461,37 +1495,47 @@ def entry_lowest_start(fa, p, modes, out, state, certify):
         p,
         modes,
         out,
+        flags,
         state,
         certify,
     )
 
 
 @njit(cache=True)
-def entry_lowest_run(fa, p, modes, out, state, k_stop, certify, w_stop):
-    """``lowest_run`` with the kernel's functions."""
+def entry_lowest_run(fa, at, p, modes, out, flags, state, k_stop, certify, w_stop, rtol):
+    """``lowest_run`` with the kernel's functions (the characteristic function at fa[at])."""
     return lowest_run(
-        as_delta(fa[FA_STABLE], fa[FA_STABLE + 1]),
+        as_delta(fa[at], fa[at + 1]),
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
         as_osc(fa[FA_OSC], fa[FA_OSC + 1]),
         p,
         modes,
         out,
+        flags,
         state,
         k_stop,
         certify,
         w_stop,
+        rtol,
     )
 
 
 @njit(cache=True, parallel=True)
 def entry_sweep_lowest(fa, P, modes, out, certified):
-    """``lowest`` for every parameter vector (row of P), in parallel over the rows."""
+    """``lowest`` (stable) for every parameter vector (row of P), in parallel over the
+    rows; a row is certified when the count certifies all its roots and none is flagged."""
     delta = as_delta(fa[FA_STABLE], fa[FA_STABLE + 1])
     count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
     osc = as_osc(fa[FA_OSC], fa[FA_OSC + 1])
     rigid = as_rigid(fa[FA_RIGID], fa[FA_RIGID + 1])
     for i in prange(P.shape[0]):
-        certified[i] = lowest(delta, count, osc, rigid, P[i], modes, out[i], True) > 0
+        flags = np.zeros(modes, dtype=np.int64)
+        state = np.zeros(STATE_SIZE)
+        k = lowest(delta, count, osc, rigid, P[i], modes, out[i], flags, state, True, 0.0)
+        trusted = True
+        for j in range(modes):
+            trusted = trusted and flags[j] == 0
+        certified[i] = k == modes and state[STATE_CERTIFIED] == 1.0 and trusted
 
 
 @njit(cache=True)

@@ -84,8 +84,10 @@ def check_shapes(sc, sol, tol: float = 1e-7) -> None:
     while i < len(sol.shapes):
         m = sol.shapes[i].multiplicity
         assert m >= 1 and all(s.multiplicity == m for s in sol.shapes[i : i + m])
-        # one root of multiplicity m, or a cluster of m roots too close to separate
-        assert np.all(sol.omega[i : i + m] - sol.omega[i] <= 1e-8 * sol.omega[i + m - 1])
+        # one root of multiplicity m, or a cluster of m roots too close to separate: each
+        # within 1e-8 (relative) of the next (mstmm.modes.clusters)
+        gaps = np.diff(sol.omega[i : i + m])
+        assert np.all(gaps <= 1e-8 * sol.omega[i + 1 : i + m])
         i += m
     for s, w in zip(sol.shapes, sol.omega, strict=True):
         assert s.omega == w

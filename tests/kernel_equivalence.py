@@ -305,8 +305,12 @@ def _compare_at(ref: dict, new: dict, p: np.ndarray, rng: np.random.Generator, i
             out.append(f"u_bar_paper({w!r}) {where}: {Ua} vs {Ub}")
     modes = 6
     oa, ob = np.zeros(modes), np.zeros(modes)
-    ok_a = ref["lowest"](*_search(ref), p, modes, oa, True)
-    ok_b = new["lowest"](*_search(new), p, modes, ob, True)
+    found = []
+    for ns, o in ((ref, oa), (new, ob)):
+        flags, state = np.zeros(modes, dtype=np.int64), np.zeros(ns["STATE_SIZE"])
+        k = ns["lowest"](*_search(ns), p, modes, o, flags, state, True, 0.0)
+        found.append((k, state[ns["STATE_CERTIFIED"]], tuple(flags)))
+    ok_a, ok_b = found
     if ok_a != ok_b or not close(oa, ob):
         out.append(f"lowest {where}: {oa} ({ok_a}) vs {ob} ({ok_b})")
     xs = np.linspace(0.0, p[0], 11)

@@ -26,6 +26,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
+from typing import NamedTuple
 
 import numpy as np
 
@@ -44,6 +45,22 @@ BLOCK_MODES = 256
 
 class KernelError(RuntimeError):
     """A kernel could not be generated, written or loaded."""
+
+
+class Found(NamedTuple):
+    """What the kernel's root search found (:meth:`Kernel.lowest`)."""
+
+    #: Frequencies (rad/s), ascending, repeated by multiplicity (rigid-body zeros first).
+    omega: np.ndarray
+    #: Per value: the count holds a root there that the function does not confirm, or
+    #: Brent's method did not converge (checked again by :func:`mstmm.scan.verify`).
+    untrusted: np.ndarray
+    #: The true multiplicity of the last root (it may exceed its copies in ``omega``).
+    last: int
+    #: Whether the Wittrick-Williams count certified every root (none missed, none extra).
+    certified: bool
+    #: Where the count stopped certifying (rad/s; 0 when ``certified``).
+    failed_at: float
 
 
 def cache_dir() -> Path:
@@ -151,24 +168,17 @@ class Kernel:
     #: Addresses of the compiled functions the shared drivers call (:meth:`_addresses`).
     _fa: np.ndarray | None = field(default=None, repr=False)
 
-    def warm_up(self, p: np.ndarray, what: str = "stable") -> None:
-        """Compile (or load from numba's cache) what a solve calls, once per process.
-
-        ``what``: ``"lowest"`` (the kernel's own scan, all a ``modes=`` solve of
-        the stable formulation needs), or a formulation name (its evaluation and
-        refinement, and the count: the general search). Each compiled function
-        loaded costs a fresh process tens of milliseconds, so only these.
-        """
-        if what in self.warmed:
+    def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
+        """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
+        root search with its characteristic function and the count), once per process.
+        Each compiled function loaded costs a fresh process tens of milliseconds, so only
+        these."""
+        if formulation in self.warmed:
             return
         interpret.mark_compiled()
         with progress.status(f"compiling the {self.topology.key} kernel (numba caches it)"):
-            if what == "lowest":
-                self.lowest(p, 1)
-            else:
-                self.delta(1.0, p, what)
-                self.count_below(1.0, p)
-        self.warmed.add(what)
+            self.lowest(p, 1, formulation=formulation)
+        self.warmed.add(formulation)
 
     def evaluate(
         self, omegas: np.ndarray, p: np.ndarray, formulation: str = "stable"
@@ -241,12 +251,13 @@ class Kernel:
         interpret.mark_compiled()
         return getattr(self.module, name)
 
-    #: The kernel functions the shared search calls.
-    SEARCH = ("delta_stable", "count_below", "oscillator_frequencies", "rigid_body_modes")
+    #: The kernel functions the shared search calls (besides the characteristic function).
+    SEARCH = ("count_below", "oscillator_frequencies", "rigid_body_modes")
 
-    def _search_functions(self) -> tuple:
+    def _search_functions(self, formulation: str) -> tuple:
         """The search's functions as plain Python (the interpreted path)."""
-        return tuple(self._python_function(n) for n in self.SEARCH)
+        names = (f"delta_{formulation}",) + self.SEARCH
+        return tuple(self._python_function(n) for n in names)
 
     def attachments(self, p: np.ndarray) -> int:
         """Number of point components a parameter vector describes."""
@@ -267,7 +278,7 @@ class Kernel:
             return self._compiled(name)
         return self._python_function(name)
 
-    def interprets(self, p: np.ndarray, modes: int, what: str = "lowest") -> bool:
+    def interprets(self, p: np.ndarray, modes: int, what: str = "stable") -> bool:
         """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`); for
         another entry point ``what``, ``modes`` is its cost in modes of ``lowest``."""
         return what not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
@@ -279,33 +290,65 @@ class Kernel:
             self._python = interpret.python_copy(self.module)
         return self._python[name]
 
-    def lowest(self, p: np.ndarray, modes: int, certify: bool = True) -> tuple[np.ndarray, int]:
-        """The lowest ``modes`` frequencies by the kernel's own certified scan.
+    def lowest(
+        self,
+        p: np.ndarray,
+        modes: int,
+        certify: bool = True,
+        formulation: str = "stable",
+        rtol: float = 0.0,
+    ) -> Found:
+        """The lowest ``modes`` frequencies by the kernel's certified scan (the root search;
+        :func:`mstmm.scan.find_roots` drives it).
 
-        Returns ``(omega, last)``: ``last`` is the true multiplicity of the last
-        root (the count's; it exceeds the copies in ``omega`` when the lowest
-        ``modes`` end inside a multiple root), or 0 when the count does not
-        confirm the scan (use :func:`mstmm.scan.find_roots`). Without ``certify``
-        the sign-change roots come unchecked (``last`` is 1). Up to
-        :data:`BLOCK_MODES` modes run in one kernel call; more run block by block
-        (each block certified by one count), with a progress bar on a terminal.
+        Sign changes of the characteristic function on a grid uniform in beta plus every
+        component's own frequency, Brent on each, and one Wittrick-Williams count per
+        block; where the count disagrees, bisection on the count (which finds double
+        roots and drops spurious sign changes). Where the count cannot certify a block
+        the search goes on without it and says so (``Found.certified``). Without
+        ``certify`` the sign-change roots come unchecked. Up to :data:`BLOCK_MODES`
+        modes run in one kernel call; more run block by block (a progress bar on a
+        terminal).
         """
         modes = int(modes)
         out = np.zeros(modes)
+        flags = np.zeros(modes, dtype=np.int64)
+        state = np.zeros(self.module.STATE_SIZE)
         p = _params(p)
         certify = bool(certify)
-        if self.interprets(p, modes):
-            f = self._search_functions()
+        rtol = float(rtol)
+        if formulation == "stable" and self.interprets(p, modes):
+            f = self._search_functions(formulation)
             lowest = self._python_function("lowest")
-            last = interpret.timed_call(lowest, *f, p, modes, out, certify)
+            k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
         elif modes <= BLOCK_MODES:
+            at = self._delta(formulation)
             fa = self._addresses(*self.SEARCH)
-            last = self._entry("lowest")(fa, p, modes, out, certify)
+            k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
-            last = self._lowest_in_blocks(p, modes, out, certify)
-        return out, int(last)
+            k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
+        return self._found(out, flags, state, int(k))
 
-    def _lowest_in_blocks(self, p: np.ndarray, modes: int, out: np.ndarray, certify: bool) -> int:
+    def _found(self, out: np.ndarray, flags: np.ndarray, state: np.ndarray, k: int) -> Found:
+        m = self.module
+        k = max(k, 0)
+        certified = bool(state[m.STATE_CERTIFIED] == 1.0) and k == out.size
+        failed = float(state[m.STATE_FAILED]) if not certified else 0.0
+        if not certified and failed == 0.0:
+            failed = float(state[m.STATE_W])
+        return Found(out[:k], flags[:k] != 0, int(state[m.STATE_LAST]), certified, failed)
+
+    def _lowest_in_blocks(
+        self,
+        p: np.ndarray,
+        modes: int,
+        out: np.ndarray,
+        flags: np.ndarray,
+        state: np.ndarray,
+        certify: bool,
+        formulation: str,
+        rtol: float,
+    ) -> int:
         """:meth:`lowest` as a Python loop over kernel blocks, drawing progress between them.
 
         A block holds :data:`BLOCK_MODES` modes or a quarter of those found so
@@ -313,57 +356,66 @@ class Kernel:
         (about 0.25 us per mode below it on the paper's example, against about
         12 us per mode for the scan and Brent), so the counts add under 10% and
         the cost stays linear in ``modes``."""
+        at = self._delta(formulation)
         fa = self._addresses(*self.SEARCH)
-        state = np.zeros(self.module.STATE_SIZE)
-        k = int(self._entry("lowest_start")(fa, p, modes, out, state, certify))
+        k = int(self._entry("lowest_start")(fa, p, modes, out, flags, state, certify))
         run = self._entry("lowest_run")
         bar = progress.Bar(modes, "modes")
         try:
             bar.update(max(k, 0))
             while 0 <= k < modes:
                 stop = min(modes, k + max(BLOCK_MODES, k // 4))
-                k_new = int(run(fa, p, modes, out, state, stop, certify, np.inf))
+                k_new = int(run(fa, at, p, modes, out, flags, state, stop, certify, np.inf, rtol))
                 bar.update(max(k_new - k, 0))
                 k = k_new
         finally:
             bar.close()
-        return int(state[self.module.STATE_LAST]) if k >= modes else 0
+        return k
 
     def roots_in_band(
-        self, p: np.ndarray, lo: float, hi: float, from_bottom: bool
-    ) -> np.ndarray | None:
+        self,
+        p: np.ndarray,
+        lo: float,
+        hi: float,
+        from_bottom: bool,
+        formulation: str = "stable",
+        rtol: float = 0.0,
+    ) -> Found:
         """The roots between ``lo`` and ``hi`` as the count sees them (rad/s, ascending,
-        repeated by multiplicity) by the certified search of :meth:`lowest`, started at
-        ``lo`` and stopped at ``hi``; None when it cannot certify them (use the general
-        search). ``from_bottom``: start where :meth:`lowest` starts instead (``lo`` is
-        below its lowest scan node, beta = 1e-3), rigid-body zeros included. Roots within
-        the count's resolution of an edge may fall either way: callers search a wider
-        band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
+        repeated by multiplicity) by the search of :meth:`lowest`, started at ``lo`` and
+        stopped at ``hi``. ``from_bottom``: start where :meth:`lowest` starts instead
+        (``lo`` is below its lowest scan node, beta = 1e-3), rigid-body zeros included.
+        Roots within the count's resolution of an edge may fall either way: callers
+        search a wider band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
         p = _params(p)
         m = self.module
+        at = self._delta(formulation)
         fa = self._addresses(*self.SEARCH)
-        state = np.zeros(m.STATE_SIZE)
         n_hi = int(self.count_below(hi, p)[0])
+        n_lo = 0 if from_bottom else int(self.count_below(lo, p)[0])
+        size = max(n_hi - n_lo, 0)
+        out = np.zeros(size)
+        flags = np.zeros(size, dtype=np.int64)
+        state = np.zeros(m.STATE_SIZE)
         if from_bottom:
-            out = np.zeros(n_hi)
-            k = int(self._entry("lowest_start")(fa, p, n_hi, out, state, True))
+            k = int(self._entry("lowest_start")(fa, p, size, out, flags, state, True))
         else:
-            n_lo = int(self.count_below(lo, p)[0])
-            if n_hi < n_lo:
-                return None
-            out = np.zeros(n_hi - n_lo)
             state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
+            state[m.STATE_CERTIFIED] = 1.0
             k = 0
-        if 0 <= k < out.size:
+        if n_hi < n_lo:  # a count that decreases: nothing it says can be certified
+            state[m.STATE_CERTIFIED], state[m.STATE_FAILED] = 0.0, lo
+        if 0 <= k < size:
             run = self._entry("lowest_run")
-            k = int(run(fa, p, out.size, out, state, out.size, True, float(hi)))
-        return out if k == out.size else None
+            k = int(run(fa, at, p, size, out, flags, state, size, True, float(hi), rtol))
+        return self._found(out, flags, state, k)
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`lowest` for every row of ``P``, in parallel on all cores (numba prange)."""
         P = np.ascontiguousarray(P, dtype=np.float64)
         out = np.zeros((P.shape[0], int(modes)))
         certified = np.zeros(P.shape[0], dtype=np.bool_)
+        self._delta("stable")
         fa = self._addresses(*self.SEARCH)
         self._entry("sweep_lowest")(fa, P, int(modes), out, certified)
         return out, certified

@@ -13,9 +13,9 @@ with its geometric equation (paper Eqs. (2)-(3)), so nothing is divided by
 the mass moves. The end's conditions give the null space; the shapes are walked
 back by multiplications only.
 
-A root of multiplicity ``m``, or a cluster of ``m`` roots closer (relatively)
-than :data:`CLUSTER`, which no float64 computation can tell apart, gets ``m``
-shapes: the ``m`` smallest right singular vectors of the end matrix (at the
+A root of multiplicity ``m``, or a cluster of ``m`` roots each closer (relatively)
+than :data:`CLUSTER` to the next, which no float64 computation can tell apart, gets
+``m`` shapes: the ``m`` smallest right singular vectors of the end matrix (at the
 cluster's centre or at one of its roots, wherever it is most singular on ``m``
 directions), made orthonormal in the mass inner product
 ``int mbar Y_i Y_j dx + sum m Y_mi Y_mj``. Shapes are then scaled to

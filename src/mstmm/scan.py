@@ -1,26 +1,26 @@
-"""Root search on the characteristic function: grid scan, recursive minimum search, refinement.
+"""The root search's driver: the kernel's certified scan, band edges, and the last checks.
 
-The idea of the seed's recursive eigenvalue search (paper ref. [9]): look at
-``|Delta(omega)|``, not only at its sign. On a grid uniform in ``beta = lam L``
-(beam modes are spaced about ``pi`` apart in ``beta``), with extra nodes
-clustered around each oscillator frequency ``sqrt(k/m)`` (where roots crowd):
+One search finds the roots, the kernel's (``lowest`` in ``generated/numerics.py``,
+:meth:`mstmm.kernels.Kernel.lowest`), for either formulation, ``modes=`` or ``band=``:
 
-* a sign change between two nodes is refined by Brent's method (in the kernel);
-* a local minimum of ``log|Delta|`` without a sign change is searched
-  recursively on finer grids: a sign change found there gives two close roots;
-  a minimum that keeps falling to round-off level is an even-multiplicity root,
-  located on the derivative's sign change;
-* zero-frequency rigid-body modes are counted from the end conditions.
+* sign changes of the pole-free characteristic function on a grid uniform in
+  ``beta = lam L`` (beam modes lie about ``pi`` apart) plus a node at every
+  component's own frequency (where roots crowd), each refined by Brent's method;
+* one Wittrick-Williams count ``N(omega)`` (independent of the characteristic
+  function) per block of sign changes: when ``N(top) - N(bottom)`` equals their number,
+  each brackets exactly one simple root and none lies elsewhere;
+* where the two disagree, bisection on the count: a spurious sign change (a function
+  that has lost its digits, as the paper's at high modes) is dropped, a root without
+  one (a double root: identical oscillators at one point) is found, and a count jump
+  that stays above one down to round-off width is a multiple root of that multiplicity;
+* where the count itself cannot certify (it does not settle on the rigid-body modes at
+  the bottom, or decreases), the search goes on without it and the result says so.
 
-Then every root is checked against the kernel's root count ``N(omega)``
-(Wittrick-Williams, independent of the characteristic function): the band is
-cut at the midpoints between consecutive roots and each piece must hold
-exactly the roots found in it. A piece holding more is searched by bisection
-on the count (which cannot miss a root), a root in a piece holding none is
-dropped, and a piece whose count stays above one down to round-off width is a
-multiple root of that multiplicity.
-
-The interface is :func:`find_roots`; the kernel supplies the evaluations.
+This module turns the kernel's answer into :class:`Root` values: it widens a band by
+a margin and keeps roots by value (both edges inclusive by 4 ulp), checks again every
+root the kernel flagged, and every root of the paper formulation (whose Brent root
+may sit anywhere in its bracket once the function is noise), and cuts ``modes=`` at
+the true multiplicity of the last root.
 """
 
 from __future__ import annotations
@@ -30,21 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels import Kernel
+from .kernels import Found, Kernel
 
-#: Grid nodes per ``pi`` of ``beta`` (about one beam mode).
-NODES_PER_MODE = 24
-#: Relative offsets of the extra nodes around an oscillator frequency.
-CLUSTER = np.concatenate([-np.logspace(-1, -9, 9), [0.0], np.logspace(-9, -1, 9)])
-#: Depth of the recursive minimum search (each level refines a cell 16-fold).
-MAX_DEPTH = 12
-#: A minimum counts as a double root when |Delta| falls this far below its neighbours.
-DOUBLE_ROOT_DROP = 1e-12
-#: Evaluations the recursive search may spend per grid node. A characteristic
-#: function that has lost its digits (the paper's, at high modes) is noise with
-#: a sign change and a local minimum in every cell; without a budget the
-#: recursion would branch without end. The count fills in what is left.
-BUDGET_PER_NODE = 64
 #: A root is trusted when the count finds a root within this relative distance
 #: (the count itself resolves roots to about 1e-9 relative up to the 100th mode)
 #: (or within the refinement tolerance, when that is looser) ...
@@ -57,6 +44,8 @@ BAND_EDGE = 4.0 * 2.220446049250313e-16
 #: The search of a band runs on one this much wider (relative) on each side; the
 #: roots are then kept by value (:func:`band_roots`).
 BAND_MARGIN = 1e-6
+#: The lowest node of the kernel's scan, in beta = lam L.
+LOWEST_NODE = 1e-3
 
 
 @dataclass(frozen=True)
@@ -66,7 +55,7 @@ class Root:
     omega: float
     multiplicity: int = 1
     converged: bool = True
-    how: str = "sign"  # sign | minimum | rigid
+    how: str = "scan"  # scan | rigid
     #: Copies reported when the lowest ``modes`` end inside this root (fewer than
     #: ``multiplicity``); 0: all of them.
     copies: int = 0
@@ -75,6 +64,15 @@ class Root:
     def reported(self) -> int:
         """How many times this root appears in a list repeated by multiplicity."""
         return self.copies or self.multiplicity
+
+
+@dataclass(frozen=True)
+class Roots:
+    """The roots of a search, whether the count certified them, and what to tell the user."""
+
+    roots: list[Root]
+    count_checked: bool
+    notes: list[str]
 
 
 def beta_of(omega, p):
@@ -87,133 +85,6 @@ def omega_of(beta, p):
     """Inverse of :func:`beta_of`."""
     L, EI, mbar = p[0], p[1], p[2]
     return np.square(np.asarray(beta) / L) * math.sqrt(EI / mbar)
-
-
-def oscillator_frequencies(kernel: Kernel, p: np.ndarray) -> np.ndarray:
-    """The components' own frequencies (a spring-mass's ``sqrt(k/m)``, a chain's with its
-    beam point held), the places where roots crowd."""
-    return np.unique(kernel.oscillator_frequencies(p))
-
-
-def grid(w_lo: float, w_hi: float, p: np.ndarray, oscillators: np.ndarray) -> np.ndarray:
-    """Scan nodes in ``[w_lo, w_hi]``: uniform in ``beta`` plus clusters at the oscillators."""
-    b_lo, b_hi = float(beta_of(w_lo, p)), float(beta_of(w_hi, p))
-    n = max(2, int(math.ceil((b_hi - b_lo) / math.pi * NODES_PER_MODE)) + 1)
-    nodes = [omega_of(np.linspace(b_lo, b_hi, n), p)]
-    for w in oscillators:
-        c = w * (1.0 + CLUSTER)
-        nodes.append(c[(c > w_lo) & (c < w_hi)])
-    out = np.unique(np.concatenate(nodes))
-    out[0], out[-1] = w_lo, w_hi
-    return out
-
-
-def _logabs(mant: np.ndarray, logs: np.ndarray) -> np.ndarray:
-    with np.errstate(divide="ignore"):
-        return np.log(np.abs(mant)) + logs
-
-
-def _sign_brackets(w, mant):
-    s = np.sign(mant)
-    return [i for i in range(len(w) - 1) if s[i] * s[i + 1] < 0]
-
-
-def _exact_zeros(w, mant):
-    return [i for i in range(1, len(w) - 1) if mant[i] == 0.0]
-
-
-def _local_minima(w, mant, la):
-    s = np.sign(mant)
-    out = []
-    for i in range(1, len(w) - 1):
-        if la[i] < la[i - 1] and la[i] < la[i + 1] and s[i - 1] == s[i] == s[i + 1] != 0:
-            out.append(i)
-    return out
-
-
-class _Search:
-    def __init__(self, kernel: Kernel, p: np.ndarray, formulation: str, rtol: float):
-        self.kernel, self.p, self.formulation, self.rtol = kernel, p, formulation, rtol
-        self.roots: list[Root] = []
-        self.budget = 0
-        self.exhausted = False
-
-    def evaluate(self, w):
-        self.budget -= len(w)
-        mant, logs = self.kernel.evaluate(w, self.p, self.formulation)
-        return mant, _logabs(mant, logs)
-
-    def bracket(self, a: float, b: float) -> None:
-        root, _its, ok = self.kernel.refine(a, b, self.p, self.formulation, self.rtol)
-        self.roots.append(Root(root, 1, ok, "sign"))
-
-    def scan(self, w: np.ndarray) -> None:
-        self.budget += BUDGET_PER_NODE * len(w)
-        mant, la = self.evaluate(w)
-        self.scan_values(w, mant, la, depth=0)
-
-    def scan_values(self, w, mant, la, depth: int) -> None:
-        for i in _sign_brackets(w, mant):
-            self.bracket(w[i], w[i + 1])
-        for i in _exact_zeros(w, mant):
-            self.roots.append(Root(float(w[i]), 1, True, "sign"))
-        for i in _local_minima(w, mant, la):
-            self.minimum(w[i - 1], w[i + 1], la[i - 1], la[i + 1], depth)
-
-    def minimum(self, a: float, b: float, la: float, lb: float, depth: int) -> None:
-        """Recursive search of a cell around a local minimum of log|Delta|."""
-        if self.budget <= 0:
-            self.exhausted = True
-            return
-        w = np.linspace(a, b, 17)
-        mant, lw = self.evaluate(w)
-        if _sign_brackets(w, mant) or _exact_zeros(w, mant):
-            self.scan_values(w, mant, lw, depth + 1)
-            return
-        i = int(np.argmin(lw))
-        if i in (0, len(w) - 1):
-            return  # the minimum left the cell: a slope, no root
-        drop = lw[i] - min(la, lb)
-        if (
-            drop < math.log(DOUBLE_ROOT_DROP)
-            or depth >= MAX_DEPTH
-            or w[i + 1] - w[i] <= 4e-16 * w[i]
-        ):
-            if drop < math.log(DOUBLE_ROOT_DROP):
-                self.double_root(w[i - 1], w[i + 1])
-            return
-        self.minimum(w[i - 1], w[i + 1], la, lb, depth + 1)
-
-    def double_root(self, a: float, b: float) -> None:
-        """Even-multiplicity root: bisect on the sign of the slope of |Delta|."""
-        h = (b - a) * 1e-3
-
-        def slope(x):
-            (m1, m2), (g1, g2) = self.kernel.evaluate(
-                np.array([x - h, x + h]), self.p, self.formulation
-            )
-            return abs(m2) * math.exp(g2 - g1) - abs(m1)
-
-        lo, hi = a, b
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            if hi - lo <= 4e-16 * mid:
-                break
-            if slope(mid) < 0.0:
-                lo = mid
-            else:
-                hi = mid
-            h = min(h, 0.25 * (hi - lo)) or h
-        self.roots.append(Root(0.5 * (lo + hi), 2, True, "minimum"))
-
-
-@dataclass
-class Roots:
-    """The roots of a search and whether the independent count confirmed them."""
-
-    roots: list[Root]
-    count_checked: bool
-    notes: list[str]
 
 
 def find_roots(
@@ -240,7 +111,15 @@ def find_roots(
     p = np.ascontiguousarray(p, dtype=np.float64)
     if band is not None:
         return band_roots(kernel, p, band, formulation, rtol, certify)
-    return _search_roots(kernel, p, None, modes, formulation, rtol, certify)
+    found = kernel.lowest(p, int(modes), certify, formulation, rtol)
+    out = _roots(kernel, p, found, formulation, rtol, certify)
+    if len(found.omega) < int(modes):
+        out.notes.append(
+            f"the search found {len(found.omega)} of the {int(modes)} roots asked for and"
+            f" stalled above omega = {found.failed_at:.6g} rad/s"
+        )
+        return Roots(out.roots, False, out.notes)
+    return out
 
 
 def band_roots(
@@ -258,169 +137,60 @@ def band_roots(
     a band :data:`BAND_MARGIN` wider on each side (wider again when a root lies
     within ``TRUST`` of that edge), and the refined roots, accurate to an ulp or
     two, are kept by value. A root within 1-2 ulp of an edge is then reported
-    exactly once, and the count certifies every root of the wider band. The
-    stable formulation runs the kernel's search (one count per block of sign
-    changes, as for ``modes=``; :meth:`mstmm.kernels.Kernel.roots_in_band`), the
-    general search below only where that cannot certify.
+    exactly once, and the count certifies every root of the wider band.
     """
     lo, hi = float(band[0]), float(band[1])
     margin = BAND_MARGIN
     for _ in range(4):
         wide = (lo * (1.0 - margin), hi * (1.0 + margin))
-        found = None
-        if formulation == "stable" and certify:  # the kernel's search, as for modes=
-            w = kernel.roots_in_band(p, *wide, from_bottom=wide[0] <= float(omega_of(1e-3, p)))
-            if w is not None:
-                found = Roots(simple_roots(w, kernel.rigid_body_modes(p)), True, [])
-        if found is None:
-            found = _search_roots(kernel, p, wide, None, formulation, rtol, certify)
+        from_bottom = wide[0] <= float(omega_of(LOWEST_NODE, p))
+        if certify:
+            found = kernel.roots_in_band(p, *wide, from_bottom, formulation, rtol)
+        else:  # unchecked: the lowest sign changes up to the band's top
+            found = _unchecked_up_to(kernel, p, wide[1], formulation, rtol)
+        out = _roots(kernel, p, found, formulation, rtol, certify)
         if not any(
             r.omega > 0.0 and abs(r.omega - edge) <= TRUST * edge
-            for r in found.roots
+            for r in out.roots
             for edge in wide
         ):
             break
         margin *= 16.0
-    keep = [r for r in found.roots if lo * (1.0 - BAND_EDGE) <= r.omega <= hi * (1.0 + BAND_EDGE)]
-    return Roots(keep, found.count_checked, found.notes)
+    keep = [r for r in out.roots if lo * (1.0 - BAND_EDGE) <= r.omega <= hi * (1.0 + BAND_EDGE)]
+    return Roots(keep, out.count_checked, out.notes)
 
 
-def _search_roots(
-    kernel: Kernel,
-    p: np.ndarray,
-    band: tuple[float, float] | None,
-    modes: int | None,
-    formulation: str,
-    rtol: float,
-    certify: bool,
+def _unchecked_up_to(kernel: Kernel, p: np.ndarray, top: float, formulation: str, rtol: float):
+    """The sign-change roots below ``top`` without the count (``certify=False``)."""
+    modes = 16
+    while True:
+        found = kernel.lowest(p, modes, False, formulation, rtol)
+        if len(found.omega) < modes or found.omega[-1] > top:
+            keep = found.omega <= top
+            return Found(found.omega[keep], found.untrusted[keep], 1, False, 0.0)
+        modes *= 2
+
+
+def _roots(
+    kernel: Kernel, p: np.ndarray, found: Found, formulation: str, rtol: float, certify: bool
 ) -> Roots:
-    """:func:`find_roots` on exactly ``band`` (edges as the count sees them), or ``modes``."""
-    search = _Search(kernel, p, formulation, rtol)
-    osc = oscillator_frequencies(kernel, p)
-    rigid = kernel.rigid_body_modes(p)
-    floor = _floor(p, osc)
+    """:class:`Root` values from the kernel's answer, the doubtful ones checked again."""
+    roots = simple_roots(found.omega, found.last, found.untrusted)
     notes: list[str] = []
-    if certify:  # nothing but rigid-body modes may lie below the scan
-        floor, note = _settle_floor(kernel, p, floor, rigid)
-        notes += note
-    if band is not None:
-        w_lo, w_hi = float(band[0]), float(band[1])
-        start = max(w_lo, floor)
-    else:
-        w_lo, start = 0.0, floor
-        b_hi = (modes + 1.5) * math.pi
-        w_hi = float(omega_of(b_hi, p))
-        # the count says how far the lowest `modes` reach
-        while certify and int(kernel.count_below(w_hi, p)[0]) < modes:
-            b_hi *= 1.5
-            w_hi = float(omega_of(b_hi, p))
-    if w_lo <= 0.0 and rigid:
-        search.roots.append(Root(0.0, rigid, True, "rigid"))
-    if w_hi > start:
-        search.scan(grid(start, w_hi, p, osc))
-    roots = _merge(search.roots)
-    checked = True
-    if certify and w_hi > start:
-        roots, checked, more = _certify(search, roots, start, w_hi)
-        notes += more
-        roots = verify(kernel, p, roots, rtol)
-    if search.exhausted:
+    if certify and not found.certified and len(found.omega):
         notes.append(
-            f"the {formulation} characteristic function is noise in places: the recursive"
-            " search stopped at its evaluation budget"
+            "the Wittrick-Williams count could not certify the roots above omega ="
+            f" {found.failed_at:.6g} rad/s: some may be missing or spurious"
         )
-    while band is None and _count(roots) < modes and not certify:
-        start, w_hi = w_hi, 2.0 * w_hi  # without a count: scan further until enough
-        search.roots = []
-        search.scan(grid(start, w_hi, p, osc))
-        roots = _merge(roots + search.roots)
-    if band is None:
-        roots = _truncate(roots, modes)
-    return Roots(roots, checked, notes)
+    if formulation != "stable" or found.untrusted.any():
+        roots = verify(kernel, p, roots, rtol, recheck=formulation != "stable")
+    return Roots(roots, bool(found.certified) or not certify, notes)
 
 
-def _settle_floor(kernel: Kernel, p: np.ndarray, floor: float, rigid: int):
-    """Move the bottom of the scan until the count there is exactly the rigid-body modes.
-
-    Above it the count must hold every elastic root. Lower when the count sees a
-    root below the floor; higher when it has not yet registered a rigid-body
-    mode: its ``-omega^2`` pivot drowns in round-off at very low frequency when a
-    constrained end sits next to a very short segment (an attachment 1e-6 L from
-    a pin). A count of exactly ``rigid`` at the new floor proves that no elastic
-    root lies below it.
-    """
-    n = int(kernel.count_below(floor, p)[0])
-    while n > rigid and floor > 1e-300:
-        floor *= 1e-3
-        n = int(kernel.count_below(floor, p)[0])
-    raised = floor
-    while n < rigid and raised < 1e300:
-        raised *= 2.0
-        n = int(kernel.count_below(raised, p)[0])
-    if n == rigid:
-        return raised, []
-    return floor, [
-        f"the count does not settle on the {rigid} rigid-body mode(s) near omega = {floor:.3g}:"
-        " roots there are not certified"
-    ]
-
-
-def _certify(search: _Search, roots: list[Root], lo: float, hi: float):
-    """Check the roots in (lo, hi] against the count; add missing ones, drop spurious ones."""
-    kernel, p = search.kernel, search.p
-    fixed = [r for r in roots if r.how == "rigid"]
-    inner = [r for r in roots if r.how != "rigid"]
-    cuts = [lo] + [0.5 * (a.omega + b.omega) for a, b in zip(inner, inner[1:])] + [hi]
-    counts = kernel.count_below(np.array(cuts), p)
-    out: list[Root] = []
-    notes: list[str] = []
-    dropped: list[float] = []
-    for i, r in enumerate(inner):
-        expected = int(counts[i + 1] - counts[i])
-        if expected == 1:
-            out.append(Root(r.omega, 1, r.converged, r.how))
-        elif expected == 0:
-            dropped.append(r.omega)
-        else:
-            out.extend(_isolate(search, cuts[i], cuts[i + 1], int(counts[i]), int(counts[i + 1])))
-    if not inner:
-        out.extend(_isolate(search, lo, hi, int(counts[0]), int(counts[-1])))
-    if dropped:
-        notes.append(
-            f"{len(dropped)} zero(s) of the characteristic function between {min(dropped):.6g}"
-            f" and {max(dropped):.6g} rad/s are not roots by the count: dropped"
-        )
-    total = int(counts[-1] - counts[0])
-    # a sign change of the pole-free stable function is a root: if the count disowns
-    # one, one of the two is wrong here
-    checked = _count(out) == total and not (dropped and search.formulation == "stable")
-    if not checked:
-        notes.append(f"count says {total} roots in ({lo:.6g}, {hi:.6g}), found {_count(out)}")
-    # pieces are disjoint: no duplicates to merge, and close roots must stay apart
-    return sorted(fixed + out, key=lambda r: r.omega), checked, notes
-
-
-def _isolate(search: _Search, a: float, b: float, na: int, nb: int) -> list[Root]:
-    """All roots in (a, b) by bisection on the count ``N(b) - N(a)``, then Brent."""
-    if nb <= na:
-        return []
-    kernel, p = search.kernel, search.p
-    if b - a <= 8e-16 * b:
-        return [Root(0.5 * (a + b), nb - na, True, "count")]
-    if nb - na == 1:
-        (ma, mb), _ = kernel.evaluate(np.array([a, b]), p, search.formulation)
-        if ma * mb < 0.0:
-            root, _its, ok = kernel.refine(a, b, p, search.formulation, search.rtol)
-            return [Root(root, 1, ok, "count")]
-    mid = 0.5 * (a + b)
-    # clamped as in the kernel's isolate: a count off by one at round-off distance
-    # from a root must not add or lose one
-    nm = min(max(int(kernel.count_below(mid, p)[0]), na), nb)
-    return _isolate(search, a, mid, na, nm) + _isolate(search, mid, b, nm, nb)
-
-
-def verify(kernel: Kernel, p: np.ndarray, roots: list[Root], rtol: float = 0.0) -> list[Root]:
-    """Mark as not converged every root that neither check below confirms.
+def verify(
+    kernel: Kernel, p: np.ndarray, roots: list[Root], rtol: float = 0.0, recheck: bool = True
+) -> list[Root]:
+    """Confirm doubtful roots; mark as not converged every one that neither check confirms.
 
     A root ``omega`` of multiplicity ``m`` is confirmed when the count finds at
     least ``m`` natural frequencies within ``max(TRUST, 4 rtol)`` relative of
@@ -429,9 +199,12 @@ def verify(kernel: Kernel, p: np.ndarray, roots: list[Root], rtol: float = 0.0) 
     function, accurate to round-off (``docs/stability.md``), changes sign within
     ``max(STABLE_TRUST, 4 rtol)`` of it. A value that Brent's method took from round-off
     noise (the paper's formulation at high modes) fails both and is flagged
-    instead of being printed as a frequency.
+    instead of being printed as a frequency. ``recheck``: check every root (else only
+    those already marked not converged, which a check may confirm).
     """
-    inner = [i for i, r in enumerate(roots) if r.how != "rigid" and r.converged]
+    inner = [
+        i for i, r in enumerate(roots) if r.how != "rigid" and (recheck or not r.converged)
+    ]
     if not inner:
         return roots
     rel, rel_stable = max(TRUST, 4.0 * rtol), max(STABLE_TRUST, 4.0 * rtol)
@@ -440,11 +213,10 @@ def verify(kernel: Kernel, p: np.ndarray, roots: list[Root], rtol: float = 0.0) 
     out = list(roots)
     for j, i in enumerate(inner):
         r = roots[i]
-        if int(n[len(inner) + j]) - int(n[j]) >= r.multiplicity:
-            continue
-        if r.multiplicity % 2 == 1 and _stable_sign_change(kernel, p, r.omega, rel_stable):
-            continue
-        out[i] = Root(r.omega, r.multiplicity, False, r.how)
+        confirmed = int(n[len(inner) + j]) - int(n[j]) >= r.multiplicity or (
+            r.multiplicity % 2 == 1 and _stable_sign_change(kernel, p, r.omega, rel_stable)
+        )
+        out[i] = Root(r.omega, r.multiplicity, confirmed, r.how, r.copies)
     return out
 
 
@@ -454,60 +226,25 @@ def _stable_sign_change(kernel: Kernel, p: np.ndarray, omega: float, rel: float)
     return bool(mant[0] * mant[1] < 0.0)
 
 
-def simple_roots(omega: np.ndarray, rigid: int, last_multiplicity: int = 0) -> list[Root]:
+def simple_roots(
+    omega: np.ndarray, last_multiplicity: int = 0, untrusted: np.ndarray | None = None
+) -> list[Root]:
     """Roots from an ascending array repeated by multiplicity (zeros: the rigid-body modes).
 
     ``last_multiplicity``: the true multiplicity of the last root when the array
-    may end inside it (the kernel's ``lowest`` reports it); its ``copies`` are
-    then the values present.
+    may end inside it (the kernel's search reports it); its ``copies`` are then the
+    values present. ``untrusted``: per value, a root the search could not confirm
+    (the root is then not converged until :func:`verify` confirms it).
     """
     roots: list[Root] = []
-    for w in omega:
+    for i, w in enumerate(omega):
+        ok = untrusted is None or not untrusted[i]
         if roots and roots[-1].omega == w:
             last = roots[-1]
-            roots[-1] = Root(last.omega, last.multiplicity + 1, True, last.how)
+            roots[-1] = Root(last.omega, last.multiplicity + 1, last.converged and ok, last.how)
         else:
-            roots.append(Root(float(w), 1, True, "rigid" if w == 0.0 else "sign"))
+            roots.append(Root(float(w), 1, ok, "rigid" if w == 0.0 else "scan"))
     if roots and last_multiplicity > roots[-1].multiplicity:
         last = roots[-1]
-        roots[-1] = Root(last.omega, last_multiplicity, True, last.how, last.multiplicity)
+        roots[-1] = Root(last.omega, last_multiplicity, last.converged, last.how, last.multiplicity)
     return roots
-
-
-def _floor(p, osc) -> float:
-    """Lowest scanned frequency: below every beam mode and every oscillator."""
-    w = float(omega_of(1e-3, p))
-    if osc.size:
-        w = min(w, 0.01 * float(osc.min()))
-    return w
-
-
-def _count(roots: list[Root]) -> int:
-    return sum(r.multiplicity for r in roots)
-
-
-def _merge(roots: list[Root]) -> list[Root]:
-    """Sort and drop duplicates (a root found from two neighbouring scans)."""
-    out: list[Root] = []
-    for r in sorted(roots, key=lambda r: r.omega):
-        if (
-            out
-            and abs(r.omega - out[-1].omega) <= 1e-13 * max(abs(r.omega), 1e-300)
-            and r.how == out[-1].how
-        ):
-            continue
-        out.append(r)
-    return out
-
-
-def _truncate(roots: list[Root], modes: int) -> list[Root]:
-    """The lowest ``modes`` values; a multiple root cut keeps its true multiplicity."""
-    out, n = [], 0
-    for r in roots:
-        if n >= modes:
-            break
-        take = min(r.multiplicity, modes - n)
-        cut = take != r.multiplicity
-        out.append(Root(r.omega, r.multiplicity, r.converged, r.how, take) if cut else r)
-        n += take
-    return out

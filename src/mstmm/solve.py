@@ -10,7 +10,7 @@ import numpy as np
 
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
-from .scan import TRUST, Roots, find_roots, simple_roots
+from .scan import TRUST, find_roots
 from .scene import Scene
 from .topology import parameter_vector, topology_of
 
@@ -103,12 +103,12 @@ def solve(
     ``"paper"`` (det U_bar of paper Eq. (4) as printed). Mode shapes follow
     paper Eq. (5) unless ``shapes=False``: one per entry of ``omega``, rigid-body zeros
     included, a mass-orthonormal basis of the eigenspace of a multiple root or of a
-    cluster of roots too close to separate (:mod:`mstmm.modes`). ``rtol`` is the relative tolerance
-    of the refinement (0: to machine precision); the stable formulation's
-    ``modes=`` search refines to machine precision whatever ``rtol``, which
-    costs less than the general search would with a looser one. Every root is
-    checked against the Wittrick-Williams count; one it does not confirm (see
-    :func:`mstmm.scan.verify`) is marked not converged, with a warning.
+    cluster of roots too close to separate (:mod:`mstmm.modes`). ``rtol`` is the relative
+    tolerance of Brent's refinement (0: to machine precision). One root search serves
+    both formulations and both ``modes=`` and ``band=`` (:mod:`mstmm.scan`): every root
+    is certified by the Wittrick-Williams count; one it does not confirm (see
+    :func:`mstmm.scan.verify`) is marked not converged, with a warning, and a search the
+    count could not certify says so (``count_checked`` False, a warning).
 
     Both edges of ``band = (lo, hi)`` are inclusive by 4 ulp: a root is
     reported when ``lo (1 - 4 eps) <= omega <= hi (1 + 4 eps)``, eps = 2.2e-16
@@ -128,29 +128,14 @@ def solve(
     timings["load"] = t1 - t0
     if 0.0 < kernel.derive_seconds <= timings["load"]:  # derived by this call
         timings["derive"] = kernel.derive_seconds
-    # the kernel's own certified scan serves the common case; the full search the rest
-    # (it refines to machine precision: a looser rtol would not make it faster)
-    fast = modes is not None and formulation == "stable"
-    # a small first solve runs the kernel as Python (mstmm.interpret); otherwise
-    # compile, or load from numba's cache, before timing
-    interpreted = fast and kernel.interprets(p, modes)
+    # a small first solve of the stable formulation runs the kernel as Python
+    # (mstmm.interpret); otherwise compile, or load from numba's cache, before timing
+    interpreted = modes is not None and formulation == "stable" and kernel.interprets(p, modes)
     if not interpreted:
-        kernel.warm_up(p, "lowest" if fast else formulation)
+        kernel.warm_up(p, formulation)
     t2 = time.perf_counter()
     timings["compile"] = t2 - t1
-    found = None
-    if fast:
-        w, last = kernel.lowest(p, modes)
-        if last:
-            # each root is Brent's converged bracket of a sign change of the stable
-            # function inside a piece where the count says exactly one root: that is
-            # already what scan.verify checks, no second pass needed
-            found = Roots(simple_roots(w, kernel.rigid_body_modes(p), last), True, [])
-    if found is None:
-        if interpreted:  # the general search runs compiled
-            kernel.warm_up(p, formulation)
-            interpreted = False
-        found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+    found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
     roots = found.roots
     t3 = time.perf_counter()
     timings["scan_refine"] = t3 - t2

@@ -3,10 +3,9 @@
 ``sweep(scene, {"attachments[2].k": values, ...}, modes=N)`` varies the named
 fields together (equal-length arrays, point by point) and returns the lowest
 ``N`` frequencies of every point, an ``(n_points, N)`` array. The kernel's
-certified scan runs over the points with numba ``prange``; a point it cannot
-certify (double or very close roots) goes through the full search
-(:func:`mstmm.scan.find_roots`); a point even that cannot certify is NaN, with
-a warning, never a silent guess.
+certified root search (:mod:`mstmm.scan`) runs over the points with numba ``prange``;
+a point whose roots the count cannot certify is NaN, with a warning, never a silent
+guess.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ from mstmm.derive import catalog
 from .events import read_events, sort_events
 from .kernels import Kernel, load_kernel
 from .progress import Bar
-from .scan import find_roots
 from .scene import CHECKS, Scene, SceneError, check_placement, check_representable
 from .topology import field_index, parameter_vector, topology_of
 
@@ -181,21 +179,12 @@ def sweep(
     topology = topology_of(scene)
     if scheduler is not None:
         out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk, progress)
-        if kernel is None and not certified.all():
-            kernel = load_kernel(topology)
     else:
         if kernel is None:
             kernel = load_kernel(topology)
         out, certified = _local_sweep(kernel, P, modes, progress)
-    unsure = 0
-    for i in np.flatnonzero(~certified):
-        found = find_roots(kernel, P[i], modes=modes)
-        omega = [r.omega for r in found.roots for _ in range(r.reported)]
-        if found.count_checked and len(omega) == modes:
-            out[i] = omega
-        else:
-            out[i] = math.nan
-            unsure += 1
+    out[~certified] = math.nan
+    unsure = int(np.count_nonzero(~certified))
     if unsure:
         warnings.warn(
             f"{unsure} of {len(P)} points could not be certified by the root count: set to NaN",
