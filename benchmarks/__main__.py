@@ -416,6 +416,70 @@ def findings(wp, sc) -> list[str]:
     return out
 
 
+def component_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
+    """Issue 13's targets, from what ``benchmarks.components`` and ``benchmarks.against``
+    recorded in docs/figures.json (each with its own date and command)."""
+    from .workprecision import fmt_time
+
+    rows = []
+    co, ag = figs.get("components"), figs.get("against")
+    if ag:
+        rows.append(
+            (
+                f"paper example, lowest {ag['modes']}, warm, frequencies only: not slower than"
+                f" before the component library ({ag['other_label']})",
+                "ratio <= 1",
+                f"{fmt_time(ag['this_seconds'])} vs {fmt_time(ag['other_seconds'])} (ratio"
+                f" {ag['ratio']:.2f}, {ag['rounds']} interleaved rounds; frequencies agree to"
+                f" {ag['largest_difference']:.1e})",
+                _status(ag["ratio"] <= 1.0),
+                f"`{ag['measured']['command']}`, {ag['measured']['date']}",
+            )
+        )
+    if co:
+        m, first = co["mixed"], co["first_run"]
+        rows.append(
+            (
+                f"{m['components']} components of every kind on a 3-segment beam: lowest 20, warm",
+                "<= 50 ms",
+                f"{fmt_time(m['lowest20_seconds'])} (`Kernel.lowest`); `solve(shapes=False)`"
+                f" {fmt_time(m['solve20_seconds'])}, with mode shapes"
+                f" {fmt_time(m['solve20_shapes_seconds'])}; error against the mpmath reference"
+                f" {m['error_against_reference']:.1e}, certified {m['certified']}",
+                _status(m["lowest20_seconds"] <= 0.05 and m["certified"]),
+                f"`{co['measured']['command']}`, {co['measured']['date']}",
+            )
+        )
+        for label, key in (
+            ("the shared numerics already compiled on the machine", "numerics_compiled"),
+            ("nothing compiled yet (the first run after installing)", "nothing_compiled"),
+        ):
+            r = first[key]
+            rows.append(
+                (
+                    "first run of a new topology with every kind (derive + compile + solve,"
+                    f" fresh process, compiled forced): {label}",
+                    "<= 15 s",
+                    f"{fmt_time(r['wall_seconds'])} ({'-'.join(r['ends'])} ends)",
+                    _status(r["wall_seconds"] <= 15.0 and r["certified"]),
+                    "numba compiles the topology's kernel; the shared numerics once per machine",
+                )
+            )
+        d = first.get("default")
+        if d:
+            rows.append(
+                (
+                    "first run of a new topology with every kind, default settings (a small"
+                    " first solve runs as Python)",
+                    "<= 15 s",
+                    f"{fmt_time(d['wall_seconds'])} ({'-'.join(d['ends'])} ends)",
+                    _status(d["wall_seconds"] <= 15.0 and d["certified"]),
+                    "SymPy derives the kernel; nothing is compiled (mstmm.interpret)",
+                )
+            )
+    return rows
+
+
 def targets_markdown(rows) -> str:
     out = [
         "| target | goal | measured | status | what limits it / remark |",
@@ -505,7 +569,7 @@ average is recorded below.
 
 def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=None) -> Path:
     """Write ``out_dir/benchmarks.md`` (and the plots under ``out_dir/img``)."""
-    from . import machine, scaling, study, workprecision
+    from . import figures, machine, scaling, study, workprecision
 
     out_dir.mkdir(parents=True, exist_ok=True)
     parts = [INTRO.format(command=start["command"])]
@@ -525,7 +589,7 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=Non
     parts.append(machine.markdown(start, end, elapsed) + "\n")
     parts.append("## Targets\n")
     parts.append("Goals of the benchmark (not timed unit tests), each with the measured figure.\n")
-    parts.append(targets_markdown(targets(wp, sc, st)))
+    parts.append(targets_markdown(targets(wp, sc, st) + component_rows(figures.load())))
     notes = findings(wp, sc)
     if notes:
         parts.append("## Findings\n")

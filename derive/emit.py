@@ -126,30 +126,30 @@ def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
 
 
 def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
-    """The negative pivots a component adds to the count (returned), and the minors Zc of
-    the node's state subspace carried across it."""
+    """The negative pivots a component adds to the count (``count += ...``), and the
+    minors Zc of the node's state subspace carried across it."""
     values = _value_lines(module)[0]
     if module.COUNT == "constraint":
         # the constrained freedoms as a stiffness PENALTY: exact for the inertia count
         A = sp.eye(4) - sp.Symbol("PENALTY") * d.B * d.Cz
-        return _step_lines(descriptor.point(A), "Zc") + ["return 0"]
+        return _step_lines(descriptor.point(A), "Zc")
     step = _step_lines(d, "Zc")
     if module.COUNT == "split":
         # a hinge: the rotation left of it is eliminated first, pivot S_theta + kappa
         if d.Cz != descriptor.unit(2).T or d.B != descriptor.unit(1):
             raise ValueError(f"{module.KIND}: COUNT 'split' needs Cz = e_M and B = e_theta")
         pivot = [f"pivot = (Zc[1] - ({code(d.Cq[0, 0])}) * Zc[0]) * Zc[0]"]
-        return values + pivot + step + ["return 1 if pivot < 0.0 else 0"]
+        return values + pivot + step + ["if pivot < 0.0:", "    count += 1"]
     if d.n_q == 0:
         descriptor.node_stiffness(d)  # checks that it is one
-        return values + step + ["return 0"]
+        return values + step
     if hasattr(module, "OWN"):
-        return values + step + [f"return {module.OWN}"]
+        return values + step + [f"count += {module.OWN}"]
     if d.n_q != 1 or d.Cz != descriptor.unit(0).T:
         raise ValueError(f"{module.KIND}: a stiffness kind with unknowns needs Cz = e_Y, n_q = 1")
     # the unknown's own dynamic stiffness (k - m w^2 over k for a spring-mass)
     pivot = [f"pivot = {code(-d.Cq[0, 0])}"]
-    return values + pivot + step + ["return 1 if pivot < 0.0 else 0"]
+    return values + pivot + step + ["if pivot < 0.0:", "    count += 1"]
 
 
 def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
@@ -210,20 +210,6 @@ def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
 #: each kind present (printed from its descriptor), the statement for no branch, and doc.
 DISPATCH = (
     (
-        "stable",
-        "v, b4, p, o, L, EI, mbar",
-        _stable_lines,
-        "return",
-        "v <- the pole-free compound step of the component at row o (docs/components.md).",
-    ),
-    (
-        "count",
-        "Zc, b4, p, o, L, EI, mbar",
-        _count_lines,
-        "return 0",
-        "The negative pivots the component adds to the count; Zc carried across it.",
-    ),
-    (
         "descriptor",
         "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
         _descriptor_lines,
@@ -249,22 +235,42 @@ DISPATCH = (
 )
 
 
-def _dispatch(kinds: tuple[str, ...]) -> str:
-    """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
-    printed inline (one compiled function per entry, not per kind: compile time)."""
-    parsed = []
+def _parsed(kinds: tuple[str, ...]) -> list:
+    """``(kind, module, descriptor)`` of each kind present, in tag order."""
+    out = []
     for k in kinds:
         module = catalog.kind(k)
-        parsed.append((k, module, _symbolic_descriptor(module)[1]))
+        out.append((k, module, _symbolic_descriptor(module)[1]))
+    return out
+
+
+def _branch_lines(parsed: list, body) -> list[str]:
+    """``if tag == 0: ... elif tag == 1: ...``: one branch per kind present, its body
+    printed from the kind's descriptor by ``body``."""
+    lines = []
+    for t, (k, module, d) in enumerate(parsed):
+        lines.append(f"{'if' if t == 0 else 'elif'} tag == {t}:  # {k}")
+        lines += ["    " + line if line else "" for line in body(module, d) or ["pass"]]
+    return lines
+
+
+def _dispatch(parsed: list) -> str:
+    """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
+    printed inline (one compiled function per entry, not per kind: compile time)."""
     out = []
     for what, args, body, tail, doc in DISPATCH:
         lines = ["", "", "@njit(cache=True)", f"def event_{what}(tag, {args}):", f'    """{doc}"""']
-        for t, (k, module, d) in enumerate(parsed):
-            lines.append(f"    {'if' if t == 0 else 'elif'} tag == {t}:  # {k}")
-            lines += ["        " + line if line else "" for line in body(module, d)]
+        lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
         lines.append(f"    {tail}")
         out.append("\n".join(lines) + "\n")
-    return "".join(out) + "".join(getattr(catalog.kind(k), "FUNCTIONS", "") for k in kinds)
+    return "".join(out) + "".join(getattr(module, "FUNCTIONS", "") for _, module, _ in parsed)
+
+
+def _branches(parsed: list, body) -> str:
+    """The branches printed in place inside the hot loops of ``delta_stable`` and
+    ``count_below`` (a call with array arguments would cost reference counting per event;
+    ``pass`` for a bare beam, whose loop never gets there)."""
+    return _indent(_branch_lines(parsed, body) or ["pass"], 8)
 
 
 def _node_stiffness_lines() -> list[str]:
@@ -339,6 +345,7 @@ def kernel_source(topology: Topology) -> str:
     """The complete source of the kernel module of ``topology`` (it imports the shared
     numerics, ``numerics_source``)."""
     kinds = topology.kinds
+    parsed = _parsed(kinds)
     left_unknown = unknown(topology.left)
     right_unknown = unknown(topology.right)
     kinds_text = (
@@ -363,7 +370,9 @@ def kernel_source(topology: Topology) -> str:
         start_pair=pair_index(left_unknown),
         end_pair=pair_index(KNOWN_ZERO[topology.right]),
         right_penalty=_indent(_penalty_lines(topology.right), 4),
-        dispatch=_dispatch(kinds),
+        dispatch=_dispatch(parsed),
+        stable_branches=_branches(parsed, _stable_lines),
+        count_branches=_branches(parsed, _count_lines),
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))
 

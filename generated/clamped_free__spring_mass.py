@@ -24,7 +24,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "c8dfe6bac65546ddfcbefe8a85ccc3d20d2dddfe"
+SIGNATURE = "a7760e62898708394a2843ca802bca9eec7dd54f"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -36,63 +36,9 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "414b3431af2dd0dd6caf100308360eb732017c3f"
+NUMERICS = "8e64aef4e1e4ae0d36adf00a157b0eaabe2bdee9"
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
-
-
-@njit(cache=True)
-def event_stable(tag, v, b4, p, o, L, EI, mbar):
-    """v <- the pole-free compound step of the component at row o (docs/components.md)."""
-    if tag == 0:  # spring_mass
-        val_k = p[o + 0] * L * L * L / EI
-        val_m = p[o + 1] / (L * mbar)
-        v0 = v[0]
-        v1 = v[1]
-        v2 = v[2]
-        v3 = v[3]
-        v4 = v[4]
-        v5 = v[5]
-        t0 = 1.0/val_k
-        t1 = b4*val_m
-        t2 = t1*v0
-        t3 = t1*v1
-        t4 = t0*t1
-        v[0] = t0*t2 - v0
-        v[1] = t0*t3 - v1
-        v[2] = t4*v2 - v2
-        v[3] = t4*v3 - v3
-        v[4] = t2 + t4*v4 - v4
-        v[5] = t3 + t4*v5 - v5
-    return
-
-
-@njit(cache=True)
-def event_count(tag, Zc, b4, p, o, L, EI, mbar):
-    """The negative pivots the component adds to the count; Zc carried across it."""
-    if tag == 0:  # spring_mass
-        val_k = p[o + 0] * L * L * L / EI
-        val_m = p[o + 1] / (L * mbar)
-        pivot = -b4*val_m/val_k + 1.0
-        v0 = Zc[0]
-        v1 = Zc[1]
-        v2 = Zc[2]
-        v3 = Zc[3]
-        v4 = Zc[4]
-        v5 = Zc[5]
-        t0 = 1.0/val_k
-        t1 = b4*val_m
-        t2 = t1*v0
-        t3 = t1*v1
-        t4 = t0*t1
-        Zc[0] = t0*t2 - v0
-        Zc[1] = t0*t3 - v1
-        Zc[2] = t4*v2 - v2
-        Zc[3] = t4*v3 - v3
-        Zc[4] = t2 + t4*v4 - v4
-        Zc[5] = t3 + t4*v5 - v5
-        return 1 if pivot < 0.0 else 0
-    return 0
 
 
 @njit(cache=True)
@@ -165,7 +111,10 @@ def event_rigid(tag, p, o):
 
 @njit(cache=True)
 def delta_stable(omega, p):
-    """Reduced determinant from the second-compound chain, as (mantissa, log)."""
+    """Reduced determinant from the second-compound chain, as (mantissa, log).
+
+    The hot loop is written out here (the segment walk, each kind's compound step printed
+    in place): a call with array arguments would cost reference counting per event."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -176,15 +125,68 @@ def delta_stable(omega, p):
     log = 0.0
     pos = 0.0
     seg = 0
+    n_seg = int(p[3])
     n_ev = int(p[4])
+    base = HEAD + SEGMENT_WIDTH * n_seg
     for r in range(n_ev + 1):
-        row = event_row(p, r) if r < n_ev else 0
-        x = p[row + 1] if r < n_ev else L
-        step, pos, seg = advance_stable(v, beta, pos, x, seg, p)
-        log += step
+        x = L
+        row = 0
+        if r < n_ev:
+            row = base + EVENT_WIDTH * r
+            x = p[row + 1]
+        while True:  # the beam up to x, piece by piece (segment boundaries)
+            target = x
+            after = seg
+            if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
+                target = p[HEAD + SEGMENT_WIDTH * seg]
+                after = seg + 1
+            rho = (target - pos) / L
+            if rho > 0.0:
+                if n_seg == 1:
+                    log += beam_compound_step(v, beta, rho)
+                else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
+                    i = HEAD + SEGMENT_WIDTH * seg
+                    e = p[i + 1] / EI
+                    f = 1.0 / e
+                    v[1] *= f
+                    v[2] *= f
+                    v[3] *= f
+                    v[4] *= f
+                    v[5] *= f * f
+                    log += beam_compound_step(v, beta * math.sqrt(math.sqrt(p[i + 2] / mbar * f)), rho)
+                    v[1] *= e
+                    v[2] *= e
+                    v[3] *= e
+                    v[4] *= e
+                    v[5] *= e * e
+                pos = target
+            if after == seg:
+                break
+            seg = after
         if r == n_ev:
             break
-        event_stable(int(p[row]), v, b4, p, int(p[row + 2]), L, EI, mbar)
+        tag = int(p[row])
+        o = int(p[row + 2])
+        if tag == 0:  # spring_mass
+            val_k = p[o + 0] * L * L * L / EI
+            val_m = p[o + 1] / (L * mbar)
+            v0 = v[0]
+            v1 = v[1]
+            v2 = v[2]
+            v3 = v[3]
+            v4 = v[4]
+            v5 = v[5]
+            t0 = 1.0/val_k
+            t1 = b4*val_m
+            t2 = t1*v0
+            t3 = t1*v1
+            t4 = t0*t1
+            v[0] = t0*t2 - v0
+            v[1] = t0*t3 - v1
+            v[2] = t4*v2 - v2
+            v[3] = t4*v3 - v3
+            v[4] = t2 + t4*v4 - v4
+            v[5] = t3 + t4*v5 - v5
         log += renormalise(v)
     log += renormalise(v)
     return v[END_PAIR], log
@@ -198,8 +200,9 @@ def count_below(omega, p):
     stable chain's Pluecker coordinates) from a free end, the left end's constraints
     added as a stiffness PENALTY; each piece adds the negative pivots of eliminating its
     near node (``pair_count``) and its clamped-clamped count J0, each component its own
-    (``event_count``: a node stiffness, its own frequencies, a constraint as PENALTY, a
-    hinge's split rotation). At x = L the right end's constraints join as PENALTY."""
+    (printed in place from its descriptor: a node stiffness, its own frequencies, a
+    constraint as PENALTY, a hinge's split rotation). At x = L the right end's
+    constraints join as PENALTY."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -218,22 +221,68 @@ def count_below(omega, p):
     count = 0
     pos = 0.0
     seg = 0
+    n_seg = int(p[3])
     n_ev = int(p[4])
+    base = HEAD + SEGMENT_WIDTH * n_seg
     for r in range(n_ev + 1):
-        row = event_row(p, r) if r < n_ev else 0
-        x = p[row + 1] if r < n_ev else L
-        while True:
-            target, after = next_piece(p, seg, x)
+        x = L
+        row = 0
+        if r < n_ev:
+            row = base + EVENT_WIDTH * r
+            x = p[row + 1]
+        while True:  # the beam up to x, piece by piece (segment boundaries)
+            target = x
+            after = seg
+            if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
+                target = p[HEAD + SEGMENT_WIDTH * seg]
+                after = seg + 1
             rho = (target - pos) / L
             if rho > MERGE_LENGTH:
-                count += segment_count(Zc, U, beta, rho, p, seg)
+                # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
+                # transfer matrix is rank-one to working precision): the pivots of each
+                # near node and J0 of each step, with the segment's own properties
+                i = HEAD + SEGMENT_WIDTH * seg
+                e = p[i + 1] / EI
+                bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+                pieces = max(1, int(math.ceil(bs * rho / RICCATI_STEP)))
+                if e != 1.0:
+                    scale_minors(Zc, 1.0 / e)
+                for _ in range(pieces):
+                    count += pair_count(Zc, U, bs, rho / pieces)
+                    count += clamped_clamped_count(bs * rho / pieces)
+                if e != 1.0:
+                    scale_minors(Zc, e)
                 pos = target
             if after == seg:
                 break
             seg = after
         if r == n_ev:
             break
-        count += event_count(int(p[row]), Zc, b4, p, int(p[row + 2]), L, EI, mbar)
+        tag = int(p[row])
+        o = int(p[row + 2])
+        if tag == 0:  # spring_mass
+            val_k = p[o + 0] * L * L * L / EI
+            val_m = p[o + 1] / (L * mbar)
+            pivot = -b4*val_m/val_k + 1.0
+            v0 = Zc[0]
+            v1 = Zc[1]
+            v2 = Zc[2]
+            v3 = Zc[3]
+            v4 = Zc[4]
+            v5 = Zc[5]
+            t0 = 1.0/val_k
+            t1 = b4*val_m
+            t2 = t1*v0
+            t3 = t1*v1
+            t4 = t0*t1
+            Zc[0] = t0*t2 - v0
+            Zc[1] = t0*t3 - v1
+            Zc[2] = t4*v2 - v2
+            Zc[3] = t4*v3 - v3
+            Zc[4] = t2 + t4*v4 - v4
+            Zc[5] = t3 + t4*v5 - v5
+            if pivot < 0.0:
+                count += 1
         renormalise(Zc)
     detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]

@@ -22,7 +22,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "414b3431af2dd0dd6caf100308360eb732017c3f"
+DIGEST = "8e64aef4e1e4ae0d36adf00a157b0eaabe2bdee9"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 3
@@ -40,7 +40,7 @@ NODES_PER_MODE = 8
 RIGID_RANK = 1e-9
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def krylov(x):
     """Reduced Krylov functions K0 = S, K1 = T/x, K2 = G/x^2, K3 = V/x^3 (paper Eq. (1))."""
     if x < 1.5:
@@ -57,7 +57,7 @@ def krylov(x):
     return K0, K1, K2, K3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def krylov_scaled(x):
     """krylov(x) times exp(-shift), shift = x above the threshold (no overflow); returns shift."""
     if x < 1.5:
@@ -73,7 +73,7 @@ def krylov_scaled(x):
     return x, K0, K1, K2, K3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def compound_krylov(x):
     """Compound functions F1..F4 and E, scaled by exp(-x) above the threshold; returns the shift."""
     if x < 1.5:
@@ -133,7 +133,7 @@ def beam_transfer(lam, l, EI, U):
     U[3, 3] = t3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def beam_transfer_scaled(beta, rho, U):
     """Eq. (1) in units L = 1, EI = 1, times exp(-shift); returns shift."""
     shift, K0, K1, K2, K3 = krylov_scaled(beta * rho)
@@ -162,7 +162,7 @@ def beam_transfer_scaled(beta, rho, U):
     return shift
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def beam_compound_step(v, beta, rho):
     """v <- C2(U_beam) v in units L = 1, EI = 1; returns the log of the scale taken out."""
     x = beta * rho
@@ -277,44 +277,9 @@ def event_order(p):
     return rows
 
 
+
+
 @njit(cache=True, inline="always")
-def advance_stable(v, beta, pos, x, seg, p):
-    """Carry v from pos to x across the beam (segment by segment); returns the log of the
-    scale taken out, the new position and segment."""
-    L = p[0]
-    if p[3] == 1.0:
-        rho = (x - pos) / L
-        if rho > 0.0:
-            return beam_compound_step(v, beta, rho), x, seg
-        return 0.0, pos, seg
-    log = 0.0
-    while True:
-        target, after = next_piece(p, seg, x)
-        rho = (target - pos) / L
-        if rho > 0.0:
-            log += segment_compound_step(v, beta, rho, p, seg)
-            pos = target
-        if after == seg:
-            return log, pos, seg
-        seg = after
-
-
-@njit(cache=True)
-def segment_compound_step(v, beta, rho, p, seg):
-    """v <- C2(U_s) v across a piece of segment seg, U_s = D U(beta_s) D^-1 with
-    D = diag(1, 1, e, e); returns the log of the scale taken out."""
-    if p[3] == 1.0:
-        return beam_compound_step(v, beta, rho)
-    e, a = segment_scale(p, seg)
-    if e == 1.0 and a == 1.0:
-        return beam_compound_step(v, beta, rho)
-    scale_minors(v, 1.0 / e)
-    shift = beam_compound_step(v, beta * a, rho)
-    scale_minors(v, e)
-    return shift
-
-
-@njit(cache=True)
 def neg2(a, c, det):
     """Number of negative eigenvalues of a symmetric 2x2 matrix with diagonal a, c and
     determinant det."""
@@ -325,7 +290,7 @@ def neg2(a, c, det):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def clamped_clamped_count(x):
     """Natural frequencies of a segment clamped at both ends below x = lam l (J0 of one member)."""
     if x < math.pi:
@@ -338,7 +303,7 @@ def clamped_clamped_count(x):
     return i - (1 - (1 if i % 2 == 0 else -1) * s) // 2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def node_stiffness_step(Zc, kY, kT):
     """Zc <- the minors after a node stiffness kY on Y (Q -= kY Y) and kT on theta
     (M += kT theta), units L = EI = 1."""
@@ -357,7 +322,7 @@ def node_stiffness_step(Zc, kY, kT):
     Zc[5] = kT*v4 + kY*t0 + kY*v1 + v5
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def pair_count(Zc, U, beta, rho):
     """Carry the node's state subspace across a piece (beta*rho <= RICCATI_STEP); returns
     the negative pivots of eliminating the near node.
@@ -389,42 +354,23 @@ def pair_count(Zc, U, beta, rho):
     detBP = U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2]
     tr = -U[1, 2] * w00 + U[0, 2] * w10 - U[1, 3] * w01 + U[0, 3] * w11
     negative_det = ((a < 0.0) != (b < 0.0)) != (detBP < 0.0)
-    if negative_det and a != 0.0 and b != 0.0:
-        return 1
-    if tr != 0.0 and a != 0.0 and (tr > 0.0) == ((detBP > 0.0) == (a > 0.0)):
-        return 2
-    return 0
-
-
-@njit(cache=True)
-def segment_count(Zc, U, beta, rho, p, seg):
-    """Carry the minors Zc across a piece of segment seg in steps of beta_s*rho <=
-    RICCATI_STEP (a long piece's transfer matrix is rank-one to working precision);
-    returns the pivots of eliminating each near node and J0 of each step (a step
-    clamped at both ends, with the segment's own properties)."""
-    e, a = segment_scale(p, seg)
-    bs = beta * a
-    x = bs * rho
-    pieces = max(1, int(math.ceil(x / RICCATI_STEP)))
     n = 0
-    if e != 1.0:
-        scale_minors(Zc, 1.0 / e)
-    for _ in range(pieces):
-        n += pair_count(Zc, U, bs, rho / pieces)
-        n += clamped_clamped_count(x / pieces)
-    if e != 1.0:
-        scale_minors(Zc, e)
+    if negative_det and a != 0.0 and b != 0.0:
+        n = 1
+    elif tr != 0.0 and a != 0.0 and (tr > 0.0) == ((detBP > 0.0) == (a > 0.0)):
+        n = 2
     return n
 
 
-@njit(cache=True)
+
+@njit(cache=True, inline="always")
 def det_symmetric(S):
     """det of the symmetric part of the 2x2 matrix S."""
     s01 = 0.5 * (S[0, 1] + S[1, 0])
     return S[0, 0] * S[1, 1] - s01 * s01
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def pair_stiffness(Zc, S):
     """S = PI_RIGHT^-1 Xf Xd^-1 from the minors of Z = [Xd; Xf] (Cramer's rule); returns
     det S = (Zc(1,3) Zc(0,2) - Zc(0,3) Zc(1,2)) / Zc(0,1)^2 = Zc(2,3) / Zc(0,1) by the

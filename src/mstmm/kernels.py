@@ -52,8 +52,8 @@ class Found(NamedTuple):
 
     #: Frequencies (rad/s), ascending, repeated by multiplicity (rigid-body zeros first).
     omega: np.ndarray
-    #: Per value: the count holds a root there that the function does not confirm, or
-    #: Brent's method did not converge (checked again by :func:`mstmm.scan.verify`).
+    #: Per value, nonzero where the count holds a root that the function does not confirm,
+    #: or Brent's method did not converge (checked again by :func:`mstmm.scan.verify`).
     untrusted: np.ndarray
     #: The true multiplicity of the last root (it may exceed its copies in ``omega``).
     last: int
@@ -98,10 +98,15 @@ def _bundled(topology: Topology, sig: str) -> ModuleType | None:
     return module if getattr(module, "SIGNATURE", None) == sig else None
 
 
+_NUMERICS: list[ModuleType] = []
+
+
 def numerics() -> ModuleType:
     """The numerics every kernel shares (``generated/numerics.py``): the drivers that take a
     kernel's characteristic functions as arguments."""
-    return importlib.import_module("mstmm.generated.numerics")
+    if not _NUMERICS:
+        _NUMERICS.append(importlib.import_module("mstmm.generated.numerics"))
+    return _NUMERICS[0]
 
 
 def _check_numerics() -> None:
@@ -167,6 +172,11 @@ class Kernel:
     _python: dict | None = field(default=None, repr=False)
     #: Addresses of the compiled functions the shared drivers call (:meth:`_addresses`).
     _fa: np.ndarray | None = field(default=None, repr=False)
+    #: Where each formulation's characteristic function sits in ``_fa``; the shared entry
+    #: points already looked up; whether the search's other functions are in ``_fa``.
+    _at: dict = field(default_factory=dict, repr=False)
+    _entries: dict = field(default_factory=dict, repr=False)
+    _searchable: bool = field(default=False, repr=False)
 
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
@@ -218,16 +228,33 @@ class Kernel:
     def _delta(self, formulation: str) -> int:
         """Where the addresses of a formulation's characteristic function sit in
         :meth:`_addresses` (they are compiled on the way)."""
-        if formulation not in FORMULATIONS:
-            raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
-        name = f"delta_{formulation}"
-        self._addresses(name)
-        return numerics().FUNCTION_TYPES[name][0]
+        at = self._at.get(formulation)
+        if at is None:
+            if formulation not in FORMULATIONS:
+                raise ValueError(
+                    f"unknown formulation {formulation!r}; choose from {FORMULATIONS}"
+                )
+            name = f"delta_{formulation}"
+            self._addresses(name)
+            at = self._at[formulation] = numerics().FUNCTION_TYPES[name][0]
+        return at
 
     def _entry(self, name: str):
         """A shared driver of ``generated/numerics.py`` (``entry_<name>``)."""
-        interpret.mark_compiled()
-        return getattr(numerics(), f"entry_{name}")
+        entry = self._entries.get(name)
+        if entry is None:
+            interpret.mark_compiled()
+            entry = self._entries[name] = getattr(numerics(), f"entry_{name}")
+        return entry
+
+    def _search(self, formulation: str) -> tuple[np.ndarray, int]:
+        """``(fa, at)`` for the shared search: every function it calls compiled (or loaded)
+        and its characteristic function at ``fa[at]``."""
+        at = self._delta(formulation)
+        if not self._searchable:
+            self._addresses(*self.SEARCH)
+            self._searchable = True
+        return self._fa, at
 
     def _addresses(self, *names: str) -> np.ndarray:
         """The array ``fa`` the shared drivers take: the addresses of this kernel's compiled
@@ -322,8 +349,7 @@ class Kernel:
             lowest = self._python_function("lowest")
             k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
         elif modes <= BLOCK_MODES:
-            at = self._delta(formulation)
-            fa = self._addresses(*self.SEARCH)
+            fa, at = self._search(formulation)
             k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
             k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
@@ -333,10 +359,12 @@ class Kernel:
         m = self.module
         k = max(k, 0)
         certified = bool(state[m.STATE_CERTIFIED] == 1.0) and k == out.size
-        failed = float(state[m.STATE_FAILED]) if not certified else 0.0
-        if not certified and failed == 0.0:
-            failed = float(state[m.STATE_W])
-        return Found(out[:k], flags[:k] != 0, int(state[m.STATE_LAST]), certified, failed)
+        failed = 0.0
+        if not certified:
+            failed = float(state[m.STATE_FAILED]) or float(state[m.STATE_W])
+        if k < out.size:
+            out, flags = out[:k], flags[:k]
+        return Found(out, flags, int(state[m.STATE_LAST]), certified, failed)
 
     def _lowest_in_blocks(
         self,
@@ -356,8 +384,7 @@ class Kernel:
         (about 0.25 us per mode below it on the paper's example, against about
         12 us per mode for the scan and Brent), so the counts add under 10% and
         the cost stays linear in ``modes``."""
-        at = self._delta(formulation)
-        fa = self._addresses(*self.SEARCH)
+        fa, at = self._search(formulation)
         k = int(self._entry("lowest_start")(fa, p, modes, out, flags, state, certify))
         run = self._entry("lowest_run")
         bar = progress.Bar(modes, "modes")
@@ -389,8 +416,7 @@ class Kernel:
         search a wider band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
         p = _params(p)
         m = self.module
-        at = self._delta(formulation)
-        fa = self._addresses(*self.SEARCH)
+        fa, at = self._search(formulation)
         n_hi = int(self.count_below(hi, p)[0])
         n_lo = 0 if from_bottom else int(self.count_below(lo, p)[0])
         size = max(n_hi - n_lo, 0)
@@ -415,8 +441,7 @@ class Kernel:
         P = np.ascontiguousarray(P, dtype=np.float64)
         out = np.zeros((P.shape[0], int(modes)))
         certified = np.zeros(P.shape[0], dtype=np.bool_)
-        self._delta("stable")
-        fa = self._addresses(*self.SEARCH)
+        fa, _ = self._search("stable")
         self._entry("sweep_lowest")(fa, P, int(modes), out, certified)
         return out, certified
 
