@@ -1768,9 +1768,20 @@ class _DampedSolver:
             elif line == "axis":
                 z2 = mpc(0, z2.imag)
             if abs(z2 - z1) <= tol * abs(z2):
-                return z2
+                return self._verified(f, z2)
             z0, f0, z1, f1 = z1, f1, z2, f(z2)
         raise _Uncertified(f"secant did not converge from {z0}")
+
+    def _verified(self, f, z):
+        """``z`` if the Newton step there, with a central-difference derivative, is below
+        1e-(dps + 3) |z|: a small secant step alone can come from a large difference of
+        values rather than from a root."""
+        h = abs(z) * mpf(10) ** (-(self.dps // 3))
+        value = f(z)
+        slope = (f(z + h) - f(z - h)) / (2 * h)
+        if value != 0 and not abs(value) <= mpf(10) ** (-(self.dps + 3)) * abs(z * slope):
+            raise _Uncertified(f"the secant method stopped at {z}, not a simple root")
+        return z
 
     def _newton_multiple(self, z, m: int):
         """Modified Newton ``z - m F / F'`` for a root of multiplicity m, at m times the digits
@@ -1791,10 +1802,27 @@ class _DampedSolver:
                     return +z
         raise _Uncertified(f"Newton did not converge to the {m}-fold root near {z}")
 
+    def _local_count(self, root, others: list) -> int:
+        """Zeros of F in a small square around ``root`` (half-width |root| / 1000, or a third
+        of the distance to the nearest of ``others``)."""
+        rad = min([abs(root) / 1000] + [abs(o - root) / 3 for o in others if o != root])
+        return self.zero_count(root.real - rad, root.real + rad, root.imag - rad, root.imag + rad)
+
+    def _refine_multiple(self, root, m: int, line):
+        root = self._newton_multiple(root, m)
+        if line == "real":
+            return mpc(root.real, 0)
+        if line == "axis":
+            return mpc(0, root.imag)
+        return root
+
     def polish(self, seeds: list) -> list:
         """Roots from the seeds: ``[root, multiplicity, on the imaginary axis]``, each a zero
         of F to ~1e-(dps + 6) relative.  Seeds equal to 1e-9 relative form a cluster whose
-        multiplicity the argument principle confirms around the polished root."""
+        multiplicity the argument principle confirms around the polished root; a seed that
+        converges onto a root already found although F was deflated by it raises that
+        root's multiplicity if a count around it says so, else it is dropped, as is a seed
+        the secant method does not converge from (the final count decides)."""
         clusters: list = []
         for z in seeds:
             if clusters and abs(z - clusters[-1][0]) <= mpf("1e-9") * abs(z):
@@ -1802,6 +1830,7 @@ class _DampedSolver:
             else:
                 clusters.append([z, 1])
         found: list = []
+        close = mpf(10) ** (-(self.dps // 2))
         for index, (z, m) in enumerate(clusters):
             if self.undamped:
                 line = "real"
@@ -1810,43 +1839,36 @@ class _DampedSolver:
                 line = "axis"
             else:
                 line = None
-            if m == 1:
-                try:
-                    root = self._secant(self._deflated(found, line), z, line)
-                except _Uncertified:
-                    if line != "axis":
-                        raise
-                    line = None  # the FE model called it overdamped, but it is not
-                    root = self._secant(self._deflated(found, None), z + abs(z) / 100, None)
-            else:
-                root = self._newton_multiple(z, m)
-                if line == "real":
-                    root = mpc(root.real, 0)
-                elif line == "axis":
-                    root = mpc(0, root.imag)
-            if (
-                self.viscous
-                and line is None
-                and abs(root.real) <= mpf(10) ** (-(self.dps // 2)) * abs(root)
-            ):
-                line = "axis"  # an overdamped root the FE model saw as a close pair
-                root = self._secant(self._deflated(found, line), mpc(0, root.imag), line)
+            try:
+                if m == 1:
+                    try:
+                        root = self._secant(self._deflated(found, line), z, line)
+                    except _Uncertified:
+                        if line != "axis":
+                            raise
+                        line = None  # the FE model called it overdamped, but it is not
+                        root = self._secant(self._deflated(found, None), z + abs(z) / 100, None)
+                else:
+                    root = self._refine_multiple(z, m, line)
+                if self.viscous and line is None and abs(root.real) <= close * abs(root):
+                    line = "axis"  # an overdamped root the FE model saw as a close pair
+                    root = self._secant(self._deflated(found, line), mpc(0, root.imag), line)
+            except _Uncertified:
+                continue
             if self.viscous and root.real < 0:
                 root = -root.conjugate()
             elif root.real < 0:
                 continue  # a zero of the w_d > 0 model's continuation, not reported
-            for other in found:
-                if abs(other[0] - root) <= mpf(10) ** (-(self.dps // 2)) * abs(root):
-                    raise _Uncertified(f"two seeds converged to the root {root}")
-            if m > 1:
-                others = [abs(o[0] - root) for o in found]
-                others += [abs(c[0] - root) for i, c in enumerate(clusters) if i != index]
-                rad = min([abs(root) / 1000] + [d / 3 for d in others])
-                local = self.zero_count(
-                    root.real - rad, root.real + rad, root.imag - rad, root.imag + rad
-                )
-                if local != m:
-                    raise _Uncertified(f"{m} seeds at {root} but {local} zeros around it")
+            others = [o[0] for o in found] + [c[0] for i, c in enumerate(clusters) if i != index]
+            same = next((o for o in found if abs(o[0] - root) <= close * abs(root)), None)
+            if same is not None:
+                local = self._local_count(same[0], others)
+                if local > same[1]:
+                    same[0] = self._refine_multiple(same[0], local, line)
+                    same[1] = local
+                continue
+            if m > 1 and self._local_count(root, others) != m:
+                raise _Uncertified(f"{m} seeds at {root} but another number of zeros around it")
             found.append([root, m, line == "axis"])
         return found
 
@@ -1875,15 +1897,19 @@ class _DampedSolver:
         if not beyond:
             raise _Uncertified("no FE root beyond the wanted ones")
         upto = beyond[0] * mpf("1.3")
-        chosen = [s for s in seeds if s.real <= upto]
-        found = sorted(self.polish(chosen), key=lambda r: _order_key(r[0]))
-        flat = [r for r in found for _ in range(r[1])]
-        if len(flat) <= need:
-            raise _Uncertified(f"{len(flat)} roots polished, {need + 1} needed")
-        last = flat[need - 1][0].real
-        later = [r[0].real for r in flat if r[0].real > last * (1 + mpf(10) ** (-(self.dps // 2)))]
-        if not later:
-            raise _Uncertified("no polished root beyond the wanted ones")
+        while True:  # widened while the seeds do not give a root beyond the wanted ones
+            chosen = [s for s in seeds if s.real <= upto]
+            found = sorted(self.polish(chosen), key=lambda r: _order_key(r[0]))
+            flat = [r for r in found for _ in range(r[1])]
+            if len(flat) > need:
+                last = flat[need - 1][0].real
+                tie = last * (1 + mpf(10) ** (-(self.dps // 2)))
+                later = [r[0].real for r in flat if r[0].real > tie]
+                if later:
+                    break
+            if len(chosen) == len(seeds):
+                raise _Uncertified(f"{len(flat)} roots polished, {need + 1} needed")
+            upto *= mpf("1.5")
         width = (last + later[0]) / 2 if last > 0 else later[0] / 2
         inside = [r for r in found if r[0].real < width]
         sigma = [r[0].imag for r in inside] + [s.imag for s in seeds if s.real < width]

@@ -366,6 +366,34 @@ def test_count_splits_an_overdamped_pair_and_a_loss_factor_root():
     assert damped_count(sc, 45, -1, 5) == 2
 
 
+@pytest.mark.parametrize("loss", [0.0, 0.04])
+def test_the_count_catches_a_withheld_seed(loss):
+    """The certificate has teeth: with any one seed withheld (a root of the 5 lowest, one
+    of a double root's two) the argument principle finds more zeros than were polished;
+    a double root whose two seeds were split apart, or spurious seeds, still give the
+    right roots."""
+    sc = beam(
+        "clamped",
+        "free",
+        [absorber(0.7, 50.0, 0.1, 0.2)] * 3 + [{"type": "dashpot", "x": 0.3, "c": 2.0}],
+        loss_factor=loss,
+    )
+    seeds = [mpc(complex(w)) for w in ref._fem().damped_spectrum(sc, 40).roots]
+    with mp.workdps(40):
+        good = ref._DampedSolver(sc, 20)._certified(5, seeds)
+        double = [i for i in range(len(seeds) - 1) if rel(seeds[i], seeds[i + 1]) < 1e-9]
+        assert len(double) == 1 and rel(good[2], good[3]) == 0
+        for drop in (0, double[0], 4):
+            with pytest.raises(ref._Uncertified, match="zeros in the rectangle"):
+                ref._DampedSolver(sc, 20)._certified(5, seeds[:drop] + seeds[drop + 1 :])
+        split = list(seeds)
+        split[double[0] + 1] *= 1 + mpf("1e-7")
+        spurious = sorted(seeds + [mpc(0, 7.5), mpc(5, 3)], key=ref._order_key)
+        for bent in (split, spurious):
+            got = ref._DampedSolver(sc, 20)._certified(5, bent)
+            assert all(rel(a, b) < 1e-18 for a, b in zip(got, good, strict=True))
+
+
 # ------------------------------------------------------------------ receptance
 
 
