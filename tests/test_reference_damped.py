@@ -20,7 +20,12 @@ Closed forms used (time dependence exp(i w t), w = w_d + i sigma, sigma > 0 deca
   beam, free at one end and sliding at the other, at its sliding end
   ``K_h = -EI lam^3 (sinh x cos x + sin x cosh x) / (1 + cosh x cos x)``, ``x = lam a``,
   ``lam^4 = mbar w^2 / EI`` (a function of lam^4: any root).  The rigid translation
-  becomes an overdamped root ``~ i c / (mbar L)`` (c small); the rigid rotation stays at 0.
+  becomes an overdamped root, ``~ i c / (mbar L)`` for c small, ``i c^2 / (8 sqrt(EI)
+  mbar^(3/2))`` for c large (the dashpot pins its point); the rigid rotation stays at 0.
+  Off the centre (distance d, small c): ``sigma = c (1 / m + d^2 / I)``.
+* A two-stage chain with dashpots at a clamped end: a quartic in w (in its test).
+* The characteristic function is entire: Cauchy-Riemann holds across w_d = 0, where
+  z = W^2 crosses the branch cut of the principal fourth root.
 * The zero of the characteristic function at w = 0 has order ``2 n_rigid - r``, r the
   number of rigid motions the grounded dashpots restrain (a Jordan chain of length 2 per
   free rigid mode, 1 per restrained one).
@@ -256,6 +261,49 @@ def test_identical_absorbers_at_one_point(count):
     assert n == count - 1
 
 
+def test_damped_chain_at_a_clamped_end_is_its_own_quartic():
+    """A two-stage chain with dashpots at a clamped end (W = 0): a_i = k_i + i w c_i,
+    (a1 + a2 - m1 w^2)(a2 - m2 w^2) - a2^2 = m1 m2 w^4 - i (m2 c1 + (m1 + m2) c2) w^3
+    - (c1 c2 + m2 k1 + (m1 + m2) k2) w^2 + i (k1 c2 + k2 c1) w + k1 k2 = 0."""
+    k1, k2, m1, m2, c1, c2 = (mpf(v) for v in (60.0, 20.0, 0.15, 0.1, 0.25, 0.125))
+    chain = {"type": "oscillator_chain", "x": 0.0, "k": [60.0, 20.0], "m": [0.15, 0.1]}
+    sc = beam("clamped", "free", [chain | {"c": [0.25, 0.125]}])
+    i = mpc(0, 1)
+    coefficients = [
+        m1 * m2,
+        -i * (m2 * c1 + (m1 + m2) * c2),
+        -(c1 * c2 + m2 * k1 + (m1 + m2) * k2),
+        i * (k1 * c2 + k2 * c1),
+        k1 * k2,
+    ]
+    exact = [r for r in mpmath.polyroots(coefficients, maxsteps=200, extraprec=200) if r.real > 0]
+    assert len(exact) == 2
+    got = damped_frequencies(sc, 4, dps=30)
+    for r in exact:
+        assert sum(rel(w, r) < 1e-28 for w in got) == 1
+
+
+def test_characteristic_function_is_analytic_across_the_imaginary_axis():
+    """Where z = W^2 crosses the branch cut of the principal fourth root (w_d = 0) the
+    function is continuous and satisfies Cauchy-Riemann: dF/dw_d = -i dF/dsigma."""
+    sc = stepped(
+        "clamped",
+        "free",
+        [(0.5, 2.0, 1.5, {"loss_factor": 0.05}), (0.5, 1.0, 1.0, {})],
+        [{"type": "dashpot", "x": 0.75, "c": 0.2}, absorber(0.3, 30.0, 0.1, 0.1)],
+    )
+    h = mpf(10) ** -12
+    for w in (mpc(0, 3), mpc(0, 40), mpc("1e-15", 7), mpc(-2, 30)):
+
+        def f(z):
+            return damped_global_determinant(sc, z, dps=40)
+
+        along = (f(w + h) - f(w - h)) / (2 * h)
+        across = (f(w + mpc(0, h)) - f(w - mpc(0, h))) / (2 * h)
+        assert abs(along + mpc(0, 1) * across) < mpf(10) ** -20 * abs(along)
+        assert abs(f(w + h) - f(w - h)) < mpf(10) ** -10 * abs(f(w))
+
+
 def _half_beam_stiffness(w, ei, mbar, a):
     lam = mpmath.root(mbar * w**2 / ei, 4)
     x = lam * a
@@ -282,6 +330,20 @@ def test_grounded_dashpot_on_a_free_free_beam():
     assert rel(got[4], antisymmetric) < 1e-28
     # the zero at w = 0: order 2 * 2 - 1 (the dashpot restrains the translation)
     assert damped_zero_count(sc, -0.1, 0.1, -0.1, 0.1) == 3
+
+
+def test_strong_dashpot_pins_its_point():
+    """A large dashpot c at the middle of a free-free beam: the overdamped root relaxes
+    the nearly pinned point, 2 K_h(i sigma) = sigma c with K_h -> sqrt(2) EI kappa^3,
+    kappa^4 = mbar sigma^2 / EI (a half beam much longer than 1 / kappa): sigma ->
+    c^2 / (8 sqrt(EI) mbar^(3/2)), the gap falling like exp(-kappa L / 2)."""
+    gaps = []
+    for c, ei, mbar in ((50.0, 1.0, 1.0), (100.0, 2.0, 1.5), (200.0, 1.0, 1.0)):
+        sc = beam("free", "free", [{"type": "dashpot", "x": 0.5, "c": c}], ei=ei, mbar=mbar)
+        w = damped_frequencies(sc, 3, dps=25)[2]
+        assert w.real == 0
+        gaps.append(rel(w.imag, mpf(c) ** 2 / (8 * mpf(ei) ** 0.5 * mpf(mbar) ** 1.5)))
+    assert gaps[0] < 1e-4 and gaps[1] < 1e-5 and gaps[2] < 1e-18  # 4.6e-5, 1.6e-6, 2.5e-21
 
 
 def test_small_dashpot_damps_the_rigid_motion_it_restrains():
