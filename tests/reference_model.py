@@ -2039,26 +2039,33 @@ def damped_frequencies(scene, n_modes: int, dps: int = 30, n_elements: int | Non
     it dissipates), the function continued analytically; its zeros in the right half plane
     (and on the imaginary axis) are reported, the pairing does not hold there.  The
     ``rigid_body_mode_count`` rigid-body modes are reported as exact zeros (0j), whatever
-    the dashpots (the zero of F at 0 has a higher order: a0 above).
+    the dashpots (F's zero at 0 has order 2 n_rigid - r, r the rigid motions the grounded
+    dashpots restrain: each of those also has an overdamped root, not a zero).
 
     Order: rigid-body zeros, overdamped roots by ascending sigma, then ascending w_d (then
     sigma).  With all c = 0 and eta = 0 the roots are those of :func:`frequencies` (real,
     sigma exactly 0).
 
     What is guaranteed.  Seeds are the finite-element roots of ``benchmarks/fem.py``
-    (``n_elements``, default ``4 n + 16``, at least 24; only a starting point); each is
-    polished by the secant method on F (deflated by the roots already found, on the real
-    or imaginary axis where F is real) to ~1e-(dps + 6) relative; identical seeds (exact
-    multiple roots) by Newton with the multiplicity at m times the digits, the
-    multiplicity confirmed by a count around the root.  Then the argument principle
-    (:func:`damped_count`'s machinery) must find exactly as many zeros in the rectangle
-    ``-0.14 W < sigma < S``, ``0 <= w_d < W`` (with viscous damping, ``|w_d| < W``, mirror
-    images included), W halfway between the n-th root's w_d and the next one's, S = 1.5
-    times the largest decay rate of the roots (and FE seeds) with ``w_d < W``, plus W / 4,
-    as were polished there; otherwise the mesh is doubled (twice), then RuntimeError.
-    So no root with ``w_d < W`` is missed unless its sigma exceeds S (the count does not
-    look there; the FE model, whose every eigenvalue was a seed, has none there either)
-    or the contour sampling was fooled (see :func:`_arg_change`).
+    (``n_elements``, default ``4 n + 16``, at least 24; only a starting point).  Each is
+    polished by the secant method on F (deflated by the roots already found; on the real
+    axis for an undamped scene and on the imaginary axis for an overdamped seed, where F
+    is real and the iterates stay exactly on the line) to ~1e-(dps + 6) relative, and
+    kept only if a Newton step there is below 1e-(dps + 3) of the root; identical seeds
+    (exact multiple roots) by Newton with the multiplicity at m times the digits, the
+    multiplicity confirmed by a count in a small square around the root.  A seed that
+    does not converge, or lands again on a root already found, is dropped (or raises
+    that root's multiplicity if a count around it says so).  Then the argument principle
+    must find exactly as many zeros in the rectangle ``-0.14 W < sigma < S``,
+    ``0 <= w_d < W`` (with viscous damping ``|w_d| < W``, mirror images included, by the
+    symmetry), as were polished there: W halfway between the n-th root's w_d and the
+    next larger one, S = 1.5 times the largest decay rate of the roots and FE seeds with
+    ``w_d < W``, plus W / 4.  Otherwise the mesh is doubled (twice), then RuntimeError.
+    So no root with ``w_d < W`` is missed, unless its sigma exceeds S (the count does not
+    look there; the FE model, all of whose eigenvalues were seeds, has none there either)
+    or the contour sampling was fooled (two zeros within one sample spacing of the
+    contour, see :func:`_arg_change`; the sampling is adaptive but not interval-rigorous).
+    The test suite withholds seeds and checks that the count catches each one.
     """
     if n_modes <= 0:
         return []
