@@ -445,7 +445,7 @@ def test_the_count_catches_a_withheld_seed(loss):
         good = ref._DampedSolver(sc, 20)._certified(5, seeds)
         double = [i for i in range(len(seeds) - 1) if rel(seeds[i], seeds[i + 1]) < 1e-9]
         assert len(double) == 1 and rel(good[2], good[3]) == 0
-        for drop in (0, double[0], 4):
+        for drop in (0, double[0], 4) if loss == 0 else (double[0],):  # ~2 s each
             with pytest.raises(ref._Uncertified, match="zeros in the rectangle"):
                 ref._DampedSolver(sc, 20)._certified(5, seeds[:drop] + seeds[drop + 1 :])
         split = list(seeds)
