@@ -109,9 +109,28 @@ What is guaranteed about not missing roots
   (log10(K / beta^3)); results agree between dps = 30 and dps = 50 to a few
   1e-32 on stiff, soft, heavy, close-positioned and 50-attachment scenes.
 
+Damping and forced response
+---------------------------
+Optional scene keys (SI units): ``c`` on a spring_mass (a dashpot parallel to its
+spring, whose force becomes ``(k + i w c)(u - W)``), ``c = [c1, c2, ...]`` on an
+oscillator_chain (``c_i`` parallel to ``k_i``), a grounded ``dashpot`` attachment
+(``x``, ``c``: ``EI [W'''] = -(i w c) W``, a spring with ``k -> i w c``) and
+``loss_factor`` (eta >= 0) on a uniform ``beam`` or on each of its ``segments``
+(``EI -> EI (1 + i eta)``).  Time dependence ``exp(i w t)``; a natural frequency is a
+complex root ``w = w_d + i sigma`` (sigma > 0: decaying) of the entire characteristic
+function :func:`damped_global_determinant` (the same global system in the Krylov basis,
+dimensionless dashpot ``C = c L / sqrt(EI0 mbar0)``, ``i w c L^3 / EI0 = i (w / w_scale) C``).
+:func:`damped_frequencies` returns the lowest roots with ``w_d >= 0``, certified by the
+argument principle (:func:`damped_count`, :func:`damped_zero_count`); :func:`frf` the
+receptance by a direct solve with the load in the right-hand side.  The undamped
+functions refuse a scene with c > 0 or eta > 0 (ValueError) instead of dropping the
+damping; with c = 0 and eta = 0 the damped functions reduce to them (same roots, real).
+
 Public API: :func:`frequencies`, :func:`band`, :func:`global_determinant`,
 :func:`count_below`, :func:`rigid_body_mode_count`, :func:`eigenspace`,
-:func:`mode_at_attachments`, :func:`segment_stiffness_matrix`, :data:`KINDS`.
+:func:`mode_at_attachments`, :func:`segment_stiffness_matrix`, :data:`KINDS`; damped:
+:func:`damped_frequencies`, :func:`damped_count`, :func:`damped_zero_count`,
+:func:`damped_global_determinant`, :func:`frf`, :data:`DAMPED_KINDS`.
 
 Scenes are dicts in the TOML layout or objects with the same attributes:
 ``beam`` with ``left``, ``right`` and either ``length``, ``EI``,
@@ -120,24 +139,34 @@ Scenes are dicts in the TOML layout or objects with the same attributes:
 (dict) or ``kind`` (object), default ``spring_mass``, and ``x`` plus: ``k``, ``m``
 (spring_mass); ``m``, ``J`` = 0 (mass); ``k`` (spring, rotational_spring);
 nothing (support); ``k`` = 0 (hinge, strictly inside); lists ``k``, ``m``
-(oscillator_chain, beam to tip).
+(oscillator_chain, beam to tip); ``c`` (dashpot; optional on spring_mass, a list on
+oscillator_chain); ``loss_factor`` (optional, beam or segment).
 """
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import sys
 from dataclasses import dataclass, field
 from fractions import Fraction
+from pathlib import Path
 
 import mpmath
-from mpmath import mp, mpf
+from mpmath import mp, mpc, mpf
 
 __all__ = [
+    "DAMPED_KINDS",
     "KINDS",
     "band",
     "count_below",
+    "damped_count",
+    "damped_frequencies",
+    "damped_global_determinant",
+    "damped_zero_count",
     "eigenspace",
     "frequencies",
+    "frf",
     "global_determinant",
     "mode_at_attachments",
     "rigid_body_mode_count",
@@ -189,6 +218,10 @@ KINDS = (
     "hinge",
     "oscillator_chain",
 )
+
+#: The kinds the damped functions also accept: a grounded viscous ``dashpot`` (``x``, ``c``).
+#: (Not in :data:`KINDS`, which lists the undamped kinds other tests iterate over.)
+DAMPED_KINDS = KINDS + ("dashpot",)
 
 
 def _get(obj, name):
@@ -243,7 +276,7 @@ def _kind(att) -> str:
     else:
         kind = getattr(att, "kind", None) or getattr(att, "type", None) or "spring_mass"
     kind = str(getattr(kind, "value", kind))
-    if kind not in KINDS:
+    if kind not in DAMPED_KINDS:
         raise ValueError(f"unsupported attachment type {kind!r}")
     return kind
 
@@ -254,6 +287,18 @@ def _segments(beam) -> list:
     if segments:
         return [(_get(s, "length"), _get(s, "EI"), _get(s, "mass_per_length")) for s in segments]
     return [(_get(beam, "length"), _get(beam, "EI"), _get(beam, "mass_per_length"))]
+
+
+def _loss_factors(beam) -> list:
+    """Raw ``loss_factor`` (default 0) of each beam segment: the beam's own for a uniform
+    beam, each segment's for a stepped one (a beam-level value beside segments is refused:
+    which one would hold is a guess)."""
+    segments = _opt(beam, "segments")
+    if segments:
+        if _opt(beam, "loss_factor") is not None:
+            raise ValueError("loss_factor on a stepped [beam]: give it on each [[beam.segments]]")
+        return [_opt(s, "loss_factor", 0) for s in segments]
+    return [_opt(beam, "loss_factor", 0)]
 
 
 def _attachments(scene) -> list:
@@ -273,6 +318,20 @@ def _stages(kind: str, att) -> list:
     return list(zip(ks, ms, strict=True))
 
 
+def _dampers(kind: str, att, n: int) -> list:
+    """Raw dashpot constants ``c_i`` parallel to the springs of a spring-mass or chain (0 if
+    absent)."""
+    c = _opt(att, "c")
+    if kind == "spring_mass":
+        return [0 if c is None else c]
+    if c is None:
+        return [0] * n
+    cs = list(c)
+    if len(cs) != n:
+        raise ValueError(f"oscillator_chain c needs {n} values like k, got {cs}")
+    return cs
+
+
 @dataclass
 class _Node:
     """A point of the beam: an end, a segment boundary or an attachment point (all
@@ -287,6 +346,8 @@ class _Node:
     kt: mpf = mpf(0)  # rotational springs to ground
     j: mpf = mpf(0)  # rotary inertias
     chains: list = field(default_factory=list)  # [(K_i, M_i), ...] per spring-mass / chain
+    c: mpf = mpf(0)  # grounded dashpots, C = c L / sqrt(EI0 mbar0)
+    chain_c: list = field(default_factory=list)  # [C_i, ...] per chain, parallel to chains
 
 
 @dataclass
@@ -303,6 +364,17 @@ class _Model:
     k_max: mpf  # largest K = k L^3 / EI0 of a spring (0 without)
     kr_max: mpf  # largest rotational / hinge stiffness k L / EI0 (0 without)
     length: mpf  # L (m)
+    seg_mu: list = None  # mbar of each segment / mbar of the first
+    seg_eta: list = None  # loss factor of each segment
+    ei0: mpf = None  # EI of the first segment (N m^2)
+    point_nodes: list = None  # node index of each extra point given to _build
+
+    @property
+    def damped(self) -> bool:
+        """A dashpot (c > 0) or a loss factor (eta > 0) anywhere."""
+        return any(eta != 0 for eta in self.seg_eta) or any(
+            node.c != 0 or any(c != 0 for cs in node.chain_c for c in cs) for node in self.nodes
+        )
 
     @property
     def masses(self) -> list:
@@ -324,18 +396,23 @@ def _snap(x, edges: list, length):
     return x
 
 
-def _build(scene) -> _Model:
+def _build(scene, points=()) -> _Model:
     """Nondimensionalise ``scene`` at the current mp precision.
 
     Units: L = total length, EI0 and mbar0 those of the first segment; then
-    K = k L^3 / EI0, M = m / (mbar0 L), Kt = k_theta L / EI0, J = J / (mbar0 L^3).
+    K = k L^3 / EI0, M = m / (mbar0 L), Kt = k_theta L / EI0, J = J / (mbar0 L^3),
+    C = c L / sqrt(EI0 mbar0) (then i w c L^3 / EI0 = i (w / w_scale) C).  ``points``
+    (m): extra nodes (the inputs and outputs of :func:`frf`).
     """
     beam = _get(scene, "beam")
     raw = _segments(beam)
     seg_len = [_num(s[0]) for s in raw]
     seg_ei = [_num(s[1]) for s in raw]
     seg_mu = [_num(s[2]) for s in raw]
+    seg_eta = [_num(v) for v in _loss_factors(beam)]
     _positive("segment length, EI and mass_per_length", *seg_len, *seg_ei, *seg_mu)
+    if not all(eta >= 0 for eta in seg_eta):
+        raise ValueError(f"loss_factor must be >= 0: {seg_eta}")
     length = mpmath.fsum(seg_len)
     ei0, mu0 = seg_ei[0], seg_mu[0]
     left = _end(_get(beam, "left"))
@@ -354,6 +431,14 @@ def _build(scene) -> _Model:
     node_at(mpf(0)), node_at(length)
     for b in bounds:
         node_at(b)
+    snapped = []
+    for p in points:
+        x = _snap(_num(p), [mpf(0)] + bounds + [length], length)
+        if not (0 <= x <= length):
+            raise ValueError(f"point {x} outside [0, L]")
+        node_at(x)
+        snapped.append(x)
+    c_unit = length / mpmath.sqrt(ei0 * mu0)
     k_max = kr_max = mpf(0)
     for att in _attachments(scene):
         kind = _kind(att)
@@ -364,7 +449,11 @@ def _build(scene) -> _Model:
         if kind in ("spring_mass", "oscillator_chain"):
             chain = [(_num(k), _num(m)) for k, m in _stages(kind, att)]
             _positive(f"{kind} k and m", *(v for stage in chain for v in stage))
+            damp = [_num(c) for c in _dampers(kind, att, len(chain))]
+            if not all(c >= 0 for c in damp):
+                raise ValueError(f"{kind} c must be >= 0: {damp}")
             node.chains.append([(k * length**3 / ei0, m / (mu0 * length)) for k, m in chain])
+            node.chain_c.append([c * c_unit for c in damp])
             k_max = max([k_max] + [k for k, _ in node.chains[-1]])
         elif kind == "mass":
             m, j = _num(_get(att, "m")), _num(_opt(att, "J", 0))
@@ -384,6 +473,11 @@ def _build(scene) -> _Model:
             kr_max = max(kr_max, node.kt)
         elif kind == "support":
             node.fix_w = True
+        elif kind == "dashpot":
+            c = _num(_get(att, "c"))
+            if not c >= 0:
+                raise ValueError(f"dashpot c must be >= 0: {c}")
+            node.c += c * c_unit
         else:  # hinge
             k = _num(_opt(att, "k", 0))
             if not (0 < x < length):
@@ -405,7 +499,7 @@ def _build(scene) -> _Model:
     nodes[-1].fix_w |= right in ("clamped", "pinned")
     nodes[-1].fix_t |= right in ("clamped", "sliding")
     # material of each mesh segment: the beam segment it lies in
-    seg, seg_e, seg_a = [], [], []
+    seg, seg_e, seg_a, mesh_mu, mesh_eta = [], [], [], [], []
     edges = [mpf(0)] + bounds
     for a, b in zip(xs, xs[1:], strict=False):
         s = max(i for i, e in enumerate(edges) if e <= a)
@@ -413,11 +507,39 @@ def _build(scene) -> _Model:
         seg.append((b - a) / length)
         seg_e.append(e_rel)
         seg_a.append(mpf(1) if e_rel == mu_rel else mpmath.root(mu_rel / e_rel, 4))
+        mesh_mu.append(mu_rel)
+        mesh_eta.append(seg_eta[s])
     w_scale = mpmath.sqrt(ei0 / mu0) / length**2
     min_x = min(a * ell for a, ell in zip(seg_a, seg, strict=True))
     return _Model(
-        left, right, nodes, seg, seg_e, seg_a, w_scale, min(seg), min_x, k_max, kr_max, length
+        left,
+        right,
+        nodes,
+        seg,
+        seg_e,
+        seg_a,
+        w_scale,
+        min(seg),
+        min_x,
+        k_max,
+        kr_max,
+        length,
+        mesh_mu,
+        mesh_eta,
+        ei0,
+        [xs.index(x) for x in snapped],
     )
+
+
+def _undamped_model(scene) -> _Model:
+    """:func:`_build` for the undamped functions, which refuse a damped scene (c > 0 or
+    loss_factor > 0) rather than drop its damping."""
+    model = _build(scene)
+    if model.damped:
+        raise ValueError(
+            "the scene has damping (c > 0 or loss_factor > 0): use damped_frequencies / frf"
+        )
+    return model
 
 
 def _extra_dps(x) -> int:
@@ -453,7 +575,7 @@ def _rigid_constraints(scene) -> tuple:
     hinges = sorted(at(a) for kind, a in atts if kind == "hinge" and _num(_opt(a, "k", 0)) == 0)
 
     def value(x):
-        return [Fraction(1), x] + [x - h if x > h else Fraction(0) for h in hinges]
+        return _rigid_value(x, hinges)
 
     def slope(x):
         return [Fraction(0), Fraction(1)] + [Fraction(1 if x > h else 0) for h in hinges]
@@ -470,6 +592,11 @@ def _rigid_constraints(scene) -> tuple:
         elif kind == "rotational_spring":
             rows.append(slope(at(a)))
     return hinges, rows
+
+
+def _rigid_value(x, hinges: list) -> list:
+    """Coefficients of (a, b, c...) in W(x) = a + b x + sum_h c_h (x - x_h)_+ (exact)."""
+    return [Fraction(1), x] + [x - h if x > h else Fraction(0) for h in hinges]
 
 
 def _null_space(rows: list, n: int) -> list:
@@ -582,9 +709,55 @@ def _global_det(model: _Model, beta):
     return _sparse_det(rows, ncol)
 
 
+class _TrigBasis:
+    """The undamped path's basis: cos, sin, exp(-b s), exp(b (s - l)) in each segment
+    (real beta > 0), rows of the scaled derivatives W^(n) / beta_s^n."""
+
+    def __init__(self, model: _Model, beta):
+        self.bs = [beta * a for a in model.seg_a]  # derivative factors beta_s
+        self.trig = []
+        for ell, b in zip(model.seg, self.bs, strict=True):
+            x = b * ell
+            self.trig.append((mpmath.cos(x), mpmath.sin(x), mpmath.exp(-x)))
+        self.e = model.seg_e  # EI of each segment / EI0
+        self.b4 = beta**4
+
+    def row(self, side, order: int, cols: list) -> dict:
+        return _scaled_row(side[0], side[1], order, self.trig, cols)
+
+    @staticmethod
+    def stiffness(k, c):
+        """A spring with its parallel dashpot (undamped: the spring)."""
+        return k
+
+    def mass_scale(self, k, k_next, m):
+        """Divisor of a mass's equation (positive)."""
+        return k + k_next + m * self.b4
+
+
+@dataclass
+class _System:
+    """The global linear system and where its equations and unknowns sit."""
+
+    rows: list  # sparse rows (dicts column -> value)
+    ncol: int
+    w_rows: list  # per node: the row of W there
+    mass_cols: list  # per node: the columns of its hanging masses
+    cols: list  # first column of each segment
+    shear: dict  # node -> (row index, factor f): the row is f * (shear equation)
+    moment: dict  # node -> (row index, factor) (not at a hinge or a fixed W')
+    mass_eqs: list  # per hanging mass, in column order: (row index, factor)
+
+
 def _global_rows(model: _Model, beta):
     """Rows of the global system, the column count, the deflection row at each node and
-    the mass columns of each node.
+    the mass columns of each node (undamped path; see :func:`_assemble`)."""
+    system = _assemble(model, _TrigBasis(model, beta))
+    return system.rows, system.ncol, system.w_rows, system.mass_cols
+
+
+def _assemble(model: _Model, basis) -> _System:
+    """The global system in ``basis`` (:class:`_TrigBasis` or :class:`_KrylovBasis`).
 
     Columns: the hanging masses of node 0, the 4 coefficients of segment 0, the
     masses of node 1, ... Rows, node by node (node 0, the last node, then the
@@ -600,14 +773,15 @@ def _global_rows(model: _Model, beta):
 
     every derivative being d^n W / dxi^n = beta_s^n * (scaled row), each row divided
     by the largest of its segment factors (so a uniform beam gets the rows of
-    W^(n) / beta^n).
+    W^(n) / beta^n).  In the damped basis the derivative factors are 1, ``e`` is
+    ``e (1 + i eta)``, a spring ``K`` with a parallel dashpot ``C`` is ``K + i W C``
+    (``W = w / w_scale``) and the divisors are constants, so that every entry stays
+    entire in ``w``.  The ``shear``, ``moment`` and ``mass_eqs`` entries of the result
+    say where a load enters (:func:`frf`).
     """
     nseg = len(model.seg)
-    bs = [beta * a for a in model.seg_a]
-    trig = []
-    for ell, b in zip(model.seg, bs, strict=True):
-        x = b * ell
-        trig.append((mpmath.cos(x), mpmath.sin(x), mpmath.exp(-x)))
+    bs = basis.bs
+    e_seg = basis.e
     masses = model.masses
     cols, mass_cols, ncol = [], [], 0
     for j in range(nseg + 1):
@@ -616,11 +790,12 @@ def _global_rows(model: _Model, beta):
         if j < nseg:
             cols.append(ncol)
             ncol += 4
-    b4 = beta**4
+    b4 = basis.b4
     rows = []
+    shear_eq, moment_eq = {}, {}
 
     def row_of(side, order):
-        return _scaled_row(side[0], side[1], order, trig, cols)
+        return basis.row(side, order, cols)
 
     def combine(terms, sign=1) -> dict:
         """sum of factor * W^(order) / (largest factor) over terms (side, order, factor)."""
@@ -645,7 +820,7 @@ def _global_rows(model: _Model, beta):
             for side, s in ((right, 1), (left, -1)):
                 if side is not None:
                     f = s * bs[side[0]] ** order
-                    terms.append((side, order, f * model.seg_e[side[0]] if ei_weighted else f))
+                    terms.append((side, order, f * e_seg[side[0]] if ei_weighted else f))
             return terms
 
         # order 0
@@ -662,7 +837,7 @@ def _global_rows(model: _Model, beta):
         if node.hinge is not None:
             kink = jump(1, False)
             for side in (left, right):
-                f = bs[side[0]] ** 2 * model.seg_e[side[0]]
+                f = bs[side[0]] ** 2 * e_seg[side[0]]
                 terms = [(side, 2, f)] + [(s, o, -node.hinge * g) for s, o, g in kink]
                 rows.append(combine(terms)[0])
         elif not node.fix_t:
@@ -670,29 +845,38 @@ def _global_rows(model: _Model, beta):
             coef = node.kt - node.j * b4
             if coef != 0:
                 _add(row, row_of(ref, 1), -sign * coef * bs[ref[0]] / scale)
+            moment_eq[j] = (len(rows), sign / scale)
             rows.append(row)
         # order 3: shear
         if not node.fix_w:
             row, scale = combine(jump(3), sign)
             w_row = row_of(ref, 0)
-            coef = node.k - node.m * b4
+            coef = basis.stiffness(node.k, node.c) - node.m * b4
             if coef != 0:
                 _add(row, w_row, sign * coef / scale)
-            for chain, uc in zip(node.chains, _chain_cols(node, mass_cols[j]), strict=True):
-                k1 = chain[0][0]
+            for chain, cs, uc in zip(
+                node.chains, node.chain_c, _chain_cols(node, mass_cols[j]), strict=True
+            ):
+                k1 = basis.stiffness(chain[0][0], cs[0])
                 _add(row, w_row, sign * k1 / scale)
                 row[uc] = row.get(uc, 0) - sign * k1 / scale
+            shear_eq[j] = (len(rows), sign / scale)
             rows.append(row)
-    w_rows = []
+    w_rows, mass_eqs = [], []
     for j in range(nseg + 1):
-        w_row = _scaled_row(*((j, False) if j < nseg else (nseg - 1, True)), 0, trig, cols)
+        w_row = row_of((j, False) if j < nseg else (nseg - 1, True), 0)
         w_rows.append(w_row)
         node = model.nodes[j]
-        for chain, uc in zip(node.chains, _chain_cols(node, mass_cols[j]), strict=True):
+        for chain, cs, uc in zip(
+            node.chains, node.chain_c, _chain_cols(node, mass_cols[j]), strict=True
+        ):
             # stage i: -K_i u_{i-1} + (K_i + K_{i+1} - M_i b4) u_i - K_{i+1} u_{i+1} = 0, u_0 = W
             for i, (k, m) in enumerate(chain):
                 k_next = chain[i + 1][0] if i + 1 < len(chain) else 0
-                scale = k + k_next + m * b4
+                scale = basis.mass_scale(k, k_next, m)
+                k = basis.stiffness(k, cs[i])
+                if i + 1 < len(chain):
+                    k_next = basis.stiffness(k_next, cs[i + 1])
                 row = {}
                 if i == 0:
                     _add(row, w_row, -k / scale)
@@ -701,8 +885,9 @@ def _global_rows(model: _Model, beta):
                 row[uc + i] = (k + k_next - m * b4) / scale
                 if k_next:
                     row[uc + i + 1] = -k_next / scale
+                mass_eqs.append((len(rows), 1 / scale))
                 rows.append(row)
-    return rows, ncol, w_rows, mass_cols
+    return _System(rows, ncol, w_rows, mass_cols, cols, shear_eq, moment_eq, mass_eqs)
 
 
 def _chain_cols(node: _Node, cols: list) -> list:
@@ -1063,7 +1248,7 @@ class _Solver:
     """Scene at working precision with the count, chain and determinant evaluators."""
 
     def __init__(self, scene, dps: int):
-        self.model = _build(scene)
+        self.model = _undamped_model(scene)
         self.nrigid = rigid_body_mode_count(scene)
         self.dps = dps
         self._cache: dict = {}
@@ -1188,7 +1373,7 @@ def mode_at_attachments(scene, w, dps: int = 40):
     deflection at its attachment point and the mass's displacement, from the null vector
     (SVD) of the global matrix. Arbitrary scale; floats."""
     with mp.workdps(dps + _GUARD_DPS):
-        model = _build(scene)
+        model = _undamped_model(scene)
         beta = _beta_of(model, _num(w))
         (v,), w_rows, mass_cols = _null_vectors(model, beta, 1)
         beam, masses = [], []
@@ -1227,7 +1412,7 @@ def eigenspace(scene, w, m: int, xs, dps: int = 40):
     motions (straight pieces, kinks at free hinges) the ends, supports and springs allow.
     """
     with mp.workdps(dps + _GUARD_DPS):
-        model = _build(scene)
+        model = _undamped_model(scene)
         if _num(w) == 0:
             return _rigid_space(scene, m, xs)
         beta = _beta_of(model, _num(w))
@@ -1278,3 +1463,711 @@ def _rigid_space(scene, m, xs):
         return v[0] + v[1] * x + sum(c * (x - h) for c, h in kinks if x > h)
 
     return [[float(motion(v, x)) for x in points] for v in basis]
+
+
+# ============================================================ damping and forced response
+
+
+def _krylov(z, x) -> list:
+    """Krylov (Cauchy) functions of a segment of dimensionless length ``x`` for
+    ``lam^4 = z`` (any complex z): ``K_j = sum_k z^k x^(4k+j) / (4k+j)!``, j = 0..3, i.e.
+    ``S = (cosh + cos) / 2``, ``T = (sinh + sin) / (2 lam)``, ``U = (cosh - cos) / (2 lam^2)``,
+    ``V = (sinh - sin) / (2 lam^3)`` of ``lam x``.  Entire in z: no branch of the fourth
+    root matters.  Power series while ``|lam x| <= 2`` (no cancellation there), else the
+    closed forms with the principal root (exact for any root)."""
+    y = z * x**4
+    if abs(y) <= 16:
+        eps = mpf(2) ** (-mp.prec - 8)
+        out = []
+        for j in range(4):
+            term = x**j / math.factorial(j)
+            total, biggest, n = term, abs(term), j
+            while True:
+                term = term * y / ((n + 1) * (n + 2) * (n + 3) * (n + 4))
+                n += 4
+                total += term
+                size = abs(term)
+                biggest = max(biggest, size)
+                if size <= eps * biggest:
+                    break
+            out.append(total)
+        return out
+    lam = mpmath.root(z, 4)
+    t = lam * x
+    ch, sh, c, s = mpmath.cosh(t), mpmath.sinh(t), mpmath.cos(t), mpmath.sin(t)
+    return [(ch + c) / 2, (sh + s) / (2 * lam), (ch - c) / (2 * lam**2), (sh - s) / (2 * lam**3)]
+
+
+class _KrylovBasis:
+    """The damped path's basis: the unknowns of a segment are its initial values
+    ``(W, W', W'', W''')`` (xi derivatives, W in metres) at its left end; at its right end
+    ``W^(n)(l) = sum_j a_j K_(j-n)(l)`` with ``K_(-m) = z K_(4-m)`` (the Krylov transfer),
+    ``z = W^2 mu_s / (e_s (1 + i eta_s))``, ``W = w / w_scale``.  Every entry is entire in w."""
+
+    def __init__(self, model: _Model, omega):
+        self.omega = omega
+        self.b4 = omega * omega  # (w / w_scale)^2 = beta^4
+        self.bs = [1] * len(model.seg)  # raw derivatives: no scaling by powers of beta
+        self.e = [
+            e if eta == 0 else e * mpc(1, eta)
+            for e, eta in zip(model.seg_e, model.seg_eta, strict=True)
+        ]
+        self.phi = []
+        for ell, e, mu in zip(model.seg, self.e, model.seg_mu, strict=True):
+            z = self.b4 * mu / e
+            k = _krylov(z, ell)
+            phi = [[k[j - n] if j >= n else z * k[j - n + 4] for j in range(4)] for n in range(4)]
+            self.phi.append(phi)
+
+    def row(self, side, order: int, cols: list) -> dict:
+        seg, at_end = side
+        base = cols[seg]
+        if not at_end:
+            return {base + order: mpf(1)}
+        return {base + j: v for j, v in enumerate(self.phi[seg][order]) if v != 0}
+
+    def stiffness(self, k, c):
+        """``K + i W C``: a spring with its parallel dashpot."""
+        return k if c == 0 else k + mpc(0, 1) * self.omega * c
+
+    @staticmethod
+    def mass_scale(k, k_next, m):
+        """A constant divisor (positive), so that the row stays entire in w."""
+        return k + k_next + m
+
+
+def _dashpot_rank(scene) -> int:
+    """Rank of the grounded dashpots (c > 0) on the rigid motions: how many rigid-body
+    modes they restrain (exact, Fractions)."""
+    hinges, rows = _rigid_constraints(scene)
+    basis = _null_space(rows, 2 + len(hinges))
+    if not basis:
+        return 0
+    beam = _get(scene, "beam")
+    edges = [Fraction(0)]
+    for seg in _segments(beam):
+        edges.append(edges[-1] + _frac(seg[0]))
+    damp = []
+    for att in _attachments(scene):
+        if _kind(att) == "dashpot" and _num(_get(att, "c")) > 0:
+            x = _snap(_frac(_get(att, "x")), edges, edges[-1])
+            value = _rigid_value(x, hinges)
+            damp.append([sum(a * b for a, b in zip(value, v, strict=True)) for v in basis])
+    n = len(basis)
+    return n - len(_null_space(damp, n)) if damp else 0
+
+
+_TURN = mpf("0.5")  # largest change of arg accepted between neighbouring samples (rad)
+_MAX_DEPTH = 44  # bisections of a contour piece before a zero is declared on the contour
+_PIECES = 12  # initial pieces per contour edge
+
+
+class _OnContour(ArithmeticError):
+    """The function vanishes on (or numerically next to) the contour."""
+
+
+class _Uncertified(RuntimeError):
+    """The roots found and the argument-principle count disagree."""
+
+
+def _arg_piece(f, a, fa, b, fb, depth: int, samples: list | None):
+    mid = (a + b) / 2
+    fm = f(mid)
+    if fm == 0:
+        raise _OnContour(mid)
+    if samples is not None:
+        samples.append((mid, fm))
+    d1, d2 = mpmath.arg(fm / fa), mpmath.arg(fb / fm)
+    if abs(d1) < _TURN and abs(d2) < _TURN:
+        return d1 + d2
+    if depth >= _MAX_DEPTH:
+        raise _OnContour(mid)
+    return _arg_piece(f, a, fa, mid, fm, depth + 1, samples) + _arg_piece(
+        f, mid, fm, b, fb, depth + 1, samples
+    )
+
+
+def _arg_change(f, z0, z1, samples: list | None = None):
+    """Continuous change of ``arg f`` along the segment ``z0 -> z1`` (radians): the segment
+    cut into :data:`_PIECES`, each piece halved until the argument turns by less than
+    :data:`_TURN` over each half (a zero at distance d from the contour turns it by ~pi
+    over a length ~d, which forces the halving down to d).  Numerical, not interval-
+    rigorous: two zeros conspiring within one sample spacing could hide each other."""
+    pts = [z0 + (z1 - z0) * k / _PIECES for k in range(_PIECES + 1)]
+    vals = [f(z) for z in pts]
+    if any(v == 0 for v in vals):
+        raise _OnContour(z0)
+    if samples is not None:
+        samples.extend(zip(pts, vals, strict=True))
+    return mpmath.fsum(
+        _arg_piece(f, a, fa, b, fb, 0, samples)
+        for a, fa, b, fb in zip(pts, vals, pts[1:], vals[1:], strict=False)
+    )
+
+
+def _path_change(f, corners: list, samples: list | None = None):
+    return mpmath.fsum(_arg_change(f, a, b, samples) for a, b in zip(corners, corners[1:]))
+
+
+def _whole(value, what: str) -> int:
+    n = int(mpmath.nint(value))
+    if abs(value - n) > mpf("0.05"):
+        raise _OnContour(f"{what} = {value} is not an integer")
+    return n
+
+
+class _DampedSolver:
+    """A scene with the damped characteristic function and its argument-principle counts.
+
+    ``F(w)``: determinant of the global system in the Krylov basis (entire in w; with a loss
+    factor the analytic continuation of the w_d > 0 model, see :func:`damped_frequencies`);
+    ``G(w) = F(w) / (w / w_scale)^a0``, a0 the order of the zero of F at w = 0 (2 per
+    rigid-body mode, 1 less per rigid mode a grounded dashpot restrains), entire and
+    nonzero at 0.
+    """
+
+    def __init__(self, scene, dps: int, points=()):
+        self.scene = scene
+        self.dps = dps
+        self.model = model = _build(scene, points)
+        self.nrigid = rigid_body_mode_count(scene)
+        self.a0 = 2 * self.nrigid - _dashpot_rank(scene)
+        self.viscous = all(eta == 0 for eta in model.seg_eta)  # F(-conj w) = conj F(w)
+        self.undamped = not model.damped
+        self.scale = model.w_scale
+        self.reach = float(mpmath.fsum(a * ell for a, ell in zip(model.seg_a, model.seg)))
+        c_all = [node.c for node in model.nodes] + [
+            c for node in model.nodes for cs in node.chain_c for c in cs
+        ]
+        self.c_max = max(c_all + [mpf(0)])
+
+    def wp(self, omega, extra: int = 0) -> int:
+        """Working digits at dimensionless frequency omega: the Krylov functions cancel by up
+        to exp(2 |lam| l) across the system, stiff springs and dashpots by their ratio to
+        the beam's stiffness."""
+        r = float(abs(omega)) ** 0.5  # |beta|
+        growth = int(2 * r * self.reach / math.log(10)) + 1
+        m = self.model
+        stiff = max(
+            float(m.k_max) / (1 + r**3),
+            float(m.kr_max) / (1 + r),
+            float(self.c_max) * r * r / (1 + r**3),
+        )
+        digits = int(math.ceil(math.log10(stiff))) if stiff > 1 else 0
+        return self.dps + _GUARD_DPS + growth + digits + extra
+
+    def F(self, w, extra: int = 0):
+        """Characteristic function at w (rad/s, complex)."""
+        omega = w / self.scale
+        with mp.workdps(self.wp(omega, extra)):
+            system = _assemble(self.model, _KrylovBasis(self.model, w / self.scale))
+            return _sparse_det(system.rows, system.ncol)
+
+    def G(self, w):
+        """F / (w / w_scale)^a0; at w = 0 (a sample of a contour through the origin), its
+        value a relative 1e-12 up the imaginary axis (G is analytic and nonzero there)."""
+        if self.a0 == 0:
+            return self.F(w)
+        if w == 0:
+            w = mpc(0, self.scale * mpf(10) ** -12)
+        omega = w / self.scale
+        small = max(0, int(math.ceil(-float(mpmath.log10(abs(omega))))))
+        extra = self.a0 * small
+        value = self.F(w, extra)
+        with mp.workdps(self.wp(omega, extra)):
+            return value / omega**self.a0
+
+    # ----------------------------------------------------------------- counts
+
+    def zero_count(self, x0, x1, y0, y1) -> int:
+        """Zeros of F in the rectangle x0 < w_d < x1, y0 < sigma < y1 (with multiplicity)."""
+        corners = [mpc(x0, y0), mpc(x1, y0), mpc(x1, y1), mpc(x0, y1), mpc(x0, y0)]
+        return _whole(_path_change(self.F, corners) / (2 * mp.pi), "winding number")
+
+    def _half_path(self, width, lo, hi, samples=None):
+        """Change of arg G along (0, lo) -> (width, lo) -> (width, hi) -> (0, hi): by the
+        symmetry G(-conj w) = conj G(w) (viscous damping only) it is pi times the number of
+        zeros of G in -width < w_d < width, lo < sigma < hi."""
+        corners = [mpc(0, lo), mpc(width, lo), mpc(width, hi), mpc(0, hi)]
+        return _whole(_path_change(self.G, corners, samples) / mp.pi, "symmetric count")
+
+    def axis_zeros(self, width, lo, hi) -> int:
+        """Zeros of G on the imaginary axis lo < sigma < hi (viscous damping only): the count
+        in a strip |w_d| < eps, eps shrunk until it equals the number of sign changes of the
+        real function G(i sigma) i^a0 (an odd multiplicity changes the sign: sign changes <=
+        zeros on the axis <= zeros in the strip).  If it never does (an even multiplicity:
+        exactly critical damping; or zeros within 1e-(dps/2) of the axis) the strip's count
+        is taken."""
+        phase = mpc(0, 1) ** self.a0
+        eps = width / 64
+        points: dict = {}
+        for _ in range(4):
+            samples: list = []
+            strip = self._half_path(eps, lo, hi, samples)
+            for z, _v in samples:
+                if z.imag not in points and lo < z.imag < hi:
+                    points[z.imag] = None
+            for sigma in points:
+                if points[sigma] is None:
+                    points[sigma] = (self.G(mpc(0, sigma)) * phase).real
+            values = [points[s] for s in sorted(points)]
+            changes = sum(1 for a, b in zip(values, values[1:]) if (a > 0) != (b > 0))
+            if changes == strip:
+                return strip
+            eps = eps / mpf(10) ** max(2, self.dps // 8)
+        return strip
+
+    def reported_count(self, width, lo, hi) -> int:
+        """Reported roots (:func:`damped_frequencies`' convention) with 0 <= w_d < width,
+        lo < sigma < hi, rigid-body zeros included when lo < 0 < hi."""
+        rigid = self.nrigid if lo < 0 < hi else 0
+        if self.viscous:
+            n_sym = self._half_path(width, lo, hi)
+            n_axis = self.axis_zeros(width, lo, hi)
+            if (n_sym + n_axis) % 2:
+                raise _OnContour(f"odd symmetric count {n_sym} + {n_axis}")
+            return (n_sym + n_axis) // 2 + rigid
+        corners = [mpc(0, lo), mpc(width, lo), mpc(width, hi), mpc(0, hi), mpc(0, lo)]
+        return _whole(_path_change(self.G, corners) / (2 * mp.pi), "winding number") + rigid
+
+    # ------------------------------------------------------------------- roots
+
+    def _deflated(self, found, line):
+        """F divided by (w - r)^m for the roots found (and their mirrors -conj r with viscous
+        damping), so that a seed does not converge onto a root already taken."""
+        factors = []
+        for r, m, _axis in found:
+            factors.append((r, m))
+            if self.viscous and r.real != 0:
+                factors.append((-r.conjugate(), m))
+
+        def f(w):
+            value = self.F(w)
+            for r, m in factors:
+                value /= (w - r) ** m
+            return value
+
+        return f
+
+    def _secant(self, f, z0, line):
+        """Secant iteration from the seed z0 (on the real axis / imaginary axis when
+        ``line`` says so, where F is real and the iterates stay exactly on the line)."""
+        tol = mpf(10) ** (-(self.dps + 6))
+        step = mpf(10) ** -7
+        z1 = z0 * (1 + step) if line else z0 * (1 + mpc(step, step))
+        f0, f1 = f(z0), f(z1)
+        for _ in range(200):
+            if f1 == 0:
+                return z1
+            den = f1 - f0
+            if den == 0:
+                raise _Uncertified(f"secant stalled at {z1}")
+            z2 = z1 - f1 * (z1 - z0) / den
+            if line == "real":
+                z2 = mpc(z2.real, 0)
+            elif line == "axis":
+                z2 = mpc(0, z2.imag)
+            if abs(z2 - z1) <= tol * abs(z2):
+                return self._verified(f, z2)
+            z0, f0, z1, f1 = z1, f1, z2, f(z2)
+        raise _Uncertified(f"secant did not converge from {z0}")
+
+    def _verified(self, f, z):
+        """``z`` if the Newton step there, with a central-difference derivative, is below
+        1e-(dps + 3) |z|: a small secant step alone can come from a large difference of
+        values rather than from a root."""
+        h = abs(z) * mpf(10) ** (-(self.dps // 3))
+        value = f(z)
+        slope = (f(z + h) - f(z - h)) / (2 * h)
+        if value != 0 and not abs(value) <= mpf(10) ** (-(self.dps + 3)) * abs(z * slope):
+            raise _Uncertified(f"the secant method stopped at {z}, not a simple root")
+        return z
+
+    def _newton_multiple(self, z, m: int):
+        """Modified Newton ``z - m F / F'`` for a root of multiplicity m, at m times the digits
+        (the root of F ~ c (w - r)^m is only defined to 1/m of them)."""
+        extra = (m - 1) * (self.dps + 10)
+        tol = mpf(10) ** (-(self.dps + 6))
+        with mp.workdps(mp.dps + extra):
+            z = mpc(z)
+            for _ in range(100):
+                h = abs(z) * mpf(10) ** (-(self.dps + extra) // 2)
+                f0 = self.F(z, extra)
+                if f0 == 0:
+                    return z
+                d = (self.F(z + h, extra) - self.F(z - h, extra)) / (2 * h)
+                step = m * f0 / d
+                z -= step
+                if abs(step) <= tol * abs(z):
+                    return +z
+        raise _Uncertified(f"Newton did not converge to the {m}-fold root near {z}")
+
+    def _local_count(self, root, others: list) -> int:
+        """Zeros of F in a small square around ``root`` (half-width |root| / 1000, or a third
+        of the distance to the nearest of ``others``)."""
+        rad = min([abs(root) / 1000] + [abs(o - root) / 3 for o in others if o != root])
+        return self.zero_count(root.real - rad, root.real + rad, root.imag - rad, root.imag + rad)
+
+    def _refine_multiple(self, root, m: int, line):
+        root = self._newton_multiple(root, m)
+        if line == "real":
+            return mpc(root.real, 0)
+        if line == "axis":
+            return mpc(0, root.imag)
+        return root
+
+    def polish(self, seeds: list) -> list:
+        """Roots from the seeds: ``[root, multiplicity, on the imaginary axis]``, each a zero
+        of F to ~1e-(dps + 6) relative.  Seeds equal to 1e-9 relative form a cluster whose
+        multiplicity the argument principle confirms around the polished root; a seed that
+        converges onto a root already found although F was deflated by it raises that
+        root's multiplicity if a count around it says so, else it is dropped, as is a seed
+        the secant method does not converge from (the final count decides)."""
+        clusters: list = []
+        for z in seeds:
+            if clusters and abs(z - clusters[-1][0]) <= mpf("1e-9") * abs(z):
+                clusters[-1][1] += 1
+            else:
+                clusters.append([z, 1])
+        found: list = []
+        close = mpf(10) ** (-(self.dps // 2))
+        for index, (z, m) in enumerate(clusters):
+            if self.undamped:
+                line = "real"
+                z = mpc(z.real, 0)
+            elif self.viscous and z.real == 0:
+                line = "axis"
+            else:
+                line = None
+            try:
+                if m == 1:
+                    try:
+                        root = self._secant(self._deflated(found, line), z, line)
+                    except _Uncertified:
+                        if line != "axis":
+                            raise
+                        line = None  # the FE model called it overdamped, but it is not
+                        root = self._secant(self._deflated(found, None), z + abs(z) / 100, None)
+                else:
+                    root = self._refine_multiple(z, m, line)
+                if self.viscous and line is None and abs(root.real) <= close * abs(root):
+                    line = "axis"  # an overdamped root the FE model saw as a close pair
+                    root = self._secant(self._deflated(found, line), mpc(0, root.imag), line)
+            except _Uncertified:
+                continue
+            if self.viscous and root.real < 0:
+                root = -root.conjugate()
+            elif root.real < 0:
+                continue  # a zero of the w_d > 0 model's continuation, not reported
+            others = [o[0] for o in found] + [c[0] for i, c in enumerate(clusters) if i != index]
+            same = next((o for o in found if abs(o[0] - root) <= close * abs(root)), None)
+            if same is not None:
+                local = self._local_count(same[0], others)
+                if local > same[1]:
+                    same[0] = self._refine_multiple(same[0], local, line)
+                    same[1] = local
+                continue
+            if m > 1 and self._local_count(root, others) != m:
+                raise _Uncertified(f"{m} seeds at {root} but another number of zeros around it")
+            found.append([root, m, line == "axis"])
+        return found
+
+    def roots(self, need: int, n_elements=None) -> list:
+        """The lowest ``need`` non-zero reported roots, certified (see
+        :func:`damped_frequencies`); FE seeds, the mesh doubled when the count disagrees."""
+        fem = _fem()
+        n_el = n_elements or max(24, 4 * need + 16)
+        failures = []
+        for _attempt in range(3):
+            spectrum = fem.damped_spectrum(self.scene, n_el)
+            seeds = [mpc(complex(w)) for w in spectrum.roots]
+            try:
+                return self._certified(need, seeds)
+            except (_Uncertified, _OnContour) as exc:
+                failures.append(f"{n_el} elements: {exc}")
+                n_el *= 2
+        raise RuntimeError("damped roots not certified: " + "; ".join(failures))
+
+    def _certified(self, need: int, seeds: list) -> list:
+        if len(seeds) < need + 1:
+            raise _Uncertified(f"the FE model has only {len(seeds)} roots")
+        # seeds up to the first one clearly past the need-th in w_d, then 30 % more
+        edge = max(seeds[need - 1].real, 0)
+        beyond = [s.real for s in seeds[need:] if s.real > edge * (1 + mpf("1e-3"))]
+        if not beyond:
+            raise _Uncertified("no FE root beyond the wanted ones")
+        upto = beyond[0] * mpf("1.3")
+        while True:  # widened while the seeds do not give a root beyond the wanted ones
+            chosen = [s for s in seeds if s.real <= upto]
+            found = sorted(self.polish(chosen), key=lambda r: _order_key(r[0]))
+            flat = [r for r in found for _ in range(r[1])]
+            if len(flat) > need:
+                last = flat[need - 1][0].real
+                tie = last * (1 + mpf(10) ** (-(self.dps // 2)))
+                later = [r[0].real for r in flat if r[0].real > tie]
+                if later:
+                    break
+            if len(chosen) == len(seeds):
+                raise _Uncertified(f"{len(flat)} roots polished, {need + 1} needed")
+            upto *= mpf("1.5")
+        width = (last + later[0]) / 2 if last > 0 else later[0] / 2
+        inside = [r for r in found if r[0].real < width]
+        sigma = [r[0].imag for r in inside] + [s.imag for s in seeds if s.real < width]
+        hi = mpf("1.5") * max(sigma + [mpf(0)]) + width / 4
+        lo = -width * mpf("0.1372")
+        if self.viscous:
+            expected = sum(m * (1 if axis else 2) for _r, m, axis in inside)
+            got = self._half_path(width, lo, hi)
+        else:
+            expected = sum(m for _r, m, _a in inside)
+            corners = [mpc(0, lo), mpc(width, lo), mpc(width, hi), mpc(0, hi), mpc(0, lo)]
+            got = _whole(_path_change(self.G, corners) / (2 * mp.pi), "winding number")
+        if got != expected:
+            raise _Uncertified(
+                f"{got} zeros in the rectangle w_d < {mpmath.nstr(width, 8)}, "
+                f"{mpmath.nstr(lo, 5)} < sigma < {mpmath.nstr(hi, 8)} (symmetric with viscous "
+                f"damping), {expected} found"
+            )
+        self.certificate = (width, lo, hi)
+        return [r[0] for r in found for _ in range(r[1])][:need]
+
+
+def _order_key(w):
+    """Rigid-body zeros, then overdamped roots (w_d = 0) by sigma, then by w_d (sigma)."""
+    if w == 0:
+        return (0, mpf(0), mpf(0))
+    if w.real == 0:
+        return (1, w.imag, mpf(0))
+    return (2, w.real, w.imag)
+
+
+_FEM = None
+
+
+def _fem():
+    """``benchmarks/fem.py`` loaded from its file (the ``benchmarks`` package imports mstmm,
+    which this module must not): only its roots' seeds are used."""
+    global _FEM
+    if _FEM is None:
+        path = Path(__file__).resolve().parents[1] / "benchmarks" / "fem.py"
+        name = "_reference_model_fem"
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+        _FEM = module
+    return _FEM
+
+
+def _cnum(value):
+    """Exact conversion of a real or complex number to mpf / mpc (current precision)."""
+    if isinstance(value, mpc):
+        return +value
+    if isinstance(value, complex):
+        return mpc(value)
+    try:
+        return _num(value)
+    except TypeError:
+        return mpc(complex(value))
+
+
+def damped_global_determinant(scene, w, dps: int = 40):
+    """Characteristic function ``F(w)`` of the damped scene at complex ``w`` (rad/s).
+
+    The determinant of the global system (the same node conditions as
+    :func:`global_determinant`) in the Krylov basis: the unknowns of each segment are
+    ``W, W', W'', W'''`` at its left end, the right end follows by the Krylov functions
+    ``S, T/lam, U/lam^2, V/lam^3`` of ``lam^4 = mbar w^2 / EI*`` (entire in lam^4), the
+    mass equations multiplied out, the dashpots as ``k + i w c``, a segment's EI as
+    ``EI (1 + i eta)``, rows divided by constants only.  So ``F`` is entire in w (no poles,
+    no branch), its zeros are the natural frequencies, the zero at w = 0 has order a0 =
+    2 per rigid-body mode less one per rigid mode a grounded dashpot restrains.  With a
+    loss factor it is the analytic continuation of the w_d > 0 model.  Arbitrary scale.
+    """
+    with mp.workdps(dps + _GUARD_DPS):
+        solver = _DampedSolver(scene, dps)
+        value = solver.F(_cnum(w))
+    with mp.workdps(dps):
+        return +mpc(value)
+
+
+def damped_zero_count(scene, w_d_min, w_d_max, sigma_min, sigma_max, dps: int = 30) -> int:
+    """Zeros (with multiplicity) of :func:`damped_global_determinant` in the open rectangle
+    ``w_d_min < w_d < w_d_max``, ``sigma_min < sigma < sigma_max`` of the w-plane
+    (``w = w_d + i sigma``, rad/s), by the argument principle: the change of arg F around
+    the rectangle, sampled adaptively (:func:`_arg_change`).  Every zero counts, those at
+    w = 0 (a0 of them) and, with viscous damping, the mirror images ``-conj w`` too.
+    ``ArithmeticError`` if a zero lies on (or within ~1e-13 of a side's length of) the edge.
+    """
+    with mp.workdps(dps + _GUARD_DPS):
+        solver = _DampedSolver(scene, dps)
+        return solver.zero_count(*(_num(v) for v in (w_d_min, w_d_max, sigma_min, sigma_max)))
+
+
+def damped_count(scene, w_d_max, sigma_min, sigma_max, dps: int = 30) -> int:
+    """Number of reported natural frequencies (the convention of
+    :func:`damped_frequencies`, with multiplicity) with ``0 <= w_d < w_d_max`` and
+    ``sigma_min < sigma < sigma_max`` (rad/s), by the argument principle; the
+    rigid-body zeros count when ``sigma_min < 0 < sigma_max``.
+
+    With viscous damping only (F(-conj w) = conj F(w)): ``(N_sym + N_axis) / 2``, N_sym
+    the zeros of ``G = F / w^a0`` in ``|w_d| < w_d_max`` (from the change of arg along the
+    right half of the contour), N_axis those on the imaginary axis
+    (:meth:`_DampedSolver.axis_zeros`).  With a loss factor: the zeros of G in the
+    rectangle itself, whose left side is the imaginary axis (ArithmeticError if a zero
+    lies on it).  Choose ``sigma_min < 0`` when roots on the real axis (undamped modes)
+    are meant to count: a side through a root raises ArithmeticError.
+    """
+    with mp.workdps(dps + _GUARD_DPS):
+        solver = _DampedSolver(scene, dps)
+        args = (_num(w_d_max), _num(sigma_min), _num(sigma_max))
+        return solver.reported_count(*args)
+
+
+def damped_frequencies(scene, n_modes: int, dps: int = 30, n_elements: int | None = None):
+    """Lowest ``n_modes`` complex natural frequencies ``w = w_d + i sigma`` (rad/s, mpc) of a
+    damped scene, with multiplicity, for time dependence ``exp(i w t)`` (``sigma > 0``: a
+    decaying mode).
+
+    Model: a dashpot ``c`` parallel to a spring (``k -> k + i w c``, spring-masses and
+    oscillator chains), grounded dashpots ``EI [W'''] = -(i w c) W``, and a loss factor
+    ``EI -> EI (1 + i eta)`` per segment.  The roots are the zeros of
+    :func:`damped_global_determinant`.  Reported: the roots with ``w_d >= 0``.  With viscous
+    damping only the zeros come in pairs ``w, -conj w`` and one of each pair is reported;
+    an overdamped root lies on the imaginary axis (``w_d = 0``, reported once per zero).  A
+    loss factor is a frequency-domain model: EI (1 + i eta) is taken for w_d > 0 (where
+    it dissipates), the function continued analytically; its zeros in the right half plane
+    (and on the imaginary axis) are reported, the pairing does not hold there.  The
+    ``rigid_body_mode_count`` rigid-body modes are reported as exact zeros (0j), whatever
+    the dashpots (F's zero at 0 has order 2 n_rigid - r, r the rigid motions the grounded
+    dashpots restrain: each of those also has an overdamped root, not a zero).
+
+    Order: rigid-body zeros, overdamped roots by ascending sigma, then ascending w_d (then
+    sigma).  With all c = 0 and eta = 0 the roots are those of :func:`frequencies` (real,
+    sigma exactly 0).
+
+    What is guaranteed.  Seeds are the finite-element roots of ``benchmarks/fem.py``
+    (``n_elements``, default ``4 n + 16``, at least 24; only a starting point).  Each is
+    polished by the secant method on F (deflated by the roots already found; on the real
+    axis for an undamped scene and on the imaginary axis for an overdamped seed, where F
+    is real and the iterates stay exactly on the line) to ~1e-(dps + 6) relative, and
+    kept only if a Newton step there is below 1e-(dps + 3) of the root; identical seeds
+    (exact multiple roots) by Newton with the multiplicity at m times the digits, the
+    multiplicity confirmed by a count in a small square around the root.  A seed that
+    does not converge, or lands again on a root already found, is dropped (or raises
+    that root's multiplicity if a count around it says so).  Then the argument principle
+    must find exactly as many zeros in the rectangle ``-0.14 W < sigma < S``,
+    ``0 <= w_d < W`` (with viscous damping ``|w_d| < W``, mirror images included, by the
+    symmetry), as were polished there: W halfway between the n-th root's w_d and the
+    next larger one, S = 1.5 times the largest decay rate of the roots and FE seeds with
+    ``w_d < W``, plus W / 4.  Otherwise the mesh is doubled (twice), then RuntimeError.
+    So no root with ``w_d < W`` is missed, unless its sigma exceeds S (the count does not
+    look there; the FE model, all of whose eigenvalues were seeds, has none there either)
+    or the contour sampling was fooled (two zeros within one sample spacing of the
+    contour, see :func:`_arg_change`; the sampling is adaptive but not interval-rigorous).
+    The test suite withholds seeds and checks that the count catches each one.
+    """
+    if n_modes <= 0:
+        return []
+    with mp.workdps(dps + _GUARD_DPS):
+        solver = _DampedSolver(scene, dps)
+        nrigid = solver.nrigid
+        roots = solver.roots(n_modes - nrigid, n_elements) if n_modes > nrigid else []
+        result = [mpc(0)] * nrigid + roots
+    with mp.workdps(dps):
+        return [+mpc(w) for w in result[:n_modes]]
+
+
+_INPUTS = {("force", "x"), ("moment", "x"), ("force", "mass")}
+_OUTPUTS = {("displacement", "x"), ("rotation", "x"), ("displacement", "mass")}
+
+
+def _io(spec, allowed: set, what: str) -> tuple:
+    try:
+        quantity, where, at = spec
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{what} must be (quantity, 'x' or 'mass', x or j): {spec!r}") from exc
+    if (quantity, where) not in allowed:
+        raise ValueError(f"{what} {spec!r}: expected one of {sorted(allowed)}")
+    if where == "mass" and (int(at) != at or at < 0):
+        raise ValueError(f"hanging mass index must be an integer >= 0: {at!r}")
+    return quantity, where, at
+
+
+def frf(scene, input, output, omegas, dps: int = 30) -> list:
+    """Receptance (complex, SI units) of ``output`` to a unit harmonic ``input`` at each
+    frequency of ``omegas`` (rad/s, real or complex), time dependence ``exp(i w t)``, by a
+    direct solve of the global system of :func:`damped_global_determinant` (Krylov basis)
+    with the load in its right-hand side.  Undamped or damped scenes.
+
+    Inputs: ``("force", "x", x)``, a point force on the beam, ``EI [W'''] = F`` (a tip
+    force on a cantilever gives ``W = F x^2 (3 L - x) / (6 EI)``); ``("moment", "x", x)``, a
+    couple doing positive work on a positive rotation W', ``EI [W''] = -C``;
+    ``("force", "mass", j)``, a force on hanging mass j, ``(k + i w c - m w^2) u - (k + i w
+    c) W = F``.  Outputs: ``("displacement", "x", x)`` (m/N or 1/N), ``("rotation", "x", x)``
+    (W'), ``("displacement", "mass", j)``.  Hanging masses: the attachments sorted by x
+    (stable), each spring-mass its mass, each chain its masses from the beam outwards;
+    point masses (kind ``mass``) move with the beam and are not listed.  A force at a
+    fixed W (clamped / pinned end, support) or a moment at a fixed W' goes into the
+    reaction (response 0).  A moment or rotation at a hinge is ambiguous: ValueError.
+    Exactly at a natural frequency the system is singular (ZeroDivisionError).
+    """
+    src = _io(input, _INPUTS, "input")
+    dst = _io(output, _OUTPUTS, "output")
+    if isinstance(omegas, (int, float, complex, mpf, mpc)):
+        omegas = [omegas]
+    points = [spec[2] for spec in (src, dst) if spec[1] == "x"]
+    out = []
+    with mp.workdps(dps + _GUARD_DPS):
+        solver = _DampedSolver(scene, dps, points)
+        model = solver.model
+        n_hung = sum(len(stages) for stages in model.masses)
+        nodes = []  # node index of the input, of the output (None: a hanging mass)
+        for quantity, where, point in (src, dst):
+            if where == "mass":
+                if point >= n_hung:
+                    raise ValueError(f"hanging mass {point} of {n_hung}")
+                nodes.append(None)
+                continue
+            j = model.point_nodes[-1 if nodes else 0]  # the input's point comes first
+            if quantity in ("moment", "rotation") and model.nodes[j].hinge is not None:
+                raise ValueError(f"{quantity} at the hinge at x = {point}: ambiguous")
+            nodes.append(j)
+        length, ei0 = model.length, model.ei0
+        for w in omegas:
+            omega = _cnum(w) / model.w_scale
+            with mp.workdps(solver.wp(omega)):
+                basis = _KrylovBasis(model, _cnum(w) / model.w_scale)
+                system = _assemble(model, basis)
+                n = system.ncol
+                A = mpmath.matrix(n, n)
+                for r, row in enumerate(system.rows):
+                    for col, val in row.items():
+                        A[r, col] = val
+                b = mpmath.matrix(n, 1)
+                quantity, where, point = src
+                if where == "mass":
+                    row, factor = system.mass_eqs[point]
+                    b[row] = factor * length**3 / ei0
+                else:
+                    j = nodes[0]
+                    eqs = system.shear if quantity == "force" else system.moment
+                    if j in eqs:
+                        row, factor = eqs[j]
+                        sign = 1 if quantity == "force" else -1
+                        b[row] = sign * factor * length ** (3 if quantity == "force" else 2) / ei0
+                x = mpmath.lu_solve(A, b)
+                quantity, where, point = dst
+                if where == "mass":
+                    col = [c for cols in system.mass_cols for c in cols][point]
+                    value = x[col]
+                else:
+                    j = nodes[1]
+                    nseg = len(model.seg)
+                    side = (j, False) if j < nseg else (nseg - 1, True)
+                    order = 0 if quantity == "displacement" else 1
+                    row = basis.row(side, order, system.cols)
+                    value = mpmath.fsum(v * x[c] for c, v in row.items()) / length**order
+            out.append(mpc(value))
+    with mp.workdps(dps):
+        return [+v for v in out]
