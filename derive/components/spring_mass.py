@@ -2,8 +2,10 @@
 
 Paper Eq. (1) spring and lumped mass on ``[Y, Q]``; the branch hangs from a massless
 rigid body on the beam; its tip (the free side of the mass) is ``Z = [Y_m, 0]``.
-As a descriptor (docs/components.md): ``q = [Y_m]``, ``Cz = e_Y``,
-``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``.
+As a descriptor (docs/components.md): ``q = [Y_m]``, ``Cz = kappa e_Y``,
+``Cq = -(kappa - mu b4)``, ``A = I``, ``B = mu b4 e_Q``. An optional dashpot ``c``
+parallel to the spring makes its force ``(k + i w c)(Y_m - Y)`` (time dependence
+exp(i w t)): ``kappa -> kappa + i w1 gamma`` (a damped kernel only).
 SymPy is imported inside the functions: the catalog reads this file's keys without it.
 """
 
@@ -17,6 +19,14 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("k", "N/m", doc="spring stiffness"),
     Key("m", "kg", doc="hanging mass"),
+    Key(
+        "c",
+        "N s/m",
+        check="nonnegative",
+        default=0.0,
+        doc="dashpot parallel to the spring",
+        damping=True,
+    ),
 )
 #: The count adds the branch's stiffness at the node and one pivot below its own frequency.
 COUNT = "stiffness"
@@ -27,15 +37,17 @@ RIGID = ()
 
 
 def descriptor(v: dict):
-    """``Y - (1 - mu b4/kappa) Y_m = 0`` (paper Eq. (3)), ``Q+ = Q + mu b4 Y_m`` (Eq. (2))."""
+    """``kappa Y - (kappa - mu b4) Y_m = 0`` (paper Eq. (3) times kappa: the mass's
+    equation of motion, free of the pole kappa = 0 that a dashpot's kappa + i w1 gamma
+    would bring), ``Q+ = Q + mu b4 Y_m`` (Eq. (2))."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, b4, unit
+    from ..descriptor import Descriptor, b4, unit, w1
 
-    kappa, mu = v["k"], v["m"]
+    kappa, mu = v["k"] + sp.I * w1 * v.get("c", 0), v["m"]
     return Descriptor(
-        Cz=unit(0).T,
-        Cq=sp.Matrix([[-(1 - mu * b4 / kappa)]]),
+        Cz=kappa * unit(0).T,
+        Cq=sp.Matrix([[-(kappa - mu * b4)]]),
         A=sp.eye(4),
         B=mu * b4 * unit(3),
         qmass=(mu,),

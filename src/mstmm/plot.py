@@ -444,3 +444,51 @@ def veering(
     sec.set_ylabel("f [Hz]")
     ax.legend(loc="best", fontsize=8)
     return _finish(fig, path)
+
+
+def frf_figure(
+    scene: Scene,
+    source,
+    outputs,
+    omegas: np.ndarray,
+    path: PathLike | None = None,
+    quantity: str = "receptance",
+    ax: tuple[Axes, Axes] | None = None,
+    label: str | None = None,
+) -> Figure:
+    """Frequency response of ``outputs`` to ``source`` (``mstmm.response`` points or their
+    strings) over ``omegas`` (rad/s): magnitude (log scale) above, phase (degrees) below,
+    the natural frequencies in the band marked (w_d of a damped scene). ``ax``: draw into
+    these two axes (a before/after comparison), labelled ``label``."""
+    from .response import frf, parse_point
+    from .solve import solve
+
+    src = parse_point(source, "input")
+    dst = [parse_point(o, "output") for o in (outputs if isinstance(outputs, list) else [outputs])]
+    H = frf(scene, [src], dst, omegas, quantity=quantity)[:, 0, :]
+    if ax is None:
+        fig = Figure(figsize=(8.0, 6.0), layout="constrained")
+        ax_mag, ax_ph = fig.subplots(2, 1, sharex=True)
+    else:
+        ax_mag, ax_ph = ax
+        fig = ax_mag.get_figure()
+    f = _to_hz(omegas)
+    for j, d in enumerate(dst):
+        name = f"{label}: {d}" if label else str(d)
+        ax_mag.semilogy(f, np.abs(H[:, j]), lw=1.2, label=name)
+        ax_ph.plot(f, np.degrees(np.angle(H[:, j])), lw=1.0, label=name)
+    sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
+    marks = np.unique(np.real(sol.omega))
+    for w in marks[marks > 0]:
+        ax_mag.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
+        ax_ph.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
+    units = {"receptance": "|H|", "mobility": "|i w H|", "accelerance": "|w^2 H|"}[quantity]
+    ax_mag.set_ylabel(f"{units} (SI)")
+    ax_ph.set_ylabel("phase [deg]")
+    ax_ph.set_xlabel("f [Hz]")
+    ax_ph.set_ylim(-180.0, 180.0)
+    ax_mag.set_title(
+        f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10
+    )
+    ax_mag.legend(fontsize=8)
+    return _finish(fig, path)

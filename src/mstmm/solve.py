@@ -117,6 +117,15 @@ def solve(
     multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
     exactly ``modes`` values.
     """
+    if topology_of(scene).damped:
+        if formulation != "stable":
+            raise ValueError(
+                "a damped scene has one formulation, the complex stable chain: the paper's"
+                " det U_bar is real-valued (undamped scenes only)"
+            )
+        from .damped import solve_damped
+
+        return solve_damped(scene, modes, band, shapes=shapes)
     if modes is None and band is None:
         modes = 10
     timings: dict[str, float] = {}

@@ -10,6 +10,7 @@ from mstmm.derive.catalog import (
     STATE,
     Component,
     Topology,
+    damped,
     layout,
     unknown,
 )
@@ -27,17 +28,21 @@ __all__ = [
 
 
 def topology_of(scene) -> Topology:
-    """The topology of a :class:`mstmm.scene.Scene`: its end conditions and component kinds."""
+    """The topology of a :class:`mstmm.scene.Scene`: its end conditions, component kinds,
+    and whether it is damped (``catalog.damped``)."""
     kinds = tuple(sorted({a.kind for a in scene.attachments}))
-    return Topology(scene.beam.left, scene.beam.right, kinds)
+    damped_ = damped(_segments(scene), _components(scene))
+    return Topology(scene.beam.left, scene.beam.right, kinds, damped_)
 
 
-def _segments(scene) -> list[tuple[float, float, float]]:
+def _segments(scene) -> list[tuple[float, float, float, float]]:
     beam = scene.beam
     segments = getattr(beam, "segments", ()) or ()
     if segments:
-        return [(s.length, s.EI, s.mass_per_length) for s in segments]
-    return [(beam.length, beam.EI, beam.mass_per_length)]
+        return [
+            (s.length, s.EI, s.mass_per_length, getattr(s, "loss_factor", 0.0)) for s in segments
+        ]
+    return [(beam.length, beam.EI, beam.mass_per_length, getattr(beam, "loss_factor", 0.0))]
 
 
 def _components(scene) -> list[Component]:
@@ -50,7 +55,7 @@ def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
 
 def parameter_vector(scene) -> np.ndarray:
     """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
-    (x_end, EI, mbar), event rows (tag, x, offset) sorted by x, data...]``
+    (x_end, EI, mbar, eta), event rows (tag, x, offset) sorted by x, data...]``
     (:func:`mstmm.derive.catalog.layout`)."""
     return _layout(scene)[0]
 
