@@ -236,17 +236,29 @@ def damped(segments: Sequence[tuple[float, ...]], components: Sequence[Component
         if damping_only(c.kind):
             return True
         for key in kind(c.kind).KEYS[1:]:
-            if key.damping and any(float(v) != 0.0 for v in np.atleast_1d(c.values[key.name])):
+            v = value(c.kind, c.values, key)
+            if key.damping and any(float(a) != 0.0 for a in np.atleast_1d(v)):
                 return True
     return False
 
 
+def value(name: str, values: Mapping[str, float | Sequence[float]], key: Key):
+    """A component's value of ``key``: given, or (a damping value left out) its default, a
+    list's repeated to the length of the kind's first list."""
+    if key.name in values or not (key.damping and key.default is not None):
+        return values[key.name]
+    if key.shape != "list":
+        return key.default
+    first = getattr(kind(name), "SAME_LENGTH", (None,))[0]
+    return [key.default] * len(values.get(first, [0]))
+
+
 def pack(name: str, values: Mapping[str, float | Sequence[float]]) -> list[float]:
     """A component's data block: its keys after x in declared order, a list preceded by
-    its length."""
+    its length (a damping value left out at its default)."""
     out: list[float] = []
     for key in kind(name).KEYS[1:]:
-        v = values[key.name]
+        v = value(name, values, key)
         if key.shape == "list":
             seq = [float(a) for a in v]  # type: ignore[union-attr]
             out.append(float(len(seq)))

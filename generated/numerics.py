@@ -23,7 +23,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "4831fab4929ab6cc7ae8a97017884b97868a1738"
+DIGEST = "db05a5b40d597db716eb661bb7659cbcf70fe16b"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 4
@@ -37,6 +37,8 @@ MERGE_LENGTH = 1e-15
 RICCATI_STEP = 1.0
 #: Scan nodes per pi of beta = lam L in ``lowest`` (beam modes are about pi apart).
 NODES_PER_MODE = 8
+#: The scan's nodes beside a component's own frequency w0 are w0 (1 -+ OSC_SIDE).
+OSC_SIDE = 1e-9
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
 
@@ -832,8 +834,8 @@ def lowest_block(
     """Up to ``quota`` more roots above state[STATE_W], certified by ONE count.
 
     Scans the characteristic function (pole-free: each sign change brackets an odd
-    number of roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node at
-    each oscillator frequency, with Brent on each sign change, until ``quota`` sign
+    number of roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node on
+    each side of every oscillator frequency, with Brent on each sign change, until ``quota`` sign
     changes are found (or (quota + 2) pi of beta are covered), and stops at the next
     uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``,
     the count at that node proves the whole block when N(top) - N(bottom) equals the
@@ -857,7 +859,15 @@ def lowest_block(
     b_a = math.sqrt(w_a / scale)
     h = math.pi / NODES_PER_MODE
     b_cap = b_a + (quota + 2) * math.pi
-    osc = osc_frequencies(p)
+    # a node on each side of every component's own frequency, OSC_SIDE apart: a root
+    # exactly there (a decoupled oscillator, identical ones) sits between two nodes where
+    # the function has a clean sign, never on a node whose sign is round-off (Brent would
+    # take that node for the root of a bracket holding another one)
+    own = osc_frequencies(p)
+    osc = np.empty(2 * own.shape[0])
+    for i in range(own.shape[0]):
+        osc[2 * i] = own[i] * (1.0 - OSC_SIDE)
+        osc[2 * i + 1] = own[i] * (1.0 + OSC_SIDE)
     osc = osc[(osc > w_a) & (osc < scale * b_cap * b_cap * (1.0 + 1e-15))]
     size = int(math.ceil((b_cap - b_a) / h)) + 3 + osc.shape[0]
     w = np.empty(size)

@@ -34,7 +34,7 @@ import matplotlib
 import numpy as np
 
 from .kernels import load_kernel
-from .scene import Scene
+from .scene import Scene, SceneError
 from .solve import Solution, solve
 from .topology import parameter_vector, topology_of
 
@@ -53,7 +53,15 @@ if _headless() and "matplotlib.pyplot" not in sys.modules:
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-__all__ = ["characteristic", "figure2", "formats", "mode_shapes", "save", "veering"]
+__all__ = [
+    "characteristic",
+    "figure2",
+    "formats",
+    "frf_figure",
+    "mode_shapes",
+    "save",
+    "veering",
+]
 
 PathLike = str | os.PathLike[str]
 
@@ -366,6 +374,14 @@ def figure2(
     Panel (b) shows the shapes of the first ``modes`` roots of panel (a), skipping
     rigid-body zeros, every shape of a multiple root.
     """
+    if topology_of(scene).damped:
+        raise SceneError(
+            scene.source,
+            "scene",
+            "Fig. 2 plots a real characteristic function: a damped scene's roots are complex"
+            " (plot its frequency response with --frf)",
+            scene.name,
+        )
     fig, (ax_a, ax_b) = _new_figure(2, (13.0, 4.8))
     first = 0
     if band is None:

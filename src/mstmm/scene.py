@@ -201,12 +201,33 @@ class Attachment:
     def __getattr__(self, name: str) -> Value:
         # Only called when ordinary lookup fails; reads __dict__ directly so that
         # copying and unpickling (which probe a half-built object) never recurse.
+        kind = self.__dict__.get("kind", "?")
         if not name.startswith("__"):
-            for key, value in self.__dict__.get("values", ()):
+            values = self.__dict__.get("values", ())
+            for key, value in values:
                 if key == name:
                     return value
-        kind = self.__dict__.get("kind", "?")
+            default = _absent_default(kind, name, values)
+            if default is not None:
+                return default
         raise AttributeError(f"a {kind} attachment has no value {name!r}")
+
+
+def _absent_default(kind: str, name: str, values) -> Value | None:
+    """The value of a damping key the scene left out: its default (a list key's repeated
+    to the length of the kind's first list), or None when ``name`` is no such key."""
+    try:
+        module = catalog.kind(kind)
+    except ValueError:
+        return None
+    for key in module.KEYS:
+        if key.name == name and key.damping and key.default is not None:
+            if key.shape != "list":
+                return key.default
+            first = getattr(module, "SAME_LENGTH", (None,))[0]
+            n = next((len(v) for k, v in values if k == first), 1)
+            return (key.default,) * n
+    return None
 
 
 def SpringMass(x: float, k: float, m: float) -> Attachment:  # noqa: N802 (the old class name)
@@ -1010,6 +1031,8 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
         path = f"{prefix}.{key.name}"
         if key.name in table:
             raw = table[key.name]
+        elif key.damping and key.default is not None:
+            continue  # an absent damping value is none (Attachment reads its default)
         elif key.default is None:
             raise SceneError(source, path, "missing")
         elif key.shape == "list":  # as long as the kind's first list
@@ -1029,7 +1052,7 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
             values[key.name] = _checked(raw, key.check, path, source, beam.length)
     for name in same[1:]:
         n = len(values[same[0]])  # type: ignore[arg-type]
-        if len(values[name]) != n:  # type: ignore[arg-type]
+        if name in values and len(values[name]) != n:  # type: ignore[arg-type]
             raise SceneError(
                 source,
                 f"{prefix}.{name}",

@@ -175,8 +175,16 @@ def sweep(
     each worker loads (or derives) the same kernel and sweeps its chunk on all its cores.
     ``progress`` draws a bar on standard error (the command line does so on a terminal).
     """
-    P = parameter_matrix(scene, vary)
     topology = topology_of(scene)
+    if topology.damped:
+        raise SceneError(
+            scene.source,
+            "scene",
+            "a parameter study of a damped scene (complex roots) is not supported: solve"
+            " each point with mstmm.solve, or sweep its undamped twin",
+            scene.name,
+        )
+    P = parameter_matrix(scene, vary)
     if scheduler is not None:
         out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk, progress)
     else:
