@@ -504,8 +504,7 @@ def damping_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
             where,
         ),
         (
-            f"frequency response: {f['points']} frequencies of the paper example, warm,"
-            " both cores",
+            f"frequency response: {f['points']} frequencies of the paper example, warm, both cores",
             "<= 50 ms",
             f"{fmt_time(f['seconds_all_cores'])} on {f['threads']} threads"
             f" ({fmt_time(f['seconds_one_core'])} on one); error at 20 points"

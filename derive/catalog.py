@@ -232,13 +232,15 @@ def damped(segments: Sequence[tuple[float, ...]], components: Sequence[Component
     that only damps."""
     if any(len(seg) > 3 and float(seg[3]) != 0.0 for seg in segments):
         return True
-    for c in components:
-        if damping_only(c.kind):
+    for name in {c.kind for c in components}:
+        if damping_only(name):
             return True
+    for c in components:  # on every solve: plain Python, no arrays
         for key in kind(c.kind).KEYS[1:]:
-            v = value(c.kind, c.values, key)
-            if key.damping and any(float(a) != 0.0 for a in np.atleast_1d(v)):
-                return True
+            if key.damping:
+                v = value(c.kind, c.values, key)
+                if any(float(a) != 0.0 for a in (v if key.shape == "list" else (v,))):
+                    return True
     return False
 
 

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "24c3f243556bac077902e2adb7fd663f1229c02a"
+SIGNATURE = "c47d8e402e433db4205740cd01a65e3fb6d6c797"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "db05a5b40d597db716eb661bb7659cbcf70fe16b"
+NUMERICS = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
 

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "5a66f333ea32f26e997c24b5fcc19973d559f5f0"
+SIGNATURE = "7137072ff6e6d507e774e5c6d01e1b6633d10ace"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "db05a5b40d597db716eb661bb7659cbcf70fe16b"
+NUMERICS = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
 
@@ -68,11 +68,11 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         A[3, 1] = 0.0
         A[3, 2] = 0.0
         A[3, 3] = 1.0
-        Cz[0, 0] = val_k
+        Cz[0, 0] = 1.0
         Cz[0, 1] = 0.0
         Cz[0, 2] = 0.0
         Cz[0, 3] = 0.0
-        Cq[0, 0] = t0 - val_k
+        Cq[0, 0] = t0/val_k - 1.0
         B[0, 0] = 0.0
         B[1, 0] = 0.0
         B[2, 0] = 0.0
@@ -121,11 +121,11 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         A[3, 1] = 0.0
         A[3, 2] = 0.0
         A[3, 3] = 1.0
-        Cz[0, 0] = val_k
+        Cz[0, 0] = 1.0
         Cz[0, 1] = 0.0
         Cz[0, 2] = 0.0
         Cz[0, 3] = 0.0
-        Cq[0, 0] = t0 - val_k
+        Cq[0, 0] = t0/val_k - 1.0
         B[0, 0] = 0.0
         B[1, 0] = 0.0
         B[2, 0] = 0.0
@@ -226,15 +226,17 @@ def delta_stable(omega, p):
             v3 = v[3]
             v4 = v[4]
             v5 = v[5]
-            t0 = v0*val_k
+            t0 = 1.0/val_k
             t1 = b4*val_m
-            t2 = v1*val_k
-            v[0] = -t0 + t1*v0
-            v[1] = t1*v1 - t2
-            v[2] = t1*v2 - v2*val_k
-            v[3] = t1*v3 - v3*val_k
-            v[4] = t0*t1 + t1*v4 - v4*val_k
-            v[5] = t1*t2 + t1*v5 - v5*val_k
+            t2 = t1*v0
+            t3 = t1*v1
+            t4 = t0*t1
+            v[0] = t0*t2 - v0
+            v[1] = t0*t3 - v1
+            v[2] = t4*v2 - v2
+            v[3] = t4*v3 - v3
+            v[4] = t2 + t4*v4 - v4
+            v[5] = t3 + t4*v5 - v5
         log += renormalise(v)
     log += renormalise(v)
     return v[END_PAIR], log
@@ -311,22 +313,24 @@ def count_below(omega, p):
         if tag == 0:  # spring_mass
             val_k = p[o + 0] * L * L * L / EI
             val_m = p[o + 1] / (L * mbar)
-            pivot = -b4*val_m + val_k
+            pivot = -b4*val_m/val_k + 1.0
             v0 = Zc[0]
             v1 = Zc[1]
             v2 = Zc[2]
             v3 = Zc[3]
             v4 = Zc[4]
             v5 = Zc[5]
-            t0 = v0*val_k
+            t0 = 1.0/val_k
             t1 = b4*val_m
-            t2 = v1*val_k
-            Zc[0] = -t0 + t1*v0
-            Zc[1] = t1*v1 - t2
-            Zc[2] = t1*v2 - v2*val_k
-            Zc[3] = t1*v3 - v3*val_k
-            Zc[4] = t0*t1 + t1*v4 - v4*val_k
-            Zc[5] = t1*t2 + t1*v5 - v5*val_k
+            t2 = t1*v0
+            t3 = t1*v1
+            t4 = t0*t1
+            Zc[0] = t0*t2 - v0
+            Zc[1] = t0*t3 - v1
+            Zc[2] = t4*v2 - v2
+            Zc[3] = t4*v3 - v3
+            Zc[4] = t2 + t4*v4 - v4
+            Zc[5] = t3 + t4*v5 - v5
             if pivot < 0.0:
                 count += 1
         renormalise(Zc)

@@ -23,7 +23,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "db05a5b40d597db716eb661bb7659cbcf70fe16b"
+DIGEST = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 4

@@ -159,23 +159,36 @@ def build_parser() -> argparse.ArgumentParser:
         help="displacement:x=X, rotation:x=X or displacement:mass=J; repeat for more columns",
     )
     f.add_argument(
-        "--band", nargs=2, type=_frequency, required=True, metavar=("LO", "HI"),
+        "--band",
+        nargs=2,
+        type=_frequency,
+        required=True,
+        metavar=("LO", "HI"),
         help="frequencies from LO to HI rad/s",
     )
     f.add_argument(
-        "--points", type=_positive_int, default=1000, metavar="N",
+        "--points",
+        type=_positive_int,
+        default=1000,
+        metavar="N",
         help="number of frequencies (default: %(default)s)",
     )
     f.add_argument(
-        "--spacing", choices=("lin", "log"), default="lin",
+        "--spacing",
+        choices=("lin", "log"),
+        default="lin",
         help="frequencies spaced linearly or logarithmically (default: %(default)s)",
     )
     f.add_argument(
-        "--quantity", choices=("receptance", "mobility", "accelerance"), default="receptance",
+        "--quantity",
+        choices=("receptance", "mobility", "accelerance"),
+        default="receptance",
         help="H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)",
     )
     f.add_argument(
-        "--format", choices=("csv", "json", "table"), default="csv",
+        "--format",
+        choices=("csv", "json", "table"),
+        default="csv",
         help="CSV (omega, f, and per output re, im, abs, phase in degrees), one JSON object,"
         " or a table (default: %(default)s)",
     )
@@ -226,11 +239,16 @@ def build_parser() -> argparse.ArgumentParser:
     )
     q.add_argument("--input", metavar="LOAD:WHERE=VALUE", help="with --frf: as mstmm frf --input")
     q.add_argument(
-        "--output", action="append", metavar="RESPONSE:WHERE=VALUE",
+        "--output",
+        action="append",
+        metavar="RESPONSE:WHERE=VALUE",
         help="with --frf: as mstmm frf --output",
     )
     q.add_argument(
-        "--points", type=_positive_int, default=2000, metavar="N",
+        "--points",
+        type=_positive_int,
+        default=2000,
+        metavar="N",
         help="with --frf: number of frequencies (default: %(default)s)",
     )
     w = command(

@@ -668,8 +668,9 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
         if band is not None:
             und = solve(twin, band=(0.0, 1.5 * band[1]), shapes=False, kernel=twin_kernel)
             if und.omega.size < need:
-                und = solve(twin, modes=max(need, und.omega.size + 4), shapes=False,
-                            kernel=twin_kernel)
+                und = solve(
+                    twin, modes=max(need, und.omega.size + 4), shapes=False, kernel=twin_kernel
+                )
             w_top = band[1] * (1.0 + 1e-6)
         else:
             und = solve(twin, modes=need + 3, shapes=False, kernel=twin_kernel)

@@ -231,9 +231,7 @@ class Kernel:
         at = self._at.get(formulation)
         if at is None:
             if formulation not in FORMULATIONS:
-                raise ValueError(
-                    f"unknown formulation {formulation!r}; choose from {FORMULATIONS}"
-                )
+                raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
             name = f"delta_{formulation}"
             self._addresses(name)
             at = self._at[formulation] = numerics().FUNCTION_TYPES[name][0]

@@ -503,8 +503,6 @@ def frf_figure(
     ax_ph.set_ylabel("phase [deg]")
     ax_ph.set_xlabel("f [Hz]")
     ax_ph.set_ylim(-180.0, 180.0)
-    ax_mag.set_title(
-        f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10
-    )
+    ax_mag.set_title(f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10)
     ax_mag.legend(fontsize=8)
     return _finish(fig, path)

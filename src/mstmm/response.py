@@ -65,9 +65,7 @@ def parse_point(spec, role: str, source: str = "<frf>") -> Point:
     elif isinstance(spec, str) and _SPEC.match(spec):
         quantity, where, at = _SPEC.match(spec).groups()
     else:
-        raise SceneError(
-            source, role, "must read QUANTITY:x=POSITION or QUANTITY:mass=INDEX", spec
-        )
+        raise SceneError(source, role, "must read QUANTITY:x=POSITION or QUANTITY:mass=INDEX", spec)
     quantity, where = str(quantity).lower(), str(where).lower()
     if quantity not in names:
         raise SceneError(source, role, f"quantity must be one of {sorted(names)}", quantity)

@@ -117,7 +117,8 @@ def solve(
     multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
     exactly ``modes`` values.
     """
-    if topology_of(scene).damped:
+    topology = topology_of(scene)
+    if topology.damped:
         if formulation != "stable":
             raise ValueError(
                 "a damped scene has one formulation, the complex stable chain: the paper's"
@@ -131,7 +132,7 @@ def solve(
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     if kernel is None:
-        kernel = load_kernel(topology_of(scene))
+        kernel = load_kernel(topology)
     p = parameter_vector(scene)
     t1 = time.perf_counter()
     timings["load"] = t1 - t0

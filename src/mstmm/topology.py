@@ -29,10 +29,17 @@ __all__ = [
 
 def topology_of(scene) -> Topology:
     """The topology of a :class:`mstmm.scene.Scene`: its end conditions, component kinds,
-    and whether it is damped (``catalog.damped``)."""
+    and whether it is damped (``catalog.damped``). Kept on the scene (immutable) after the
+    first call: the damping test reads every value, and each solve asks."""
+    known = getattr(scene, "__dict__", {}).get("_topology")
+    if known is not None:
+        return known
     kinds = tuple(sorted({a.kind for a in scene.attachments}))
     damped_ = damped(_segments(scene), _components(scene))
-    return Topology(scene.beam.left, scene.beam.right, kinds, damped_)
+    topology = Topology(scene.beam.left, scene.beam.right, kinds, damped_)
+    if hasattr(scene, "__dict__"):
+        object.__setattr__(scene, "_topology", topology)
+    return topology
 
 
 def _segments(scene) -> list[tuple[float, float, float, float]]:
@@ -50,7 +57,10 @@ def _components(scene) -> list[Component]:
 
 
 def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
-    return layout(_segments(scene), _components(scene), topology_of(scene))
+    # the event tags depend on the kinds present only: the damping test is left out
+    kinds = tuple(sorted({a.kind for a in scene.attachments}))
+    tags = Topology(scene.beam.left, scene.beam.right, kinds)
+    return layout(_segments(scene), _components(scene), tags)
 
 
 def parameter_vector(scene) -> np.ndarray:
