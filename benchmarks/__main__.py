@@ -480,6 +480,41 @@ def component_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
     return rows
 
 
+def damping_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
+    """Issue 14's targets, from what ``benchmarks.damping`` recorded in docs/figures.json."""
+    from .workprecision import fmt_err, fmt_time
+
+    d = figs.get("damping")
+    if not d:
+        return []
+    r, f = d["roots"], d["frf"]
+    best = r["fe_equal_accuracy"]
+    where = f"`{d['measured']['command']}`, {d['measured']['date']}"
+    return [
+        (
+            f"damped paper example (dashpots at 5 % of critical, loss factor 0.01): lowest"
+            f" {r['modes']} complex roots, warm, against the damped FE model",
+            "faster at equal accuracy",
+            f"mstmm {fmt_time(r['mstmm_seconds'])} (error {fmt_err(r['mstmm_error'])}, count"
+            f" checked {r['count_checked']}); FE + Richardson {best['elements']} elements"
+            f" {fmt_time(best['seconds'])} (error {fmt_err(best['error'])}"
+            f"{'' if r['fe_reaches_1e-10'] else ', its best: short of 1e-10'})"
+            f" = {r['ratio']:.0f}x",
+            _status(r["ratio"] > 1.0 and r["count_checked"]),
+            where,
+        ),
+        (
+            f"frequency response: {f['points']} frequencies of the paper example, warm, both cores",
+            "<= 50 ms",
+            f"{fmt_time(f['seconds_all_cores'])} on {f['threads']} threads"
+            f" ({fmt_time(f['seconds_one_core'])} on one); error at 20 points"
+            f" {fmt_err(f['error_at_20_points'])}",
+            _status(f["seconds_all_cores"] <= 0.05),
+            where,
+        ),
+    ]
+
+
 def targets_markdown(rows) -> str:
     out = [
         "| target | goal | measured | status | what limits it / remark |",
@@ -589,7 +624,9 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=Non
     parts.append(machine.markdown(start, end, elapsed) + "\n")
     parts.append("## Targets\n")
     parts.append("Goals of the benchmark (not timed unit tests), each with the measured figure.\n")
-    parts.append(targets_markdown(targets(wp, sc, st) + component_rows(figures.load())))
+    recorded = figures.load()
+    rows = targets(wp, sc, st) + component_rows(recorded) + damping_rows(recorded)
+    parts.append(targets_markdown(rows))
     notes = findings(wp, sc)
     if notes:
         parts.append("## Findings\n")

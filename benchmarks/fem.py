@@ -274,7 +274,7 @@ def _model(scene: Any) -> _Model:
                 f"beam length, EI, mass_per_length must be > 0: {length}, {ei}, {mbar}"
             )
     if raw:
-        if _opt(beam, "loss_factor", None) is not None:
+        if _opt(beam, "loss_factor", None) not in (None, 0, 0.0):  # a Scene's Beam has a 0
             raise ValueError("loss_factor on a stepped beam: give it on each segment")
         loss = tuple(float(_opt(s, "loss_factor", 0.0)) for s in raw)
     else:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
 import sympy as sp
 
 from . import catalog, descriptor
@@ -61,13 +62,13 @@ def value_symbol(name: str, i: int, j: int | None = None) -> sp.Symbol:
 
 
 def component_descriptor(kind: str, values: dict) -> descriptor.Descriptor:
-    """A component's descriptor in SI (its kind's, with b4 -> omega^2)."""
+    """A component's descriptor in SI (its kind's, with b4 -> omega^2 and w1 -> omega)."""
     module = catalog.kind(kind)
     if hasattr(module, "full_descriptor"):
         d = module.full_descriptor(values)
     else:
         d = module.descriptor(values)
-    sub = {descriptor.b4: S.omega**2}
+    sub = {descriptor.b4: S.omega**2, descriptor.w1: S.omega}
     return descriptor.Descriptor(
         d.Cz.subs(sub),
         d.Cq.subs(sub),
@@ -140,11 +141,17 @@ def chain(scene) -> list[tuple[str, dict]]:
         module = catalog.kind(a.kind)
         values = {}
         for key in module.KEYS[1:]:
-            v = dict(a.values)[key.name]
+            v = catalog.value(a.kind, dict(a.values), key)
+            # a damping value that is zero (or left out) is a structural zero, so an
+            # undamped scene's matrices stay those of the undamped kinds
+            undamped = key.damping and not any(float(e) for e in np.atleast_1d(v))
             if key.shape == "list":
-                values[key.name] = [value_symbol(key.name, i, j + 1) for j in range(len(v))]
+                values[key.name] = [
+                    sp.S.Zero if undamped else value_symbol(key.name, i, j + 1)
+                    for j in range(len(v))
+                ]
             else:
-                values[key.name] = value_symbol(key.name, i)
+                values[key.name] = sp.S.Zero if undamped else value_symbol(key.name, i)
         out.append((a.kind, {"index": i, "values": values}))
     advance(float(scene.beam.length))
     return out

@@ -19,6 +19,7 @@ from __future__ import annotations
 import importlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from pathlib import Path
 from types import ModuleType
 
@@ -40,20 +41,24 @@ KNOWN_ZERO: dict[str, tuple[int, int]] = {
 BEAM_PARAMETERS = ("L", "EI", "mbar")
 
 #: Layout of the head of the parameter vector (docs/components.md, section 4):
-#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) * n_seg, (tag, x, offset) * n_ev,
-#: data...]``.
+#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) * n_seg, (tag, x, offset) * n_ev,
+#: data...]`` (eta: the segment's loss factor, read by damped kernels only).
 HEAD = 5
-SEGMENT_WIDTH = 3
+SEGMENT_WIDTH = 4
 EVENT_WIDTH = 3
 
 #: Exponents (L, EI_0, mbar_0) that make a value of each SI unit dimensionless:
-#: value * L^a EI_0^b mbar_0^c.
-UNIT_SCALES: dict[str, tuple[int, int, int]] = {
-    "m": (-1, 0, 0),
-    "N/m": (3, -1, 0),
-    "kg": (-1, 0, -1),
-    "N m/rad": (1, -1, 0),
-    "kg m^2": (-3, 0, -1),
+#: value * L^a EI_0^b mbar_0^c (the time unit is L^2 sqrt(mbar_0 / EI_0)).
+UNIT_SCALES: dict[str, tuple[Fraction, Fraction, Fraction]] = {
+    unit: tuple(Fraction(e) for e in exponents)  # type: ignore[misc]
+    for unit, exponents in {
+        "m": (-1, 0, 0),
+        "N/m": (3, -1, 0),
+        "kg": (-1, 0, -1),
+        "N m/rad": (1, -1, 0),
+        "kg m^2": (-3, 0, -1),
+        "N s/m": (1, Fraction(-1, 2), Fraction(-1, 2)),
+    }.items()
 }
 
 
@@ -69,7 +74,10 @@ class Key:
 
     ``check``: ``"position"`` (0 <= x <= L), ``"interior"`` (0 < x < L), ``"positive"``
     (> 0) or ``"nonnegative"`` (>= 0); ``default`` None means required; ``shape``
-    ``"list"`` for a non-empty list of values (an oscillator chain's ``k`` and ``m``).
+    ``"list"`` for a non-empty list of values (an oscillator chain's ``k`` and ``m``; a
+    list key's default is repeated to the length of the kind's other lists). ``damping``:
+    a damping value (a dashpot's ``c``): it enters only the kernels of damped scenes
+    (complex arithmetic), and a scene with any nonzero one is damped.
     """
 
     name: str
@@ -78,6 +86,7 @@ class Key:
     default: float | None = None
     shape: str = "scalar"
     doc: str = ""
+    damping: bool = False
 
     def __post_init__(self) -> None:
         if self.unit not in UNIT_SCALES:
@@ -88,13 +97,14 @@ class Key:
             raise ValueError(f"key {self.name!r}: unknown shape {self.shape!r}")
 
     @property
-    def scale(self) -> tuple[int, int, int]:
+    def scale(self) -> tuple[Fraction, Fraction, Fraction]:
         """Exponents of (L, EI_0, mbar_0) that make this key's value dimensionless."""
         return UNIT_SCALES[self.unit]
 
 
 #: The kinds shipped with mstmm, one module each in ``derive/components``.
 BUILTIN_KINDS = (
+    "dashpot",
     "hinge",
     "mass",
     "oscillator_chain",
@@ -147,6 +157,13 @@ def kind(name: str) -> ModuleType:
         raise ValueError(f"unknown component kind {name!r}") from None
 
 
+def damping_only(name: str) -> bool:
+    """Whether a kind does nothing but damp (every key after x a damping value): a scene
+    with one is damped, and its undamped twin leaves it out."""
+    keys = kind(name).KEYS[1:]
+    return bool(keys) and all(k.damping for k in keys)
+
+
 def kind_file(name: str) -> Path:
     """The source file of a kind (hashed into a kernel's signature)."""
     return Path(kind(name).__file__).resolve()
@@ -154,11 +171,13 @@ def kind_file(name: str) -> Path:
 
 @dataclass(frozen=True)
 class Topology:
-    """End conditions and the component kinds present: everything the kernel code depends on."""
+    """End conditions, the component kinds present, and whether the scene is damped (its
+    kernel then works in complex arithmetic): everything the kernel code depends on."""
 
     left: str
     right: str
     kinds: tuple[str, ...] = ()
+    damped: bool = False
 
     def __post_init__(self) -> None:
         for end in (self.left, self.right):
@@ -171,15 +190,26 @@ class Topology:
 
     @property
     def key(self) -> str:
-        """File-name-safe name of the topology, e.g. ``clamped_free__spring_mass``."""
-        return "__".join([f"{self.left}_{self.right}", *self.kinds])
+        """File-name-safe name of the topology, e.g. ``clamped_free__spring_mass``, or
+        ``clamped_free_damped__dashpot__spring_mass`` for a damped scene."""
+        ends = f"{self.left}_{self.right}" + ("_damped" if self.damped else "")
+        return "__".join([ends, *self.kinds])
 
     @classmethod
     def from_key(cls, key: str) -> Topology:
         """Inverse of :attr:`key`."""
         ends, *names = key.split("__")
-        left, right = ends.split("_")
-        return cls(left, right, tuple(names))
+        left, right, *damped = ends.split("_")
+        if damped not in ([], ["damped"]):
+            raise ValueError(f"not a topology key: {key!r}")
+        return cls(left, right, tuple(names), bool(damped))
+
+    @property
+    def undamped(self) -> Topology:
+        """The same structure without damping: the kinds that only damp (a dashpot) left
+        out, real arithmetic (the start of the continuation of its roots)."""
+        kinds = tuple(k for k in self.kinds if not damping_only(k))
+        return Topology(self.left, self.right, kinds)
 
     def tag(self, name: str) -> int:
         """The tag of a kind in this topology's event table: its index in ``kinds``."""
@@ -196,12 +226,41 @@ class Component:
     values: Mapping[str, float | tuple[float, ...]]
 
 
+def damped(segments: Sequence[tuple[float, ...]], components: Sequence[Component]) -> bool:
+    """Whether a beam (segments ``(length, EI, mbar[, eta])``) carrying ``components`` is
+    damped: a loss factor, a damping value (``Key.damping``) that is not zero, or a kind
+    that only damps."""
+    if any(len(seg) > 3 and float(seg[3]) != 0.0 for seg in segments):
+        return True
+    for name in {c.kind for c in components}:
+        if damping_only(name):
+            return True
+    for c in components:  # on every solve: plain Python, no arrays
+        for key in kind(c.kind).KEYS[1:]:
+            if key.damping:
+                v = value(c.kind, c.values, key)
+                if any(float(a) != 0.0 for a in (v if key.shape == "list" else (v,))):
+                    return True
+    return False
+
+
+def value(name: str, values: Mapping[str, float | Sequence[float]], key: Key):
+    """A component's value of ``key``: given, or (a damping value left out) its default, a
+    list's repeated to the length of the kind's first list."""
+    if key.name in values or not (key.damping and key.default is not None):
+        return values[key.name]
+    if key.shape != "list":
+        return key.default
+    first = getattr(kind(name), "SAME_LENGTH", (None,))[0]
+    return [key.default] * len(values.get(first, [0]))
+
+
 def pack(name: str, values: Mapping[str, float | Sequence[float]]) -> list[float]:
     """A component's data block: its keys after x in declared order, a list preceded by
-    its length."""
+    its length (a damping value left out at its default)."""
     out: list[float] = []
     for key in kind(name).KEYS[1:]:
-        v = values[key.name]
+        v = value(name, values, key)
         if key.shape == "list":
             seq = [float(a) for a in v]  # type: ignore[union-attr]
             out.append(float(len(seq)))
@@ -212,17 +271,19 @@ def pack(name: str, values: Mapping[str, float | Sequence[float]]) -> list[float
 
 
 def layout(
-    segments: Sequence[tuple[float, float, float]],
+    segments: Sequence[tuple[float, ...]],
     components: Sequence[Component],
     topology: Topology,
 ) -> tuple[np.ndarray, dict[str, int]]:
-    """The parameter vector of a beam (segments ``(length, EI, mbar)`` from the left end)
-    carrying ``components`` (in scene order), and the index of every field in it.
+    """The parameter vector of a beam (segments ``(length, EI, mbar[, eta])`` from the left
+    end, eta the loss factor, default 0) carrying ``components`` (in scene order), and the
+    index of every field in it.
 
     Field paths: ``beam.length`` (total), ``beam.EI``, ``beam.mass_per_length`` (first
-    segment), ``beam.segments[s].EI|mass_per_length``, ``attachments[i].x``,
-    ``attachments[i].<key>`` and ``attachments[i].<key>[j]`` for a list key. The event
-    rows are sorted by x (stable); their offsets point at each component's data block.
+    segment), ``beam.loss_factor`` (a uniform beam's), ``beam.segments[s].EI|
+    mass_per_length|loss_factor``, ``attachments[i].x``, ``attachments[i].<key>`` and
+    ``attachments[i].<key>[j]`` for a list key. The event rows are sorted by x (stable);
+    their offsets point at each component's data block.
     """
     lengths = [float(s[0]) for s in segments]
     total = float(sum(lengths))
@@ -231,14 +292,15 @@ def layout(
     head = [total, float(segments[0][1]), float(segments[0][2]), float(n_seg), float(n_ev)]
     seg_rows: list[float] = []
     end = 0.0
-    for s, (length, ei, mbar) in enumerate(segments):
+    for s, (length, ei, mbar, *eta) in enumerate(segments):
         end = total if s == n_seg - 1 else end + float(length)
-        seg_rows += [end, float(ei), float(mbar)]
+        seg_rows += [end, float(ei), float(mbar), float(eta[0]) if eta else 0.0]
     data_start = HEAD + SEGMENT_WIDTH * n_seg + EVENT_WIDTH * n_ev
     fields = {"beam.length": 0, "beam.EI": 1, "beam.mass_per_length": 2}
+    fields["beam.loss_factor"] = HEAD + 3
     for s in range(n_seg):
-        fields[f"beam.segments[{s}].EI"] = HEAD + SEGMENT_WIDTH * s + 1
-        fields[f"beam.segments[{s}].mass_per_length"] = HEAD + SEGMENT_WIDTH * s + 2
+        for j, name in enumerate(("EI", "mass_per_length", "loss_factor")):
+            fields[f"beam.segments[{s}].{name}"] = HEAD + SEGMENT_WIDTH * s + 1 + j
     data: list[float] = []
     rows: list[tuple[float, int, list[float]]] = []
     for i, c in enumerate(components):
@@ -263,6 +325,29 @@ def layout(
         ev_rows += rows[i][2]
     p = np.asarray(head + seg_rows + ev_rows + data, dtype=np.float64)
     return p, fields
+
+
+def damping_columns(p: np.ndarray, kinds: Sequence[str]) -> np.ndarray:
+    """Indices of every damping value in a parameter vector: each segment's loss factor
+    and each component's damping keys (``Key.damping``, list entries included); ``kinds``
+    are the topology's, which the event tags index. Scaling them together scales the
+    damping (the continuation of ``mstmm.damped``)."""
+    n_seg = int(p[3])
+    cols = [HEAD + SEGMENT_WIDTH * s + 3 for s in range(n_seg)]
+    table = np.asarray(p[event_rows(p)]).reshape(-1, EVENT_WIDTH)
+    for tag, _, offset in table:
+        j = int(offset)
+        for key in kind(kinds[int(tag)]).KEYS[1:]:
+            if key.shape == "list":
+                n = int(p[j])
+                if key.damping:
+                    cols += range(j + 1, j + 1 + n)
+                j += 1 + n
+            else:
+                if key.damping:
+                    cols.append(j)
+                j += 1
+    return np.asarray(cols, dtype=np.int64)
 
 
 def event_rows(p: np.ndarray) -> slice:

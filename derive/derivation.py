@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from . import symbols
+from . import catalog, symbols
 from .assemble import OverallTransfer, overall_transfer
 from .components import beam, rigid_body, spring_mass
 from .emit import kernel_source
@@ -93,12 +93,16 @@ class Derivation:
             if kind == "beam":
                 values[par["l"]] = par["length"]
                 continue
-            given = dict(points[par["index"] - 1].values)
+            a = points[par["index"] - 1]
+            module = catalog.kind(a.kind)
+            given = {k.name: catalog.value(a.kind, dict(a.values), k) for k in module.KEYS[1:]}
             for name, sym in par["values"].items():
-                if isinstance(sym, list):
-                    values.update(zip(sym, given[name], strict=True))
-                else:
-                    values[sym] = given[name]
+                pairs = (
+                    zip(sym, given[name], strict=True)
+                    if isinstance(sym, list)
+                    else [(sym, given[name])]
+                )
+                values.update((s, v) for s, v in pairs if isinstance(s, sp.Symbol))
         return values
 
 

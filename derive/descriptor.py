@@ -28,6 +28,10 @@ from .compound import PAIRS, second_compound
 
 #: The squared frequency in the kernel's units: beta^4 = mbar_0 omega^2 L^4 / EI_0.
 b4 = sp.Symbol("b4", nonnegative=True)
+#: The frequency itself in those units, ``w1 = omega L^2 sqrt(mbar_0 / EI_0)`` (b4 = w1^2):
+#: a dashpot's force is ``i w1 gamma`` times its displacement (time dependence exp(i w t));
+#: complex in a damped kernel, where b4 is printed as w1^2.
+w1 = sp.Symbol("w1")
 
 
 @dataclass(frozen=True)

@@ -27,6 +27,34 @@ from .sign import derive_digest, signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 NUMERICS_TEMPLATE = TEMPLATE.with_name("numerics.py.tmpl")
+#: A topology's characteristic functions: real (undamped) or complex (damped).
+FORMULATIONS = {
+    False: TEMPLATE.with_name("undamped.py.tmpl"),
+    True: TEMPLATE.with_name("damped.py.tmpl"),
+}
+#: What each kind of kernel's functions are (the module docstring).
+WHAT = {
+    False: """
+* ``delta_paper``: det U_bar(omega), paper Eqs. (1)-(4): the tree algorithm with every
+  component's unknowns and geometric equations (its descriptor), the boundary reduction,
+  an LU determinant (units L = EI_0 = mbar_0 = 1);
+* ``delta_stable`` (default): the same roots from the second-compound chain in
+  units L = 1, EI_0 = 1, reduced beam functions (series below x = $threshold),
+  every component's pole factor multiplied out exactly once, renormalised every step.
+
+Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
+``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
+clamped-piece counts plus the negative pivots of the dynamic stiffness, eliminated node
+by node on the minors of the state subspace; each component adds its own), independent
+of both.""",
+    True: """
+* ``delta_damped``: the second-compound chain of the undamped kernels in complex
+  arithmetic at a complex frequency w = w_d + i sigma (time dependence exp(i w t)): the
+  dashpots' forces i w c, each segment's loss factor as EI (1 + i eta), reduced beam
+  functions (series below |x| = $threshold), pole factors multiplied out once; its
+  ``(mantissa, log)`` are complex and mantissa * exp(log) is entire in w. The damped
+  search counts its zeros by the argument principle (``mstmm.damped``).""",
+}
 #: Gauss-Legendre points of the mode shapes' mass integrals.
 GAUSS_POINTS = 8
 
@@ -48,7 +76,7 @@ def _series_lines(funcs: tuple[special.Reduced, ...]) -> list[str]:
     return lines
 
 
-def _closed_lines(funcs, scaled: bool) -> list[str]:
+def _closed_lines(funcs, scaled: bool, complex_: bool = False) -> list[str]:
     out = []
     for f in funcs:
         if scaled:
@@ -56,7 +84,7 @@ def _closed_lines(funcs, scaled: bool) -> list[str]:
             expr = special.scaled_closed_form(f, E, chs, shs)
         else:
             expr = f.closed
-        out.append(f"{f.name} = {code(expr.subs(special.x, S.x))}")
+        out.append(f"{f.name} = {code(expr.subs(special.x, S.x), complex_)}")
     return out
 
 
@@ -68,61 +96,88 @@ def _clamped_clamped_lines() -> list[str]:
     return [f"f = {code(expr.subs(special.x, S.x))}"]
 
 
-def _matrix_fill(M: sp.Matrix, name: str) -> list[str]:
+def _matrix_fill(M: sp.Matrix, name: str, complex_: bool = False) -> list[str]:
     targets = [f"{name}[{i}, {j}]" for i in range(M.rows) for j in range(M.cols)]
-    return assignments(targets, list(M), indent="")
+    return assignments(targets, list(M), indent="", complex_=complex_)
 
 
-def _compound_step(C: sp.Matrix) -> list[str]:
+def _compound_step(C: sp.Matrix, complex_: bool = False) -> list[str]:
     """``v <- C v`` for a 6x6 symbolic compound, through CSE'd scalars."""
     v = sp.symbols("v0:6")
     lines = [f"v{a} = v[{a}]" for a in range(6)]
-    lines += assignments([f"v[{a}]" for a in range(6)], list(C * sp.Matrix(v)), indent="")
+    products = list(C * sp.Matrix(v))
+    lines += assignments([f"v[{a}]" for a in range(6)], products, indent="", complex_=complex_)
     return lines
 
 
-def _value_lines(module, exclude: tuple[str, ...] = ()) -> tuple[list[str], dict]:
+def _unit_factor(scale) -> str:
+    """`` * L * L / EI``-style factor making a value of unit exponents ``scale`` (of L,
+    EI_0, mbar_0) dimensionless; half powers as ``math.sqrt`` (a dashpot's N s/m)."""
+    num: list[str] = []
+    den: list[str] = []
+    roots_num: list[str] = []
+    roots_den: list[str] = []
+    for name, e in zip(("L", "EI", "mbar"), scale):
+        whole, half = int(abs(e)), abs(e) - int(abs(e))
+        (num if e > 0 else den).extend([name] * whole)
+        if half:
+            (roots_num if e > 0 else roots_den).append(name)
+    if roots_num:
+        num.append(f"math.sqrt({' * '.join(roots_num)})")
+    if roots_den:
+        den.append(f"math.sqrt({' * '.join(roots_den)})")
+    factor = "".join(f" * {n}" for n in num)
+    if den:
+        factor += " / " + (den[0] if len(den) == 1 else "(" + " * ".join(den) + ")")
+    return factor
+
+
+def _value_lines(module, damped: bool = False) -> tuple[list[str], dict]:
     """Lines loading a kind's scalar values from its data block (at ``o``) in units
-    L = EI = mbar = 1 (exponents from each key's unit), and their symbols."""
+    L = EI = mbar = 1 (exponents from each key's unit), and their symbols. Damping values
+    (``Key.damping``) only in a damped kernel."""
     lines = []
     values = {}
-    j = 0
-    for key in module.KEYS[1:]:
+    for j, key in enumerate(module.KEYS[1:]):
         if key.shape == "list":
             break
-        a, b, c = key.scale
-        num = [n for n, e in (("L", a), ("EI", b), ("mbar", c)) for _ in range(max(e, 0))]
-        den = [n for n, e in (("L", a), ("EI", b), ("mbar", c)) for _ in range(max(-e, 0))]
-        factor = "".join(f" * {n}" for n in num)
-        if den:
-            factor += " / " + (den[0] if len(den) == 1 else "(" + " * ".join(den) + ")")
+        if key.damping and not damped:
+            continue
         name = f"val_{key.name}"
-        lines.append(f"{name} = p[o + {j}]{factor}")
+        lines.append(f"{name} = p[o + {j}]{_unit_factor(key.scale)}")
         values[key.name] = sp.Symbol(name, real=True)
-        j += 1
+    prelude = getattr(module, "PRELUDE_DAMPED" if damped else "PRELUDE", None)
     for name in getattr(module, "PRELUDE_NAMES", ()):
-        values[name] = sp.Symbol(name, real=True)
-    if hasattr(module, "PRELUDE"):
-        lines.append(module.PRELUDE)
+        values[name] = sp.Symbol(name, real=not damped)
+    if prelude:
+        lines.append(prelude)
     return lines, values
 
 
-def _symbolic_descriptor(module) -> tuple[list[str], descriptor.Descriptor]:
-    lines, values = _value_lines(module)
+def _symbolic_descriptor(module, damped: bool = False) -> tuple[list[str], descriptor.Descriptor]:
+    lines, values = _value_lines(module, damped)
     return lines, module.descriptor(values)
 
 
-def _step_lines(d: descriptor.Descriptor, name: str = "v") -> list[str]:
+def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = False) -> list[str]:
     vs = sp.symbols("v0:6")
     lines = [f"v{a} = {name}[{a}]" for a in range(6)]
     step = descriptor.compound_step(d, sp.Matrix(vs))
-    lines += assignments([f"{name}[{a}]" for a in range(6)], list(step), indent="")
+    targets = [f"{name}[{a}]" for a in range(6)]
+    lines += assignments(targets, list(step), indent="", complex_=complex_)
     return lines
 
 
 def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
     """v <- the component's pole-free compound step (docs/components.md)."""
     return _value_lines(module)[0] + _step_lines(d)
+
+
+def _damped_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """The same in a damped kernel: complex, with the damping values (and the log of a
+    factor a kind's prelude took out, ``LOG_DAMPED``)."""
+    log = [f"log += {module.LOG_DAMPED}"] if hasattr(module, "LOG_DAMPED") else []
+    return _value_lines(module, damped=True)[0] + _step_lines(d, complex_=True) + log
 
 
 def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
@@ -145,18 +200,18 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
         return values + step
     if hasattr(module, "OWN"):
         return values + step + [f"count += {module.OWN}"]
-    if d.n_q != 1 or d.Cz != descriptor.unit(0).T:
-        raise ValueError(f"{module.KIND}: a stiffness kind with unknowns needs Cz = e_Y, n_q = 1")
-    # the unknown's own dynamic stiffness (k - m w^2 over k for a spring-mass)
+    if d.n_q != 1 or any(d.Cz[0, j] != 0 for j in (1, 2, 3)) or d.Cz[0, 0] == 0:
+        raise ValueError(
+            f"{module.KIND}: a stiffness kind with unknowns needs n_q = 1 and Cz = c e_Y"
+            " (its row the unknown's equation of motion, c > 0 its coupling to Y)"
+        )
+    # the unknown's own dynamic stiffness (k - m w^2 for a spring-mass)
     pivot = [f"pivot = {code(-d.Cq[0, 0])}"]
     return values + pivot + step + ["if pivot < 0.0:", "    count += 1"]
 
 
-def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
-    """Fill Cz, Cq, A, B, qmass (units L = EI = mbar = 1); return (constraints, unknowns)."""
-    if hasattr(module, "SHAPE"):
-        return [f"return {module.SHAPE}"]
-    lines = _value_lines(module)[0]
+def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list[str]:
+    """Fill Cz, Cq, A, B, qmass from a descriptor; return (constraints, unknowns)."""
     targets = [f"A[{r}, {c}]" for r in range(4) for c in range(4)]
     exprs = list(d.A)
     for r in range(d.Cz.rows):
@@ -165,8 +220,29 @@ def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
     for j in range(d.n_q):
         targets += [f"B[{r}, {j}]" for r in range(4)] + [f"qmass[{j}]"]
         exprs += list(d.B[:, j]) + [d.qmass[j]]
-    lines += assignments(targets, [sp.sympify(e) for e in exprs], indent="")
+    lines = assignments(targets, [sp.sympify(e) for e in exprs], indent="", complex_=complex_)
     return lines + [f"return {d.Cz.rows}, {d.n_q}"]
+
+
+def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """Fill Cz, Cq, A, B, qmass (units L = EI = mbar = 1); return (constraints, unknowns)."""
+    if hasattr(module, "SHAPE"):
+        return [f"return {module.SHAPE}"]
+    return _value_lines(module)[0] + _fill_lines(d)
+
+
+def _descriptor_c_lines(damped: bool):
+    """The complex descriptor at the complex frequency w1 (b4 = w1^2); with the damping
+    values in a damped kernel (the frequency response and damped shapes of any kernel)."""
+
+    def body(module, d: descriptor.Descriptor) -> list[str]:
+        if hasattr(module, "SHAPE_COMPLEX"):
+            return [f"return {module.SHAPE_COMPLEX}"]
+        values, symbols = _value_lines(module, damped)
+        d = module.descriptor(symbols)
+        return values + ["b4 = w1 * w1"] + _fill_lines(d, complex_=True)
+
+    return body
 
 
 def _internal_lines(module, d: descriptor.Descriptor) -> list[str]:
@@ -206,41 +282,82 @@ def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
     return [f"return {RIGID_FLAGS[rigid[0]]}"]
 
 
-#: The kernel's dispatch functions ``event_<what>(tag, ...)``: arguments, the branch of
-#: each kind present (printed from its descriptor), the statement for no branch, and doc.
-DISPATCH = (
-    (
-        "descriptor",
-        "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
-        _descriptor_lines,
-        "return 0, 0",
-        "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units\n"
-        "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
-    ),
-    ("nq", "p, o", _nq_lines, "return 0", "Number of unknowns of the component (full descriptor)."),
-    (
-        "internal",
-        "p, o, L, EI, mbar, out, n",
-        _internal_lines,
-        "return n",
-        "Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n.",
-    ),
-    (
-        "rigid",
-        "p, o",
-        _rigid_lines,
-        "return 0",
-        "Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink.",
-    ),
+def _damps_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """A damper's constraint on rigid motions at w = 0 (``DAMPS``: a grounded dashpot
+    dissipates unless Y = 0 there)."""
+    damps = tuple(getattr(module, "DAMPS", ()))
+    if not damps:
+        return ["return 0"]
+    if damps not in (("Y",), ("theta",)):
+        raise ValueError(f"{module.KIND}: DAMPS must be ('Y',), ('theta',) or empty")
+    return [f"return {RIGID_FLAGS[damps[0]]}"]
+
+
+_DESCRIPTOR_C_ARGS = "p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass"
+_DESCRIPTOR_C_DOC = (
+    "The component's descriptor in complex arithmetic at the complex frequency w1 (units\n"
+    "    L = EI = mbar = 1, b4 = w1^2); returns (constraints, unknowns)."
 )
 
 
-def _parsed(kinds: tuple[str, ...]) -> list:
-    """``(kind, module, descriptor)`` of each kind present, in tag order."""
+def dispatch_table(damped: bool) -> tuple:
+    """The kernel's dispatch functions ``event_<what>(tag, ...)``: arguments, the branch of
+    each kind present (printed from its descriptor), the statement for no branch, and doc.
+    A damped kernel has no real descriptor and no own frequencies (its undamped twin's
+    kernel has them)."""
+    common = (
+        (
+            "descriptor_c",
+            _DESCRIPTOR_C_ARGS,
+            _descriptor_c_lines(damped),
+            "return 0, 0",
+            _DESCRIPTOR_C_DOC,
+        ),
+        ("nq", "p, o", _nq_lines, "return 0", "Unknowns of the component (full descriptor)."),
+        (
+            "rigid",
+            "p, o",
+            _rigid_lines,
+            "return 0",
+            "Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink.",
+        ),
+        (
+            "damps",
+            "p, o",
+            _damps_lines,
+            "return 0",
+            "Constraint of a damper on rigid motions at w = 0: 0 none, 1 Y = 0, 2 theta = 0.",
+        ),
+    )
+    if damped:
+        return common
+    return (
+        (
+            "descriptor",
+            "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
+            _descriptor_lines,
+            "return 0, 0",
+            "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units\n"
+            "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
+        ),
+        (
+            "internal",
+            "p, o, L, EI, mbar, out, n",
+            _internal_lines,
+            "return n",
+            "Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n.",
+        ),
+        *common,
+    )
+
+
+def _parsed(kinds: tuple[str, ...], damped: bool = False) -> list:
+    """``(kind, module, descriptor)`` of each kind present, in tag order (a damped
+    kernel's descriptors carry the damping values)."""
     out = []
     for k in kinds:
         module = catalog.kind(k)
-        out.append((k, module, _symbolic_descriptor(module)[1]))
+        out.append((k, module, _symbolic_descriptor(module, damped)[1]))
     return out
 
 
@@ -254,11 +371,11 @@ def _branch_lines(parsed: list, body) -> list[str]:
     return lines
 
 
-def _dispatch(parsed: list) -> str:
+def _dispatch(parsed: list, damped: bool = False) -> str:
     """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
     printed inline (one compiled function per entry, not per kind: compile time)."""
     out = []
-    for what, args, body, tail, doc in DISPATCH:
+    for what, args, body, tail, doc in dispatch_table(damped):
         lines = ["", "", "@njit(cache=True)", f"def event_{what}(tag, {args}):", f'    """{doc}"""']
         lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
         lines.append(f"    {tail}")
@@ -289,7 +406,7 @@ def _penalty_lines(end: str) -> list[str]:
 
 def _parameter_doc(topology: Topology) -> str:
     parts = [
-        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) per segment,"
+        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment,"
         " (tag, x, offset) per component sorted by x, data blocks]"
     ]
     for t, name in enumerate(topology.kinds):
@@ -325,6 +442,11 @@ def numerics_source() -> str:
         beam_transfer_scaled=_indent(_matrix_fill(U_nd, "U"), 4),
         clamped_clamped=_indent(_clamped_clamped_lines(), 4),
         beam_compound=_indent(_compound_step(C_beam), 4),
+        krylov_closed_c=_indent(_closed_lines(special.KRYLOV, False, complex_=True), 8),
+        krylov_scaled_c=_indent(_closed_lines(special.KRYLOV, True, complex_=True), 4),
+        compound_closed_c=_indent(_closed_lines(special.COMPOUND, True, complex_=True), 8),
+        beam_transfer_scaled_c=_indent(_matrix_fill(U_nd, "U", complex_=True), 4),
+        beam_compound_c=_indent(_compound_step(C_beam, complex_=True), 4),
         node_stiffness=_indent(_node_stiffness_lines(), 4),
         gauss_x=repr([float(v) for v in 0.5 * (gx + 1.0)]),
         gauss_w=repr([float(v) for v in 0.5 * gw]),
@@ -343,21 +465,32 @@ def regenerate_command(topology: Topology) -> str:
 
 def kernel_source(topology: Topology) -> str:
     """The complete source of the kernel module of ``topology`` (it imports the shared
-    numerics, ``numerics_source``)."""
+    numerics, ``numerics_source``): real for an undamped topology, complex for a damped
+    one."""
     kinds = topology.kinds
-    parsed = _parsed(kinds)
+    damped = topology.damped
+    parsed = _parsed(kinds, damped)
     left_unknown = unknown(topology.left)
     right_unknown = unknown(topology.right)
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
+    if damped:
+        branches = dict(stable_branches=_branches(parsed, _damped_lines))
+    else:
+        branches = dict(
+            stable_branches=_branches(parsed, _stable_lines),
+            count_branches=_branches(parsed, _count_lines),
+            right_penalty=_indent(_penalty_lines(topology.right), 4),
+        )
+    formulation = Template(FORMULATIONS[damped].read_text()).substitute(branches)
     values = dict(
         key=topology.key,
         left=topology.left,
         right=topology.right,
         attachments_text=kinds_text,
+        what=Template(WHAT[damped]).substitute(threshold=repr(special.SERIES_THRESHOLD)),
         kinds=repr(kinds),
-        threshold=repr(special.SERIES_THRESHOLD),
         parameter_doc=_parameter_doc(topology),
         regenerate=regenerate_command(topology),
         sympy_version=importlib.metadata.version("sympy"),
@@ -369,10 +502,8 @@ def kernel_source(topology: Topology) -> str:
         right_known=repr(KNOWN_ZERO[topology.right]),
         start_pair=pair_index(left_unknown),
         end_pair=pair_index(KNOWN_ZERO[topology.right]),
-        right_penalty=_indent(_penalty_lines(topology.right), 4),
-        dispatch=_dispatch(parsed),
-        stable_branches=_branches(parsed, _stable_lines),
-        count_branches=_branches(parsed, _count_lines),
+        dispatch=_dispatch(parsed, damped),
+        formulation="\n" + formulation.rstrip("\n") + "\n",
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))
 

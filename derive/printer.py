@@ -32,16 +32,33 @@ class NumbaPrinter(PythonCodePrinter):
         return super()._print_Pow(expr, rational=rational)
 
 
+class ComplexNumbaPrinter(NumbaPrinter):
+    """The same for complex arguments: ``cmath.*`` scalar calls (a damped kernel, and the
+    complex beam functions of the frequency response), ``I`` as ``1j``."""
+
+    def _module_format(self, fqn: str, register: bool = True) -> str:
+        if fqn.startswith("math."):
+            fqn = "c" + fqn
+        return super()._module_format(fqn, register)
+
+    def _print_ImaginaryUnit(self, expr: sp.Expr) -> str:
+        return "1j"
+
+
 _PRINTER = NumbaPrinter()
+_COMPLEX_PRINTER = ComplexNumbaPrinter()
 
 
-def code(expr: sp.Expr) -> str:
-    """Source of one expression."""
-    return _PRINTER.doprint(expr)
+def code(expr: sp.Expr, complex_: bool = False) -> str:
+    """Source of one expression (``complex_``: for complex arguments, ``cmath``)."""
+    return (_COMPLEX_PRINTER if complex_ else _PRINTER).doprint(expr)
 
 
 def assignments(
-    targets: Sequence[str], exprs: Sequence[sp.Expr], indent: str = "    "
+    targets: Sequence[str],
+    exprs: Sequence[sp.Expr],
+    indent: str = "    ",
+    complex_: bool = False,
 ) -> list[str]:
     """Lines ``t0 = ...`` (common subexpressions) then ``target = expr`` for each target.
 
@@ -50,6 +67,6 @@ def assignments(
     """
     temps = sp.numbered_symbols(symbols.CSE_PREFIX)
     replacements, reduced = sp.cse(list(exprs), symbols=temps, order="none")
-    lines = [f"{indent}{sym} = {code(val)}" for sym, val in replacements]
-    lines += [f"{indent}{t} = {code(e)}" for t, e in zip(targets, reduced, strict=True)]
+    lines = [f"{indent}{sym} = {code(val, complex_)}" for sym, val in replacements]
+    lines += [f"{indent}{t} = {code(e, complex_)}" for t, e in zip(targets, reduced, strict=True)]
     return lines

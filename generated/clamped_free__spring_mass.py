@@ -14,9 +14,12 @@ Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
 ``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
 clamped-piece counts plus the negative pivots of the dynamic stiffness, eliminated node
 by node on the minors of the state subspace; each component adds its own), independent
-of both. One event loop walks the components in x order, one branch per kind present.
+of both.
+One event loop walks the components in x order, one branch per kind present, printed
+from each kind's descriptor (paper Eqs. (2)-(3)); ``shape_event_c`` gives the descriptors
+in complex arithmetic (the frequency response, damped mode shapes).
 
-Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar) per segment, (tag, x, offset) per component sorted by x, data blocks]; tag 0 = spring_mass: k (N/m), m (kg)
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x, offset) per component sorted by x, data blocks]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
 Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
@@ -24,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "a7760e62898708394a2843ca802bca9eec7dd54f"
+SIGNATURE = "7137072ff6e6d507e774e5c6d01e1b6633d10ace"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -36,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "8e64aef4e1e4ae0d36adf00a157b0eaabe2bdee9"
+NUMERICS = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
 #: Relative singular value below which a rigid-motion constraint is dependent.
 RIGID_RANK = 1e-9
 
@@ -80,14 +83,6 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
 
 
 @njit(cache=True)
-def event_nq(tag, p, o):
-    """Number of unknowns of the component (full descriptor)."""
-    if tag == 0:  # spring_mass
-        return 1
-    return 0
-
-
-@njit(cache=True)
 def event_internal(tag, p, o, L, EI, mbar, out, n):
     """Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n."""
     if tag == 0:  # spring_mass
@@ -102,8 +97,63 @@ def event_internal(tag, p, o, L, EI, mbar, out, n):
 
 
 @njit(cache=True)
+def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
+    """The component's descriptor in complex arithmetic at the complex frequency w1 (units
+    L = EI = mbar = 1, b4 = w1^2); returns (constraints, unknowns)."""
+    if tag == 0:  # spring_mass
+        val_k = p[o + 0] * L * L * L / EI
+        val_m = p[o + 1] / (L * mbar)
+        b4 = w1 * w1
+        t0 = b4*val_m
+        A[0, 0] = 1.0
+        A[0, 1] = 0.0
+        A[0, 2] = 0.0
+        A[0, 3] = 0.0
+        A[1, 0] = 0.0
+        A[1, 1] = 1.0
+        A[1, 2] = 0.0
+        A[1, 3] = 0.0
+        A[2, 0] = 0.0
+        A[2, 1] = 0.0
+        A[2, 2] = 1.0
+        A[2, 3] = 0.0
+        A[3, 0] = 0.0
+        A[3, 1] = 0.0
+        A[3, 2] = 0.0
+        A[3, 3] = 1.0
+        Cz[0, 0] = 1.0
+        Cz[0, 1] = 0.0
+        Cz[0, 2] = 0.0
+        Cz[0, 3] = 0.0
+        Cq[0, 0] = t0/val_k - 1.0
+        B[0, 0] = 0.0
+        B[1, 0] = 0.0
+        B[2, 0] = 0.0
+        B[3, 0] = t0
+        qmass[0] = val_m
+        return 1, 1
+    return 0, 0
+
+
+@njit(cache=True)
+def event_nq(tag, p, o):
+    """Unknowns of the component (full descriptor)."""
+    if tag == 0:  # spring_mass
+        return 1
+    return 0
+
+
+@njit(cache=True)
 def event_rigid(tag, p, o):
     """Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink."""
+    if tag == 0:  # spring_mass
+        return 0
+    return 0
+
+
+@njit(cache=True)
+def event_damps(tag, p, o):
+    """Constraint of a damper on rigid motions at w = 0: 0 none, 1 Y = 0, 2 theta = 0."""
     if tag == 0:  # spring_mass
         return 0
     return 0
@@ -294,23 +344,6 @@ def count_below(omega, p):
 
 
 @njit(cache=True)
-def event_unknowns(p, rows):
-    """Total unknowns of the components' full descriptors, and the most of one."""
-    total = 0
-    most = 0
-    for r in range(rows.shape[0]):
-        nq = event_nq(int(p[rows[r]]), p, int(p[rows[r] + 2]))
-        total += nq
-        most = max(most, nq)
-    return total, most
-
-@njit(cache=True)
-def shape_sizes(p):
-    """Unknowns of the components' full descriptors: (total, most of one)."""
-    return event_unknowns(p, event_order(p))
-
-
-@njit(cache=True)
 def shape_event(p, row, b4, Cz, Cq, A, B, qmass):
     """The descriptor of the component at event row ``row`` (``event_descriptor``)."""
     return event_descriptor(
@@ -406,26 +439,69 @@ def oscillator_frequencies(p):
     insertion_order(out[:n], order)
     return out[order]
 
+@njit(cache=True)
+def event_unknowns(p, rows):
+    """Total unknowns of the components' full descriptors, and the most of one."""
+    total = 0
+    most = 0
+    for r in range(rows.shape[0]):
+        nq = event_nq(int(p[rows[r]]), p, int(p[rows[r] + 2]))
+        total += nq
+        most = max(most, nq)
+    return total, most
+
+@njit(cache=True)
+def shape_sizes(p):
+    """Unknowns of the components' full descriptors: (total, most of one)."""
+    return event_unknowns(p, event_order(p))
+
+
+@njit(cache=True)
+def rigid_flag(p, row, dampers):
+    """The rigid-motion constraint of the component at event row ``row`` (``event_rigid``;
+    with ``dampers``, ``event_damps`` where that is none)."""
+    flag = event_rigid(int(p[row]), p, int(p[row + 2]))
+    if flag == 0 and dampers:
+        flag = event_damps(int(p[row]), p, int(p[row + 2]))
+    return flag
+
+
+@njit(cache=True)
+def shape_event_c(p, row, w1, Cz, Cq, A, B, qmass):
+    """The descriptor of the component at event row ``row`` in complex arithmetic, at the
+    complex frequency w1 (units of the kernel: b4 = w1^2; ``event_descriptor_c``)."""
+    return event_descriptor_c(
+        int(p[row]), p, int(p[row + 2]), w1, p[0], p[1], p[2], Cz, Cq, A, B, qmass
+    )
+
 
 @njit(cache=True)
 def rigid_body_modes(p):
     """Number of zero natural frequencies: the rigid motions Y = a + b x (plus a kink at
     each free hinge) that the ends and the components leave free (they store no energy:
     supports and springs need Y = 0 where they are, rotational springs theta = 0)."""
+    return rigid_motions(p, False)
+
+
+@njit(cache=True)
+def rigid_motions(p, dampers):
+    """Dimension of the rigid motions the ends and components leave free; with
+    ``dampers``, grounded dashpots count as Y = 0 too (the rigid motions that store no
+    energy and dissipate none)."""
     rows = event_order(p)
     n_ev = rows.shape[0]
     L = p[0]
     kinks = np.empty(n_ev)
     h = 0
     for r in range(n_ev):
-        if event_rigid(int(p[rows[r]]), p, int(p[rows[r] + 2])) == 3:
+        if rigid_flag(p, rows[r], dampers) == 3:
             kinks[h] = p[rows[r] + 1] / L
             h += 1
     R = np.zeros((4 + n_ev, 2 + h))
     n = 0
     for r in range(n_ev + 2):
         if r < n_ev:
-            flag = event_rigid(int(p[rows[r]]), p, int(p[rows[r] + 2]))
+            flag = rigid_flag(p, rows[r], dampers)
             x = p[rows[r] + 1] / L
             y_row = flag == 1
             t_row = flag == 2

@@ -295,7 +295,7 @@ def _loss_factors(beam) -> list:
     which one would hold is a guess)."""
     segments = _opt(beam, "segments")
     if segments:
-        if _opt(beam, "loss_factor") is not None:
+        if _opt(beam, "loss_factor") not in (None, 0, 0.0):  # a Scene's Beam carries a 0
             raise ValueError("loss_factor on a stepped [beam]: give it on each [[beam.segments]]")
         return [_opt(s, "loss_factor", 0) for s in segments]
     return [_opt(beam, "loss_factor", 0)]

@@ -268,8 +268,14 @@ def test_sigint_prints_one_line_and_exits_130():
         "sys.stderr.write('ready\\n'); sys.stderr.flush()\n"
         "raise SystemExit(main(['solve', '--band', '0', '3e10', '--format', 'csv']))\n"
     )
+    # a shell's background job ignores SIGINT, and a child inherits that (Python then keeps
+    # no handler): give the child the default, as a terminal's foreground process has
     proc = subprocess.Popen(
-        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        [sys.executable, "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         assert proc.stderr.readline() == "ready\n"

@@ -55,7 +55,9 @@ def test_a_kind_defined_in_a_test_file_solves_against_the_reference(tmp_path, mo
 #: The kernel's dispatch functions: one branch per kind present.
 #: The functions holding one branch per kind present: the dispatch functions, and the two
 #: hot loops whose branches are printed in place.
-DISPATCH = tuple(f"event_{w}" for w in ("descriptor", "nq", "internal", "rigid")) + (
+DISPATCH = tuple(
+    f"event_{w}" for w in ("descriptor", "descriptor_c", "nq", "internal", "rigid", "damps")
+) + (
     "delta_stable",
     "count_below",
 )

@@ -231,7 +231,7 @@ def test_missing_key(tmp_path, text, field):
         ("nmae = 'x'\n" + BEAM_TOML, "nmae", "'x'"),
         (BEAM_TOML.replace("EI =", "E_I ="), "beam.E_I", "100.0"),
         (BEAM_TOML + "density = 7800.0\n", "beam.density", "7800.0"),
-        (good_toml((1, 1, 1), (1, 2, 3)) + "c = 0.5\n", "attachments[1].c", "0.5"),
+        (good_toml((1, 1, 1), (1, 2, 3)) + "zeta = 0.5\n", "attachments[1].zeta", "0.5"),
         (good_toml((1, 1, 1)).replace("m = 1", "mass = 1"), "attachments[0].mass", "1"),
         (BEAM_TOML + "[extra]\na = 1\n", "extra", "{'a': 1}"),
         ('"odd key" = 1\n' + BEAM_TOML, '"odd key"', "1"),

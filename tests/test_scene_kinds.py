@@ -154,12 +154,14 @@ def test_parameter_vector_of_every_kind_by_hand(tmp_path):
     # tags: the kinds present, sorted: hinge 0, mass 1, oscillator_chain 2,
     # rotational_spring 3, spring 4, support 5
     head = [1.0, 2.0e4, 12.0, 2.0, 6.0]
-    segments = [0.4, 2.0e4, 12.0, 1.0, 1.0e4, 8.0]
-    # data from 5 + 2 * 3 + 6 * 3 = 29, one block per attachment in x order:
-    # spring [5] at 29, hinge [0] at 30, chain [2, 1e4, 2e4, 2, 1, 2] at 31,
-    # support [] at 37, mass [2, 0.1] at 37, rotational spring [3] at 39
-    events = [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.7, 37, 1, 1.0, 37, 3, 1.0, 39]
-    data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2.0, 0.1, 3.0]
+    # segment rows (x_end, EI, mbar, eta)
+    segments = [0.4, 2.0e4, 12.0, 0.0, 1.0, 1.0e4, 8.0, 0.0]
+    # data from 5 + 2 * 4 + 6 * 3 = 31, one block per attachment in x order:
+    # spring [5] at 31, hinge [0] at 32, chain [2, 1e4, 2e4, 2, 1, 2, 2, 0, 0] at 33 (its
+    # dashpots, none given, as zeros), support [] at 42, mass [2, 0.1] at 42, rotational
+    # spring [3] at 44
+    events = [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.7, 42, 1, 1.0, 42, 3, 1.0, 44]
+    data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2, 0.0, 0.0, 2.0, 0.1, 3.0]
     expected = head + segments + events + data
     assert mstmm.parameter_vector(scene).tolist() == [float(v) for v in expected]
 
@@ -326,7 +328,7 @@ ERRORS = {
         STEPPED.replace("EI = 1.0e4", "EI = 1.0e4\ndensity = 7800.0"),
         "beam.segments[1].density",
         "7800.0",
-        "unknown key (allowed: length, EI, mass_per_length)",
+        "unknown key (allowed: length, EI, mass_per_length, loss_factor)",
     ),
     "segment_missing_EI": (
         STEPPED.replace("EI = 2.0e4\n", ""),
@@ -587,7 +589,8 @@ def toy_kind():
 
 
 def test_the_kinds_of_issue_13_are_built_in():
-    assert set(ATTACHMENT_TYPES) == set(KINDS)
+    """Issue 13's kinds, and issue 14's dashpot."""
+    assert set(ATTACHMENT_TYPES) == {*KINDS, "dashpot"}
 
 
 def test_registered_kind_is_accepted(toy_kind):
@@ -601,8 +604,8 @@ def test_registered_kind_is_accepted(toy_kind):
     scene = scene_from_dict(data)
     assert scene.attachments[0].stiffness == 9.0
     assert scene_to_dict(scene) == data
-    # [L, EI, mbar, 1, 1], segment [1, 1, 1], event (tag 0, 0.25, 11), data [9]
-    expected = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.25, 11.0, 9.0]
+    # [L, EI, mbar, 1, 1], segment [1, 1, 1, 0], event (tag 0, 0.25, 12), data [9]
+    expected = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.25, 12.0, 9.0]
     assert mstmm.parameter_vector(scene).tolist() == expected
     data["attachments"][0]["k"] = 1.0
     with pytest.raises(SceneError, match=r"attachments\[0\]\.k: unknown key \(allowed: type, x,"):

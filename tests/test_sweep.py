@@ -29,14 +29,15 @@ def test_sweep_matches_reference_at_every_point():
 
 def wu_chou_vector(x, k, m):
     """The parameter vector of the paper's scene written out by hand (docs/components.md,
-    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar), the
-    event rows (tag, x, offset) sorted by x, then each spring-mass's (k, m) in scene order."""
+    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar, eta), the
+    event rows (tag, x, offset) sorted by x, then each spring-mass's (k, m, c) in scene
+    order (no dashpot given: c = 0)."""
     ei, mbar = 63476.125002707834, 15.3875
-    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar]
-    offsets = [17.0, 19.0, 21.0]  # 5 + 3 + 3 * 3 = 17: after the event table
+    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar, 0.0]
+    offsets = [18.0, 21.0, 24.0]  # 5 + 4 + 3 * 3 = 18: after the event table
     rows = sorted(zip(x, range(3)), key=lambda r: r[0])  # stable, by x
     events = [v for xi, i in rows for v in (0.0, xi, offsets[i])]
-    return np.array(head + events + [v for i in range(3) for v in (k[i], m[i])])
+    return np.array(head + events + [v for i in range(3) for v in (k[i], m[i], 0.0)])
 
 
 WU_CHOU_K = [190428.3750081235, 285642.56251218525, 380856.750016247]
@@ -204,9 +205,10 @@ EVERY_KIND = {
 
 def every_kind_vector() -> list[float]:
     """The layout of EVERY_KIND written out by hand (tags: the kinds present, sorted)."""
-    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 1.0, 1.0e4, 8.0]
-    events = [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.7, 37, 1, 1.0, 37, 3, 1.0, 39]
-    data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2.0, 0.1, 3.0]
+    # segment rows (x_end, EI, mbar, eta); the chain's dashpots, none given, as zeros
+    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 0.0, 1.0, 1.0e4, 8.0, 0.0]
+    events = [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.7, 42, 1, 1.0, 42, 3, 1.0, 44]
+    data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2, 0.0, 0.0, 2.0, 0.1, 3.0]
     return [float(v) for v in head + events + data]
 
 
@@ -216,16 +218,16 @@ def every_kind_vector() -> list[float]:
         ("beam.EI", (1, 6)),  # the kernel's unit EI_0 and the first segment's own
         ("beam.mass_per_length", (2, 7)),
         ("beam.segments[0].EI", (1, 6)),
-        ("beam.segments[1].EI", (9,)),
-        ("beam.segments[1].mass_per_length", (10,)),
-        ("attachments[0].k", (29,)),
-        ("attachments[1].k", (30,)),
-        ("attachments[2].k[0]", (32,)),
-        ("attachments[2].k[1]", (33,)),
-        ("attachments[2].m[1]", (36,)),
-        ("attachments[3].x", (21,)),
-        ("attachments[4].J", (38,)),
-        ("attachments[5].x", (27,)),
+        ("beam.segments[1].EI", (10,)),
+        ("beam.segments[1].mass_per_length", (11,)),
+        ("attachments[0].k", (31,)),
+        ("attachments[1].k", (32,)),
+        ("attachments[2].k[0]", (34,)),
+        ("attachments[2].k[1]", (35,)),
+        ("attachments[2].m[1]", (38,)),
+        ("attachments[3].x", (23,)),
+        ("attachments[4].J", (43,)),
+        ("attachments[5].x", (29,)),
     ],
 )
 def test_columns_of_every_kind(path, cols):
@@ -247,10 +249,10 @@ def test_varying_values_of_every_kind():
     (row,) = parameter_matrix(scene, vary)
     expected = every_kind_vector()
     expected[1] = expected[6] = 3.0e4
-    expected[10] = 9.0
-    expected[33] = 4.0e4
-    expected[38] = 0.0
-    expected[30] = 7.0
+    expected[11] = 9.0
+    expected[35] = 4.0e4
+    expected[43] = 0.0
+    expected[32] = 7.0
     assert row.tolist() == expected
 
 
@@ -260,12 +262,12 @@ def test_moving_a_support_keeps_it_apart_from_the_mass_sharing_its_offset():
     scene = mstmm.scene_from_dict(EVERY_KIND)
     P = parameter_matrix(scene, {"attachments[3].x": [0.7, 0.2, 0.95]})
     rows = [
-        [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.7, 37, 1, 1.0, 37, 3, 1.0, 39],
-        [4, 0.0, 29, 5, 0.2, 37, 0, 0.3, 30, 2, 0.5, 31, 1, 1.0, 37, 3, 1.0, 39],
-        [4, 0.0, 29, 0, 0.3, 30, 2, 0.5, 31, 5, 0.95, 37, 1, 1.0, 37, 3, 1.0, 39],
+        [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.7, 42, 1, 1.0, 42, 3, 1.0, 44],
+        [4, 0.0, 31, 5, 0.2, 42, 0, 0.3, 32, 2, 0.5, 33, 1, 1.0, 42, 3, 1.0, 44],
+        [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.95, 42, 1, 1.0, 42, 3, 1.0, 44],
     ]
     for row, events in zip(P, rows):
-        assert row[11:29].tolist() == [float(v) for v in events]
+        assert row[13:31].tolist() == [float(v) for v in events]
 
 
 @pytest.mark.parametrize(

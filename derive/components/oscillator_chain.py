@@ -21,8 +21,17 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("k", "N/m", shape="list", doc="spring stiffnesses, beam -> m1 first"),
     Key("m", "kg", shape="list", doc="masses, the one nearest the beam first"),
+    Key(
+        "c",
+        "N s/m",
+        shape="list",
+        check="nonnegative",
+        default=0.0,
+        doc="dashpots parallel to the springs, beam -> m1 first (default none)",
+        damping=True,
+    ),
 )
-SAME_LENGTH = ("k", "m")
+SAME_LENGTH = ("k", "m", "c")
 COUNT = "stiffness"
 #: Name of its unknowns in Z_all (the displacement of each mass).
 UNKNOWNS = "Y_chain"
@@ -37,6 +46,12 @@ OWN = "own"
 N_Q = "int(p[o])"
 SHAPE = "oscillator_chain_shape(p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass)"
 INTERNAL = "oscillator_chain_internal(p, o, L, EI, mbar, out, n)"
+#: The same in a damped kernel (complex; k_i -> k_i + i w c_i), and the full descriptor in
+#: complex arrays (the frequency response and damped shapes of every kernel).
+PRELUDE_DAMPED = "b00, b10, chain_log = oscillator_chain_tip_c(p, o, w1, L, EI, mbar)"
+#: The log of the factor the damped tip transfer took out (added to the chain's log).
+LOG_DAMPED = "chain_log"
+SHAPE_COMPLEX = "oscillator_chain_shape_c(p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass)"
 
 
 def descriptor(v: dict):
@@ -53,12 +68,15 @@ def descriptor(v: dict):
 def full_descriptor(v: dict):
     """Every mass kept (``symbolic``, ``show``): row i the motion of mass i,
     ``k_i (y_(i-1) - y_i) + k_(i+1) (y_(i+1) - y_i) + m_i b4 y_i = 0`` with ``y_0 = Y``,
-    ``Q+ = Q + sum m_i b4 y_i`` (what the kernel's ``oscillator_chain_shape`` fills in)."""
+    ``Q+ = Q + sum m_i b4 y_i`` (what the kernel's ``oscillator_chain_shape`` fills in);
+    with dashpots ``k_i -> k_i + i w1 c_i``."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, b4, unit
+    from ..descriptor import Descriptor, b4, unit, w1
 
-    ks, ms = list(v["k"]), list(v["m"])
+    cs = list(v.get("c") or [0] * len(v["k"]))
+    ks = [k + sp.I * w1 * c for k, c in zip(v["k"], cs, strict=True)]
+    ms = list(v["m"])
     n = len(ks)
     Cz = sp.zeros(n, 4)
     Cq = sp.zeros(n, n)
@@ -169,6 +187,80 @@ def oscillator_chain_shape(p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
     for i in range(n):
         kappa = p[ks + i] * kappa_scale
         k_out = p[ks + i + 1] * kappa_scale if i + 1 < n else 0.0
+        mu = p[ms + i] * mu_scale
+        if i == 0:
+            Cz[0, 0] = kappa
+        else:
+            Cq[i, i - 1] = kappa
+        if i + 1 < n:
+            Cq[i, i + 1] = k_out
+        Cq[i, i] = mu * b4 - kappa - k_out
+        B[3, i] = mu * b4
+        qmass[i] = mu
+    return n, n
+
+
+@njit(cache=True)
+def oscillator_chain_tip_c(p, o, w1, L, EI, mbar):
+    """``oscillator_chain_tip`` with dashpots, complex: k_i -> kappa_i = k_i + i w1 c_i
+    (units L = EI = mbar = 1, w1 the complex frequency). Each spring's transfer is
+    multiplied by its kappa_i (``y -> kappa y - f``, ``f -> kappa f``): the pair is then
+    prod(kappa_i) times the tip transfer, entire in w1 (the mass equations of the global
+    system, free of the poles kappa_i = 0), and kept finite by a power of two whose log is
+    returned: (b00, b10, log)."""
+    n = int(p[o])
+    ks = o + 1
+    ms = o + 2 + n
+    cs = o + 3 + 2 * n
+    kappa_scale = L**3 / EI
+    gamma_scale = L / math.sqrt(EI * mbar)
+    mu_scale = 1.0 / (mbar * L)
+    b4 = w1 * w1
+    y = 1.0 + 0.0j
+    f = 0.0j
+    log = 0.0
+    for i in range(n - 1, -1, -1):
+        kappa = p[ks + i] * kappa_scale + 1j * w1 * p[cs + i] * gamma_scale
+        mu = p[ms + i] * mu_scale
+        f += mu * b4 * y
+        y = kappa * y - f
+        f = kappa * f
+        big = max(abs(y), abs(f))
+        if big > 0.0 and math.isfinite(big):
+            e = math.frexp(big)[1]
+            s = math.ldexp(1.0, -e)
+            y *= s
+            f *= s
+            log += e * 0.6931471805599453
+    return y, f, log
+
+
+@njit(cache=True)
+def oscillator_chain_shape_c(p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
+    """``oscillator_chain_shape`` in complex arrays, with dashpots (k_i -> k_i + i w1 c_i)."""
+    n = int(p[o])
+    ks = o + 1
+    ms = o + 2 + n
+    cs = o + 3 + 2 * n
+    kappa_scale = L**3 / EI
+    gamma_scale = L / math.sqrt(EI * mbar)
+    mu_scale = 1.0 / (mbar * L)
+    b4 = w1 * w1
+    for r in range(4):
+        for c in range(4):
+            A[r, c] = 1.0 if r == c else 0.0
+    for i in range(n):
+        for c in range(4):
+            Cz[i, c] = 0.0
+        for j in range(n):
+            Cq[i, j] = 0.0
+        for r in range(4):
+            B[r, i] = 0.0
+    for i in range(n):
+        kappa = p[ks + i] * kappa_scale + 1j * w1 * p[cs + i] * gamma_scale
+        k_out = 0.0j
+        if i + 1 < n:
+            k_out = p[ks + i + 1] * kappa_scale + 1j * w1 * p[cs + i + 1] * gamma_scale
         mu = p[ms + i] * mu_scale
         if i == 0:
             Cz[0, 0] = kappa

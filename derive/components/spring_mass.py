@@ -3,7 +3,10 @@
 Paper Eq. (1) spring and lumped mass on ``[Y, Q]``; the branch hangs from a massless
 rigid body on the beam; its tip (the free side of the mass) is ``Z = [Y_m, 0]``.
 As a descriptor (docs/components.md): ``q = [Y_m]``, ``Cz = e_Y``,
-``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``.
+``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``. An optional dashpot ``c``
+parallel to the spring makes its force ``(k + i w c)(Y_m - Y)`` (time dependence
+exp(i w t)): ``kappa -> kappa + i w1 gamma``, and the constraint is multiplied by that
+kappa, which vanishes at ``w1 = i kappa / gamma`` (a damped kernel only).
 SymPy is imported inside the functions: the catalog reads this file's keys without it.
 """
 
@@ -17,6 +20,14 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("k", "N/m", doc="spring stiffness"),
     Key("m", "kg", doc="hanging mass"),
+    Key(
+        "c",
+        "N s/m",
+        check="nonnegative",
+        default=0.0,
+        doc="dashpot parallel to the spring",
+        damping=True,
+    ),
 )
 #: The count adds the branch's stiffness at the node and one pivot below its own frequency.
 COUNT = "stiffness"
@@ -27,19 +38,25 @@ RIGID = ()
 
 
 def descriptor(v: dict):
-    """``Y - (1 - mu b4/kappa) Y_m = 0`` (paper Eq. (3)), ``Q+ = Q + mu b4 Y_m`` (Eq. (2))."""
+    """``Y - (1 - mu b4/kappa) Y_m = 0`` (paper Eq. (3)), ``Q+ = Q + mu b4 Y_m`` (Eq. (2)).
+
+    With a dashpot the constraint is taken times kappa, ``kappa Y - (kappa - mu b4) Y_m =
+    0`` (the mass's equation of motion): free of the pole at kappa + i w1 gamma = 0 that
+    the argument principle would count. Without one the constraint stays as printed: a
+    real kappa has no pole, and multiplying by it would scale the paper formulation's
+    determinant by the product of every stiffness (e^1800 for 100 stiff mounts) and
+    spoil its pivoting."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, b4, unit
+    from ..descriptor import Descriptor, b4, unit, w1
 
-    kappa, mu = v["k"], v["m"]
-    return Descriptor(
-        Cz=unit(0).T,
-        Cq=sp.Matrix([[-(1 - mu * b4 / kappa)]]),
-        A=sp.eye(4),
-        B=mu * b4 * unit(3),
-        qmass=(mu,),
-    )
+    c, mu = v.get("c", 0), v["m"]
+    if c == 0:
+        Cz, Cq = unit(0).T, sp.Matrix([[-(1 - mu * b4 / v["k"])]])
+    else:
+        kappa = v["k"] + sp.I * w1 * c
+        Cz, Cq = kappa * unit(0).T, sp.Matrix([[-(kappa - mu * b4)]])
+    return Descriptor(Cz=Cz, Cq=Cq, A=sp.eye(4), B=mu * b4 * unit(3), qmass=(mu,))
 
 
 def spring(k):

@@ -13,6 +13,7 @@ never imported on this path).
 
 from . import interpret
 from .kernels import Kernel, load_kernel
+from .response import frf
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 from .scenes import example_path
 from .solve import Solution, solve
@@ -26,6 +27,7 @@ __all__ = [
     "Solution",
     "Topology",
     "example_path",
+    "frf",
     "interpret",
     "kernel_for",
     "load_kernel",

@@ -139,6 +139,60 @@ def build_parser() -> argparse.ArgumentParser:
         " carried mass); with --format table a per-mode summary and the sum of effective"
         " masses against the total mass (default: off)",
     )
+    f = command(
+        "frf",
+        "frequency response between two points: receptance, mobility or accelerance",
+    )
+    f.add_argument("scene", nargs="?", metavar="SCENE", help=SCENE_HELP)
+    f.add_argument(
+        "--input",
+        required=True,
+        metavar="LOAD:WHERE=VALUE",
+        help="the unit harmonic load: force:x=X (N at X m), moment:x=X (N m), or force:mass=J"
+        " (on hanging mass J, numbered from 0 in x order as the mode shapes' mass_Y)",
+    )
+    f.add_argument(
+        "--output",
+        action="append",
+        required=True,
+        metavar="RESPONSE:WHERE=VALUE",
+        help="displacement:x=X, rotation:x=X or displacement:mass=J; repeat for more columns",
+    )
+    f.add_argument(
+        "--band",
+        nargs=2,
+        type=_frequency,
+        required=True,
+        metavar=("LO", "HI"),
+        help="frequencies from LO to HI rad/s",
+    )
+    f.add_argument(
+        "--points",
+        type=_positive_int,
+        default=1000,
+        metavar="N",
+        help="number of frequencies (default: %(default)s)",
+    )
+    f.add_argument(
+        "--spacing",
+        choices=("lin", "log"),
+        default="lin",
+        help="frequencies spaced linearly or logarithmically (default: %(default)s)",
+    )
+    f.add_argument(
+        "--quantity",
+        choices=("receptance", "mobility", "accelerance"),
+        default="receptance",
+        help="H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)",
+    )
+    f.add_argument(
+        "--format",
+        choices=("csv", "json", "table"),
+        default="csv",
+        help="CSV (omega, f, and per output re, im, abs, phase in degrees), one JSON object,"
+        " or a table (default: %(default)s)",
+    )
+    f.add_argument("--out", type=Path, help="file to write (default: standard output)")
     d = command("derive", "write the kernel of a scene's topology, print where")
     d.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
@@ -177,6 +231,26 @@ def build_parser() -> argparse.ArgumentParser:
         help="veering diagram instead of Fig. 2: " + RANGE_HELP,
     )
     q.add_argument("--formulation", choices=FORMULATIONS, default="stable", help=FORMULATION_HELP)
+    q.add_argument(
+        "--frf",
+        action="store_true",
+        help="frequency response instead of Fig. 2: magnitude (log) and phase of --output to"
+        " --input over --band, the natural frequencies marked",
+    )
+    q.add_argument("--input", metavar="LOAD:WHERE=VALUE", help="with --frf: as mstmm frf --input")
+    q.add_argument(
+        "--output",
+        action="append",
+        metavar="RESPONSE:WHERE=VALUE",
+        help="with --frf: as mstmm frf --output",
+    )
+    q.add_argument(
+        "--points",
+        type=_positive_int,
+        default=2000,
+        metavar="N",
+        help="with --frf: number of frequencies (default: %(default)s)",
+    )
     w = command(
         "show",
         "print a scene's component matrices and structure (U_bar and det when small)",
@@ -217,9 +291,19 @@ def _warn(message: str) -> None:
 def _solve(args) -> int:
     from . import output
     from .solve import solve
+    from .topology import topology_of
 
     scene = _scene(args.scene)
     band = _checked_band(args, scene)
+    damped = topology_of(scene).damped
+    if damped and args.formulation != "stable":
+        raise SceneError(
+            COMMAND_LINE,
+            "--formulation",
+            "a damped scene is solved by the complex stable chain only (the paper's det U_bar"
+            " is real)",
+            args.formulation,
+        )
     sol = solve(
         scene, modes=args.modes, band=band, formulation=args.formulation, shapes=args.shapes
     )
@@ -229,6 +313,19 @@ def _solve(args) -> int:
             + (" (the count confirms it)" if sol.count_checked else "")
         )
     _phase(args, "solve", **sol.timings)
+    if damped:
+        if args.format == "json":
+            text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
+            print(text)
+        elif args.format == "csv":
+            sys.stdout.write(
+                output.damped_shapes_csv(sol) if args.shapes else output.damped_csv(sol)
+            )
+        else:
+            sys.stdout.write(output.damped_table(sol))
+        for warning in sol.warnings:
+            _warn(warning)
+        return 0 if sol.count_checked and bool(sol.converged.all()) else EXIT_UNTRUSTED
     if args.format == "json":
         text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
         print(text)
@@ -363,7 +460,12 @@ def _plot(args) -> int:
         )
     _check_out_dir(args.out)
     scene = _scene(args.scene)
-    if args.sweep is not None:
+    if args.frf:
+        if args.band is None or args.sweep is not None:
+            raise SceneError(COMMAND_LINE, "--frf", "needs --band LO HI (and no --sweep)", None)
+        omegas, src, dst = _frf_request(args, scene)
+        plot.frf_figure(scene, src, dst, omegas, path=args.out)
+    elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
         path, values = _vary_item(args.sweep, "--sweep")
@@ -374,6 +476,69 @@ def _plot(args) -> int:
             scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
         )
     print(args.out)
+    return 0
+
+
+def _frf_request(args, scene: Scene):
+    """The frequencies and the parsed --input / --output of ``frf`` and ``plot --frf``."""
+    import numpy as np
+
+    from .response import parse_point
+
+    lo, hi = (float(v) for v in args.band)
+    if hi <= lo:
+        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", [lo, hi])
+    if getattr(args, "spacing", "lin") == "log":
+        if lo <= 0.0:
+            raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
+        omegas = np.geomspace(lo, hi, args.points)
+    else:
+        omegas = np.linspace(lo, hi, args.points)
+    if args.input is None or not args.output:
+        raise SceneError(COMMAND_LINE, "--input", "--frf needs --input and --output", None)
+    src = parse_point(args.input, "input", COMMAND_LINE)
+    dst = [parse_point(o, "output", COMMAND_LINE) for o in args.output]
+    return omegas, src, dst
+
+
+def _frf(args) -> int:
+    import numpy as np
+
+    from . import output
+    from .response import frf
+
+    if args.out is not None:
+        _check_out_dir(args.out)
+    scene = _scene(args.scene)
+    omegas, src, dst = _frf_request(args, scene)
+    t0 = time.perf_counter()
+    H = frf(scene, [src], dst, omegas, quantity=args.quantity, source=COMMAND_LINE)[:, 0, :]
+    _phase(args, "frf", frf=time.perf_counter() - t0)
+    if args.format == "json":
+        data = {
+            "scene": scene.name,
+            "quantity": args.quantity,
+            "input": str(src),
+            "outputs": [str(d) for d in dst],
+            "omega": omegas.tolist(),
+            "hz": (omegas / (2.0 * np.pi)).tolist(),
+            "re": H.real.T.tolist(),
+            "im": H.imag.T.tolist(),
+        }
+        text, nulls = output.dumps(data)
+        text += "\n"
+        if nulls:
+            _warn(f"{len(nulls)} non-finite value(s) written as null (at a natural frequency)")
+    elif args.format == "csv":
+        text = output.frf_csv(omegas, H, [str(d) for d in dst])
+    else:
+        labels = [str(d) for d in dst]
+        text = output.frf_table(scene.name, args.quantity, str(src), omegas, H, labels)
+    if args.out is None:
+        sys.stdout.write(text)
+    else:
+        output.write_atomically(args.out, text)
+        print(args.out)
     return 0
 
 
@@ -471,6 +636,7 @@ def _main(argv: list[str] | None) -> int:
     try:
         commands = {
             "solve": _solve,
+            "frf": _frf,
             "sweep": _sweep,
             "plot": _plot,
             "derive": _derive,

@@ -231,9 +231,7 @@ class Kernel:
         at = self._at.get(formulation)
         if at is None:
             if formulation not in FORMULATIONS:
-                raise ValueError(
-                    f"unknown formulation {formulation!r}; choose from {FORMULATIONS}"
-                )
+                raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
             name = f"delta_{formulation}"
             self._addresses(name)
             at = self._at[formulation] = numerics().FUNCTION_TYPES[name][0]
@@ -494,6 +492,38 @@ class Kernel:
             self._entry("mode_shapes")(fa, *args)
             self.warmed.add("mode_shapes")
         return Z, q, q_x, q_mass, gram, part, ratio
+
+    def frf(
+        self, omegas: np.ndarray, p: np.ndarray, inputs: np.ndarray, outputs: np.ndarray
+    ) -> np.ndarray:
+        """Responses (complex, SI) at each frequency (rad/s, real or complex) to unit loads:
+        ``inputs`` and ``outputs`` rows ``(kind, x, q index, scale)`` (``frf_march`` in
+        ``generated/numerics.py``); returns an array (frequencies, inputs, outputs). The
+        frequencies run in parallel on all cores."""
+        ws = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.complex128)
+        inputs = np.ascontiguousarray(inputs, dtype=np.float64)
+        outputs = np.ascontiguousarray(outputs, dtype=np.float64)
+        out = np.zeros((ws.size, inputs.shape[0], outputs.shape[0]), dtype=np.complex128)
+        fa = self._addresses("shape_event_c", "shape_sizes")
+        ends = self.module.SHAPE_ENDS
+        self._entry("frf")(fa, ends, self.topology.damped, ws, _params(p), inputs, outputs, out)
+        return out
+
+    def unknowns(self, p: np.ndarray) -> list[tuple[float, float]]:
+        """``(x, mass)`` of every component unknown in order (the q index of ``frf``): a
+        hanging mass's (mass > 0, units mbar_0 L), a reaction's or a rotation's (0)."""
+        p = _params(p)
+        m = self.module
+        total, most = (int(v) for v in self._compiled("shape_sizes")(p))
+        nb = max(1, most)
+        Cz, Cq = np.zeros((nb, 4), complex), np.zeros((nb, nb), complex)
+        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros(nb)
+        out = []
+        event = self._compiled("shape_event_c")
+        for row in m.event_order(p):
+            nc, nq = event(p, int(row), 1.0 + 0.0j, Cz, Cq, A, B, qmass)
+            out += [(float(p[row + 1]), float(qmass[j])) for j in range(nq)]
+        return out
 
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""

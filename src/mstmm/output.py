@@ -28,7 +28,13 @@ import numpy as np
 from .solve import Solution
 
 __all__ = [
+    "DAMPED_HEADER",
     "SHAPE_SUMMARY_HEADER",
+    "damped_csv",
+    "damped_shapes_csv",
+    "damped_table",
+    "frf_csv",
+    "frf_table",
     "dumps",
     "finite",
     "frequencies_csv",
@@ -83,6 +89,63 @@ def _csv(rows: Sequence[Sequence[Any]]) -> str:
 
 def _num(value: float) -> str:
     return repr(float(value))
+
+
+DAMPED_HEADER = (
+    "mode",
+    "w_d_rad_s",
+    "sigma_1_s",
+    "abs_omega_rad_s",
+    "zeta",
+    "f_d_hz",
+    "multiplicity",
+    "converged",
+)
+
+
+def damped_csv(sol) -> str:
+    """``mode,w_d_rad_s,sigma_1_s,abs_omega_rad_s,zeta,f_d_hz,multiplicity,converged``, one
+    row per damped natural frequency (:class:`mstmm.damped.DampedSolution`)."""
+    rows: list[Sequence[Any]] = [list(DAMPED_HEADER)]
+    for i in range(len(sol.omega)):
+        rows.append(
+            [
+                i + 1,
+                _num(sol.w_d[i]),
+                _num(sol.sigma[i]),
+                _num(sol.magnitude[i]),
+                _num(sol.zeta[i]),
+                _num(sol.hz[i]),
+                int(sol.multiplicity[i]),
+                bool(sol.converged[i]),
+            ]
+        )
+    return _csv(rows)
+
+
+def damped_table(sol) -> str:
+    """The table of ``mstmm solve`` for a damped scene: w_d, sigma, |w|, damping ratio."""
+    x0, x1, y0, y1 = sol.rectangle
+    lines = [
+        f"{sol.scene.name}: {len(sol.omega)} damped natural frequencies w = w_d + i sigma"
+        " (time dependence exp(i w t))",
+        f"{'mode':>4}  {'w_d [rad/s]':>22}  {'sigma [1/s]':>22}  {'|w| [rad/s]':>22}"
+        f"  {'zeta':>10}  {'f_d [Hz]':>12}  mult",
+    ]
+    for i in range(len(sol.omega)):
+        flag = "" if sol.converged[i] else "  NOT TRUSTED"
+        kind = "  overdamped" if sol.w_d[i] == 0.0 and sol.sigma[i] > 0.0 else ""
+        lines.append(
+            f"{i + 1:>4}  {sol.w_d[i]:>22.16g}  {sol.sigma[i]:>22.16g}  {sol.magnitude[i]:>22.16g}"
+            f"  {sol.zeta[i]:>10.4g}  {sol.hz[i]:>12.6g}  {sol.multiplicity[i]:>4}{kind}{flag}"
+        )
+    t = sol.timings
+    lines.append(
+        f"time: load {t['load']:.3f} s, search {t['scan_refine'] * 1e3:.2f} ms; argument"
+        f" principle checked: {sol.count_checked} (counted w_d < {x1:.6g} rad/s,"
+        f" sigma < {y1:.6g} 1/s)"
+    )
+    return "\n".join(lines) + "\n"
 
 
 def frequencies_csv(sol: Solution) -> str:
@@ -225,3 +288,83 @@ def read_shapes_csv(text: str) -> dict[str, np.ndarray]:
         "mass_x": mass_v[:, 0],
         "mass_Y": mass_v[:, 1:],
     }
+
+
+def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
+    """``omega_rad_s,f_hz`` then per output ``<label>_re,_im,_abs,_phase_deg``, one row per
+    frequency (``mstmm frf``); H is (frequencies, outputs)."""
+    header: list[str] = ["omega_rad_s", "f_hz"]
+    for label in labels:
+        header += [f"{label}_{part}" for part in ("re", "im", "abs", "phase_deg")]
+    rows: list[Sequence[Any]] = [header]
+    for k, w in enumerate(omegas):
+        row = [_num(w), _num(w / (2.0 * math.pi))]
+        for j in range(H.shape[1]):
+            h = complex(H[k, j])
+            row += [_num(h.real), _num(h.imag), _num(abs(h)), _num(math.degrees(np.angle(h)))]
+        rows.append(row)
+    return _csv(rows)
+
+
+def frf_table(
+    name: str, quantity: str, source: str, omegas: np.ndarray, H: np.ndarray, labels
+) -> str:
+    """A readable table of ``mstmm frf``: |H| and its phase per output."""
+    lines = [f"{name}: {quantity} to {source}"]
+    head = f"{'omega [rad/s]':>16}"
+    for label in labels:
+        head += f"  {('|H| ' + label)[:28]:>28}  {'phase [deg]':>11}"
+    lines.append(head)
+    for k, w in enumerate(omegas):
+        line = f"{w:>16.8g}"
+        for j in range(H.shape[1]):
+            h = complex(H[k, j])
+            line += f"  {abs(h):>28.10g}  {math.degrees(np.angle(h)):>11.4f}"
+        lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
+def write_atomically(path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in its directory (never half
+    written)."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=".tmp-")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def damped_shapes_csv(sol) -> str:
+    """The damped summary (``damped_csv``), an empty line, ``x,Y_1_re,Y_1_im,...`` (one row
+    per sample along the beam), and ``mass_x,Y_1_re,Y_1_im,...`` (one row per hanging
+    mass, when there are any): the complex shapes of ``mstmm solve --shapes``."""
+    shapes = _shapes(sol)
+    out = damped_csv(sol) + "\n"
+    head = ["x"]
+    for i in range(len(shapes)):
+        head += [f"Y_{i + 1}_re", f"Y_{i + 1}_im"]
+    rows: list[Sequence[Any]] = [head]
+    for k, x in enumerate(shapes[0].x):
+        row = [_num(x)]
+        for s in shapes:
+            row += [_num(s.Y[k].real), _num(s.Y[k].imag)]
+        rows.append(row)
+    out += _csv(rows)
+    if shapes[0].mass_x.size:
+        rows = [["mass_x", *head[1:]]]
+        for k, x in enumerate(shapes[0].mass_x):
+            row = [_num(x)]
+            for s in shapes:
+                row += [_num(s.mass_Y[k].real), _num(s.mass_Y[k].imag)]
+            rows.append(row)
+        out += "\n" + _csv(rows)
+    return out

@@ -34,7 +34,7 @@ import matplotlib
 import numpy as np
 
 from .kernels import load_kernel
-from .scene import Scene
+from .scene import Scene, SceneError
 from .solve import Solution, solve
 from .topology import parameter_vector, topology_of
 
@@ -53,7 +53,15 @@ if _headless() and "matplotlib.pyplot" not in sys.modules:
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-__all__ = ["characteristic", "figure2", "formats", "mode_shapes", "save", "veering"]
+__all__ = [
+    "characteristic",
+    "figure2",
+    "formats",
+    "frf_figure",
+    "mode_shapes",
+    "save",
+    "veering",
+]
 
 PathLike = str | os.PathLike[str]
 
@@ -366,6 +374,14 @@ def figure2(
     Panel (b) shows the shapes of the first ``modes`` roots of panel (a), skipping
     rigid-body zeros, every shape of a multiple root.
     """
+    if topology_of(scene).damped:
+        raise SceneError(
+            scene.source,
+            "scene",
+            "Fig. 2 plots a real characteristic function: a damped scene's roots are complex"
+            " (plot its frequency response with --frf)",
+            scene.name,
+        )
     fig, (ax_a, ax_b) = _new_figure(2, (13.0, 4.8))
     first = 0
     if band is None:
@@ -443,4 +459,50 @@ def veering(
     sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
     sec.set_ylabel("f [Hz]")
     ax.legend(loc="best", fontsize=8)
+    return _finish(fig, path)
+
+
+def frf_figure(
+    scene: Scene,
+    source,
+    outputs,
+    omegas: np.ndarray,
+    path: PathLike | None = None,
+    quantity: str = "receptance",
+    ax: tuple[Axes, Axes] | None = None,
+    label: str | None = None,
+) -> Figure:
+    """Frequency response of ``outputs`` to ``source`` (``mstmm.response`` points or their
+    strings) over ``omegas`` (rad/s): magnitude (log scale) above, phase (degrees) below,
+    the natural frequencies in the band marked (w_d of a damped scene). ``ax``: draw into
+    these two axes (a before/after comparison), labelled ``label``."""
+    from .response import frf, parse_point
+    from .solve import solve
+
+    src = parse_point(source, "input")
+    dst = [parse_point(o, "output") for o in (outputs if isinstance(outputs, list) else [outputs])]
+    H = frf(scene, [src], dst, omegas, quantity=quantity)[:, 0, :]
+    if ax is None:
+        fig = Figure(figsize=(8.0, 6.0), layout="constrained")
+        ax_mag, ax_ph = fig.subplots(2, 1, sharex=True)
+    else:
+        ax_mag, ax_ph = ax
+        fig = ax_mag.get_figure()
+    f = _to_hz(omegas)
+    for j, d in enumerate(dst):
+        name = f"{label}: {d}" if label else str(d)
+        ax_mag.semilogy(f, np.abs(H[:, j]), lw=1.2, label=name)
+        ax_ph.plot(f, np.degrees(np.angle(H[:, j])), lw=1.0, label=name)
+    sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
+    marks = np.unique(np.real(sol.omega))
+    for w in marks[marks > 0]:
+        ax_mag.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
+        ax_ph.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
+    units = {"receptance": "|H|", "mobility": "|i w H|", "accelerance": "|w^2 H|"}[quantity]
+    ax_mag.set_ylabel(f"{units} (SI)")
+    ax_ph.set_ylabel("phase [deg]")
+    ax_ph.set_xlabel("f [Hz]")
+    ax_ph.set_ylim(-180.0, 180.0)
+    ax_mag.set_title(f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10)
+    ax_mag.legend(fontsize=8)
     return _finish(fig, path)

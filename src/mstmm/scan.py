@@ -202,9 +202,7 @@ def verify(
     instead of being printed as a frequency. ``recheck``: check every root (else only
     those already marked not converged, which a check may confirm).
     """
-    inner = [
-        i for i, r in enumerate(roots) if r.how != "rigid" and (recheck or not r.converged)
-    ]
+    inner = [i for i, r in enumerate(roots) if r.how != "rigid" and (recheck or not r.converged)]
     if not inner:
         return roots
     rel, rel_stable = max(TRUST, 4.0 * rtol), max(STABLE_TRUST, 4.0 * rtol)

@@ -92,7 +92,7 @@ def __getattr__(name: str) -> Any:
 
 _TOP_KEYS: tuple[str, ...] = ("name", "beam", "attachments")
 _UNIFORM_KEYS: tuple[str, ...] = ("length", "EI", "mass_per_length")
-_BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, "left", "right", "segments")
+_BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, "loss_factor", "left", "right", "segments")
 
 _NAME_RE = re.compile(r"[A-Za-z0-9_.-]+")
 _NAME_MAX = 128
@@ -156,11 +156,13 @@ class SceneError(ValueError):
 
 @dataclass(frozen=True)
 class Segment:
-    """One piece of a stepped beam (SI): its length, bending stiffness, mass per length."""
+    """One piece of a stepped beam (SI): its length, bending stiffness, mass per length,
+    and loss factor (hysteretic damping, ``EI -> EI (1 + i eta)``; 0: none)."""
 
     length: float
     EI: float
     mass_per_length: float
+    loss_factor: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -170,6 +172,8 @@ class Beam:
     ``length`` is the total length; ``EI`` and ``mass_per_length`` are those of a
     uniform beam, or of the first segment of a stepped beam. ``segments`` lists a
     stepped beam's pieces from the left end, and is empty for a uniform beam.
+    ``loss_factor`` is a uniform beam's hysteretic damping ``eta`` (``EI -> EI (1 + i
+    eta)``, a frequency-domain model; a stepped beam gives it per segment).
     """
 
     length: float
@@ -178,6 +182,7 @@ class Beam:
     left: str
     right: str
     segments: tuple[Segment, ...] = ()
+    loss_factor: float = 0.0
 
 
 Value = float | tuple[float, ...]
@@ -196,12 +201,33 @@ class Attachment:
     def __getattr__(self, name: str) -> Value:
         # Only called when ordinary lookup fails; reads __dict__ directly so that
         # copying and unpickling (which probe a half-built object) never recurse.
+        kind = self.__dict__.get("kind", "?")
         if not name.startswith("__"):
-            for key, value in self.__dict__.get("values", ()):
+            values = self.__dict__.get("values", ())
+            for key, value in values:
                 if key == name:
                     return value
-        kind = self.__dict__.get("kind", "?")
+            default = _absent_default(kind, name, values)
+            if default is not None:
+                return default
         raise AttributeError(f"a {kind} attachment has no value {name!r}")
+
+
+def _absent_default(kind: str, name: str, values) -> Value | None:
+    """The value of a damping key the scene left out: its default (a list key's repeated
+    to the length of the kind's first list), or None when ``name`` is no such key."""
+    try:
+        module = catalog.kind(kind)
+    except ValueError:
+        return None
+    for key in module.KEYS:
+        if key.name == name and key.damping and key.default is not None:
+            if key.shape != "list":
+                return key.default
+            first = getattr(module, "SAME_LENGTH", (None,))[0]
+            n = next((len(v) for k, v in values if k == first), 1)
+            return (key.default,) * n
+    return None
 
 
 def SpringMass(x: float, k: float, m: float) -> Attachment:  # noqa: N802 (the old class name)
@@ -338,23 +364,22 @@ def scene_to_dict(scene: Scene) -> dict[str, Any]:
 
 def _beam_dict(beam: Beam) -> dict[str, Any]:
     if not beam.segments:
-        return {
-            "length": beam.length,
-            "EI": beam.EI,
-            "mass_per_length": beam.mass_per_length,
-            "left": beam.left,
-            "right": beam.right,
-        }
+        out = {"length": beam.length, "EI": beam.EI, "mass_per_length": beam.mass_per_length}
+        if beam.loss_factor:
+            out["loss_factor"] = beam.loss_factor
+        return out | {"left": beam.left, "right": beam.right}
     return {
         "left": beam.left,
         "right": beam.right,
-        "segments": [
-            {"length": s.length, "EI": s.EI, "mass_per_length": s.mass_per_length}
-            if isinstance(s, Segment)
-            else s
-            for s in beam.segments
-        ],
+        "segments": [_segment_dict(s) if isinstance(s, Segment) else s for s in beam.segments],
     }
+
+
+def _segment_dict(s: Segment) -> dict[str, Any]:
+    out = {"length": s.length, "EI": s.EI, "mass_per_length": s.mass_per_length}
+    if s.loss_factor:
+        out["loss_factor"] = s.loss_factor
+    return out
 
 
 def _attachment_dict(a: Attachment) -> dict[str, Any]:
@@ -560,17 +585,17 @@ class _Factor:
     label: str
     values: np.ndarray
     paths: tuple[str, ...]
-    exponent: int = 1
+    exponent: float = 1
     zero_ok: bool = False
 
-    def __pow__(self, exponent: int) -> _Factor:
+    def __pow__(self, exponent: float) -> _Factor:
         return dataclasses.replace(self, exponent=exponent)
 
 
 def _product_name(factors: Sequence[_Factor]) -> str:
     def term(f: _Factor) -> str:
         e = abs(f.exponent)
-        return f.label if e == 1 else f"{f.label}^{e}"
+        return f.label if e == 1 else f"{f.label}^{e:g}"
 
     top = " ".join(term(f) for f in factors if f.exponent > 0) or "1"
     bottom = [term(f) for f in factors if f.exponent < 0]
@@ -635,7 +660,7 @@ def _component_checks(
     checks: list[tuple[str, list[_Factor]]] = []
 
     def scaled(exponents) -> list[_Factor]:
-        return [h ** int(e) for h, e in zip(head, exponents) if e]
+        return [h ** float(e) for h, e in zip(head, exponents) if e]
 
     for kind in kinds:
         blocks = [b for b in events.blocks if b.kind == kind]
@@ -649,7 +674,7 @@ def _component_checks(
             for inert in keys:
                 if _RATIOS.get(stiff.unit) == inert.unit:
                     ratio = _ratio(blocks, keys, stiff, inert, P, labels)
-                    scale = scaled(np.subtract(stiff.scale, inert.scale))
+                    scale = scaled([a - b for a, b in zip(stiff.scale, inert.scale)])
                     checks += [("", ratio), ("", [*ratio, *scale])] if ratio else []
     return checks
 
@@ -932,13 +957,13 @@ def _beam(value: Any, source: str) -> Beam:
     table = _table(value, "beam", source)
     _reject_unknown(table, _BEAM_KEYS, "beam", source)
     if "segments" in table:
-        for key in _UNIFORM_KEYS:
+        for key in (*_UNIFORM_KEYS, "loss_factor"):
             if key in table:
                 raise SceneError(
                     source,
                     f"beam.{key}",
-                    "not with [[beam.segments]]: a stepped beam gives length, EI and"
-                    " mass_per_length per segment",
+                    "not with [[beam.segments]]: a stepped beam gives length, EI,"
+                    " mass_per_length and loss_factor per segment",
                     table[key],
                 )
         segments = _segments(table["segments"], source)
@@ -953,11 +978,19 @@ def _beam(value: Any, source: str) -> Beam:
             _checked(_require(table, key, "beam", source), "positive", f"beam.{key}", source)
             for key in _UNIFORM_KEYS
         )
+    eta = _loss_factor(table, "beam", source)
     left, right = (
         _choice(_require(table, key, "beam", source), BOUNDARY_KINDS, f"beam.{key}", source)
         for key in ("left", "right")
     )
-    return Beam(length, ei, mu, left, right, segments)
+    return Beam(length, ei, mu, left, right, segments, eta)
+
+
+def _loss_factor(table: Mapping[str, Any], prefix: str, source: str) -> float:
+    """The optional ``loss_factor`` of a beam or a segment (>= 0, default 0)."""
+    if "loss_factor" not in table:
+        return 0.0
+    return _checked(table["loss_factor"], "nonnegative", f"{prefix}.loss_factor", source)
 
 
 def _segments(value: Any, source: str) -> tuple[Segment, ...]:
@@ -971,14 +1004,15 @@ def _segments(value: Any, source: str) -> tuple[Segment, ...]:
     for s, item in enumerate(value):
         prefix = f"beam.segments[{s}]"
         table = _table(item, prefix, source)
-        _reject_unknown(table, _UNIFORM_KEYS, prefix, source)
+        _reject_unknown(table, (*_UNIFORM_KEYS, "loss_factor"), prefix, source)
         values = (_require(table, key, prefix, source) for key in _UNIFORM_KEYS)
         segments.append(
             Segment(
                 *(
                     _checked(v, "positive", f"{prefix}.{key}", source)
                     for key, v in zip(_UNIFORM_KEYS, values)
-                )
+                ),
+                _loss_factor(table, prefix, source),
             )
         )
     return tuple(segments)
@@ -992,12 +1026,17 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
     module = catalog.kind(kind)
     _reject_unknown(table, ("type", *(key.name for key in module.KEYS)), prefix, source)
     values: dict[str, Value] = {}
+    same = getattr(module, "SAME_LENGTH", ())
     for key in module.KEYS:
         path = f"{prefix}.{key.name}"
         if key.name in table:
             raw = table[key.name]
+        elif key.damping and key.default is not None:
+            continue  # an absent damping value is none (Attachment reads its default)
         elif key.default is None:
             raise SceneError(source, path, "missing")
+        elif key.shape == "list":  # as long as the kind's first list
+            raw = [key.default] * len(values.get(same[0], ())) if same else [key.default]
         else:
             raw = key.default
         if key.shape == "list":
@@ -1011,10 +1050,9 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
             )
         else:
             values[key.name] = _checked(raw, key.check, path, source, beam.length)
-    same = getattr(module, "SAME_LENGTH", ())
     for name in same[1:]:
         n = len(values[same[0]])  # type: ignore[arg-type]
-        if len(values[name]) != n:  # type: ignore[arg-type]
+        if name in values and len(values[name]) != n:  # type: ignore[arg-type]
             raise SceneError(
                 source,
                 f"{prefix}.{name}",

@@ -117,12 +117,22 @@ def solve(
     multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
     exactly ``modes`` values.
     """
+    topology = topology_of(scene)
+    if topology.damped:
+        if formulation != "stable":
+            raise ValueError(
+                "a damped scene has one formulation, the complex stable chain: the paper's"
+                " det U_bar is real-valued (undamped scenes only)"
+            )
+        from .damped import solve_damped
+
+        return solve_damped(scene, modes, band, shapes=shapes)
     if modes is None and band is None:
         modes = 10
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     if kernel is None:
-        kernel = load_kernel(topology_of(scene))
+        kernel = load_kernel(topology)
     p = parameter_vector(scene)
     t1 = time.perf_counter()
     timings["load"] = t1 - t0

@@ -175,8 +175,16 @@ def sweep(
     each worker loads (or derives) the same kernel and sweeps its chunk on all its cores.
     ``progress`` draws a bar on standard error (the command line does so on a terminal).
     """
-    P = parameter_matrix(scene, vary)
     topology = topology_of(scene)
+    if topology.damped:
+        raise SceneError(
+            scene.source,
+            "scene",
+            "a parameter study of a damped scene (complex roots) is not supported: solve"
+            " each point with mstmm.solve, or sweep its undamped twin",
+            scene.name,
+        )
+    P = parameter_matrix(scene, vary)
     if scheduler is not None:
         out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk, progress)
     else:
@@ -217,23 +225,33 @@ def sweep_chunk(key: str, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.nda
 
 
 def _dask_sweep(scheduler, key: str, P: np.ndarray, modes: int, chunk: int, show: bool):
+    pieces = [P[i : i + chunk] for i in range(0, len(P), chunk)]
+    results = dask_map(scheduler, sweep_chunk, pieces, (key, modes), "sweep", show)
+    return np.concatenate([r[0] for r in results]), np.concatenate([r[1] for r in results])
+
+
+def dask_map(scheduler, fn, pieces: list, common: tuple, label: str, show: bool) -> list:
+    """``fn(*common[:1], piece, *common[1:])`` for every piece on a Dask cluster (an address
+    like ``tcp://host:8786`` or a ``distributed.Client``), in order; a progress bar counts
+    the rows done. Each worker loads (or derives) its kernel itself."""
     try:
         from distributed import Client, as_completed
     except ImportError as exc:  # pragma: no cover - depends on the installation
         raise RuntimeError("a Dask scheduler needs the extra: pip install 'mstmm[dask]'") from exc
     client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
     try:
-        pieces = [P[i : i + chunk] for i in range(0, len(P), chunk)]
-        futures = client.map(sweep_chunk, [key] * len(pieces), pieces, [modes] * len(pieces))
-        bar = Bar(len(P), "sweep on the Dask cluster", show=show)
+        n = len(pieces)
+        head, tail = common[:1], common[1:]
+        args = [[c] * n for c in head] + [pieces] + [[c] * n for c in tail]
+        futures = client.map(fn, *args)
+        bar = Bar(sum(len(piece) for piece in pieces), f"{label} on the Dask cluster", show=show)
         for future in as_completed(futures):
             bar.update(len(pieces[futures.index(future)]))
         bar.close()
-        results = client.gather(futures)
+        return client.gather(futures)
     finally:
         if client is not scheduler:
             client.close()
-    return np.concatenate([r[0] for r in results]), np.concatenate([r[1] for r in results])
 
 
 def parse_range(text: str) -> np.ndarray:

@@ -10,6 +10,7 @@ from mstmm.derive.catalog import (
     STATE,
     Component,
     Topology,
+    damped,
     layout,
     unknown,
 )
@@ -27,17 +28,28 @@ __all__ = [
 
 
 def topology_of(scene) -> Topology:
-    """The topology of a :class:`mstmm.scene.Scene`: its end conditions and component kinds."""
+    """The topology of a :class:`mstmm.scene.Scene`: its end conditions, component kinds,
+    and whether it is damped (``catalog.damped``). Kept on the scene (immutable) after the
+    first call: the damping test reads every value, and each solve asks."""
+    known = getattr(scene, "__dict__", {}).get("_topology")
+    if known is not None:
+        return known
     kinds = tuple(sorted({a.kind for a in scene.attachments}))
-    return Topology(scene.beam.left, scene.beam.right, kinds)
+    damped_ = damped(_segments(scene), _components(scene))
+    topology = Topology(scene.beam.left, scene.beam.right, kinds, damped_)
+    if hasattr(scene, "__dict__"):
+        object.__setattr__(scene, "_topology", topology)
+    return topology
 
 
-def _segments(scene) -> list[tuple[float, float, float]]:
+def _segments(scene) -> list[tuple[float, float, float, float]]:
     beam = scene.beam
     segments = getattr(beam, "segments", ()) or ()
     if segments:
-        return [(s.length, s.EI, s.mass_per_length) for s in segments]
-    return [(beam.length, beam.EI, beam.mass_per_length)]
+        return [
+            (s.length, s.EI, s.mass_per_length, getattr(s, "loss_factor", 0.0)) for s in segments
+        ]
+    return [(beam.length, beam.EI, beam.mass_per_length, getattr(beam, "loss_factor", 0.0))]
 
 
 def _components(scene) -> list[Component]:
@@ -45,12 +57,15 @@ def _components(scene) -> list[Component]:
 
 
 def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
-    return layout(_segments(scene), _components(scene), topology_of(scene))
+    # the event tags depend on the kinds present only: the damping test is left out
+    kinds = tuple(sorted({a.kind for a in scene.attachments}))
+    tags = Topology(scene.beam.left, scene.beam.right, kinds)
+    return layout(_segments(scene), _components(scene), tags)
 
 
 def parameter_vector(scene) -> np.ndarray:
     """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
-    (x_end, EI, mbar), event rows (tag, x, offset) sorted by x, data...]``
+    (x_end, EI, mbar, eta), event rows (tag, x, offset) sorted by x, data...]``
     (:func:`mstmm.derive.catalog.layout`)."""
     return _layout(scene)[0]
 

@@ -1,0 +1,35 @@
+"""Viscous dashpot from the beam to the ground.
+
+At its node ``EI [W'''] = -i w c W`` (time dependence exp(i w t): the force on the beam
+is ``-c dW/dt``): a grounded ``spring`` whose stiffness is ``i w c``. As a descriptor: no
+unknowns, ``A = I - i w1 gamma e_Q e_Y^T`` (``gamma = c L / sqrt(EI mbar)``, ``w1`` the
+frequency in the kernel's units). A scene with a dashpot is damped: its kernel is
+complex, and the kind is left out of its undamped twin.
+"""
+
+from __future__ import annotations
+
+from ..catalog import Key
+
+KIND = "dashpot"
+DOC = "viscous dashpot c from the beam at x to the ground"
+KEYS = (
+    Key("x", "m", check="position", doc="position from the left end"),
+    Key("c", "N s/m", doc="damping coefficient", damping=True),
+)
+COUNT = "stiffness"
+#: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``);
+#: the damped count at w = 0 treats it as a constraint on Y (``DAMPS``).
+RIGID = ()
+DAMPS = ("Y",)
+
+
+def descriptor(v: dict):
+    """``Q+ = Q - i w1 gamma Y``."""
+    import sympy as sp
+
+    from ..descriptor import point, w1
+
+    A = sp.eye(4)
+    A[3, 0] = -sp.I * w1 * v.get("c", 0)
+    return point(A)

@@ -1,0 +1,825 @@
+"""Damped natural frequencies: complex roots, found by continuation and certified by the
+argument principle.
+
+With damping (dashpots ``c``, loss factors ``eta``) the natural frequencies are the
+complex zeros ``w = w_d + i sigma`` of the damped kernel's characteristic function
+(``delta_damped``: the pole-free second-compound chain in complex arithmetic, entire in
+``w``; time dependence ``exp(i w t)``, ``sigma > 0`` a decaying mode). The
+Wittrick-Williams count no longer applies; what proves that no root is missed is the
+argument principle (Delves & Lyness 1967; Kravanja & Van Barel 2000): the number of zeros
+of an analytic function inside a closed contour is the winding number of its values
+along the contour.
+
+The search (:func:`damped_roots`):
+
+1. **Start from the undamped structure.** Its roots (the certified search of the
+   undamped twin's real kernel: the same scene without its dampers) are the damped
+   roots at damping scale ``t = 0``.
+2. **Continuation** in ``t`` from 0 to 1 (every damping value of the parameter vector
+   scaled by ``t``): each simple undamped root is followed by Newton's method on the
+   logarithmic derivative, in steps that halve when Newton does not settle.
+3. **Count** the zeros in the rectangle ``[-eps, W] x [-delta, S]`` of the ``w`` plane
+   (``w_d`` up to the band's top ``W``, ``sigma`` up to ``S``, the origin inside) by the
+   winding number, sampled adaptively until no step of the phase exceeds ``pi/4``; the
+   zero at ``w = 0`` has the known order ``2 n_rigid - r`` (``r`` the rigid motions the
+   grounded dashpots restrain).
+4. **Search what the count says is left**: rectangles whose count exceeds the roots
+   known in them are split and searched (Newton from their centres) until every count is
+   matched; a rectangle that still holds ``m`` zeros when it is as small as round-off
+   allows is a root of multiplicity ``m``.
+
+The result says whether the count confirmed every root (``count_checked``); roots with
+``sigma > S`` are not counted (``S`` is reported: a multiple of the largest decay rate
+the dampers can give and of any root found). Overdamped roots (``w_d = 0``) are reported
+with ``w_d`` exactly 0 when the damping is viscous only (the function is then real on the
+imaginary axis, up to a constant, and its axis roots are exactly on it).
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mstmm.derive import catalog
+
+from .kernels import Kernel
+
+#: Largest phase step (radians) between neighbouring samples of the contour.
+PHASE_STEP = math.pi / 4
+#: Largest step of log|f| between neighbouring samples (a root near the contour).
+LOG_STEP = 1.0
+#: Samples of the contour are refined down to this relative length at most.
+FINEST = 1e-13
+#: A winding number this far from an integer is not trusted (the sampling is refined).
+WINDING_SLACK = 0.05
+#: Newton stops at a step this small relative to |w| (or to the frequency unit near 0).
+NEWTON_TOL = 4e-16
+#: Steps of the damping scale t in the continuation (halved on failure).
+CONTINUATION_STEPS = 8
+
+
+@dataclass(frozen=True)
+class DampedRoot:
+    """A damped natural frequency ``omega = w_d + i sigma`` (rad/s) and its multiplicity."""
+
+    omega: complex
+    multiplicity: int = 1
+    converged: bool = True
+    how: str = "continuation"  # rigid | continuation | search | count
+
+    @property
+    def w_d(self) -> float:
+        """Damped frequency (rad/s): the real part."""
+        return self.omega.real
+
+    @property
+    def sigma(self) -> float:
+        """Decay rate (1/s): the imaginary part (exp(i w t) = exp(i w_d t) exp(-sigma t))."""
+        return self.omega.imag
+
+    @property
+    def magnitude(self) -> float:
+        """|w| (rad/s): the undamped frequency of an equivalent single degree of freedom."""
+        return abs(self.omega)
+
+    @property
+    def zeta(self) -> float:
+        """Damping ratio sigma / |w| (1 for an overdamped root, 0 at w = 0)."""
+        return self.sigma / abs(self.omega) if self.omega != 0 else 0.0
+
+
+@dataclass
+class DampedRoots:
+    """The damped roots of a search, whether the count confirmed them, what to tell."""
+
+    roots: list[DampedRoot]
+    count_checked: bool
+    notes: list[str] = field(default_factory=list)
+    #: The rectangle counted: (w_d from, w_d to, sigma from, sigma to), rad/s.
+    rectangle: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+
+
+class OnContour(Exception):
+    """A zero lies on (or within round-off of) the contour."""
+
+
+class _Function:
+    """log f(w) of the damped kernel at one parameter vector: ``log|f| + i arg f`` with the
+    phase taken from f's value (mod 2 pi), so any branch of the kernel's scaling is fine."""
+
+    def __init__(self, kernel: Kernel, p: np.ndarray):
+        self.evaluate = kernel.module.evaluate_damped
+        self.delta = kernel.module.delta_damped
+        self.p = np.ascontiguousarray(p, dtype=np.float64)
+        self.calls = 0
+
+    def __call__(self, ws: np.ndarray) -> np.ndarray:
+        ws = np.ascontiguousarray(ws, dtype=np.complex128)
+        mant = np.empty_like(ws)
+        logs = np.empty_like(ws)
+        self.evaluate(ws, self.p, mant, logs)
+        self.calls += ws.size
+        with np.errstate(divide="ignore"):
+            return np.log(np.abs(mant)) + logs.real + 1j * (np.angle(mant) + logs.imag)
+
+    def one(self, w: complex) -> complex:
+        m, g = self.delta(complex(w), self.p)
+        self.calls += 1
+        if m == 0:
+            return complex(-math.inf, 0.0)
+        return complex(math.log(abs(m)) + g.real, cmath.phase(m) + g.imag)
+
+
+def _wrap(a):
+    """Angles wrapped into (-pi, pi]."""
+    return np.angle(np.exp(1j * np.asarray(a)))
+
+
+def edge_winding(
+    f: _Function, a: complex, b: complex, n0: int = 32, nodes: np.ndarray | None = None
+) -> float:
+    """The change of arg f along the segment from a to b (radians), sampled adaptively
+    until no step of the phase exceeds PHASE_STEP and none of log|f| exceeds LOG_STEP;
+    ``nodes`` (fractions of the segment) are sampled from the start: one between any two
+    roots near the segment, so that no two of them share a step (their phase swings would
+    add to 2 pi and wrap to nothing). Raises :class:`OnContour` when a zero sits on the
+    segment."""
+    t = np.linspace(0.0, 1.0, n0 + 1)
+    if nodes is not None and len(nodes):
+        t = np.unique(np.concatenate([t, np.clip(nodes, 0.0, 1.0)]))
+    g = f(a + (b - a) * t)
+    checked = np.zeros(t.size - 1, dtype=bool)
+    while True:
+        if not np.all(np.isfinite(g)):
+            raise OnContour(f"f = 0 on the contour near {a + (b - a) * t[~np.isfinite(g)][0]}")
+        dphi = _wrap(np.diff(g.imag))
+        dlog = np.abs(np.diff(g.real))
+        bad = (np.abs(dphi) > PHASE_STEP) | (dlog > LOG_STEP)
+        if not bad.any():
+            # each step once more through its midpoint: a step whose phase turned by a
+            # whole turn more than it shows (a zero close by) splits in two there
+            todo = np.flatnonzero(~checked)
+            if todo.size == 0:
+                return float(np.sum(dphi))
+            mid = 0.5 * (t[todo] + t[todo + 1])
+            gm = f(a + (b - a) * mid)
+            h1 = _wrap(gm.imag - g.imag[todo])
+            h2 = _wrap(g.imag[todo + 1] - gm.imag)
+            # a half that turns too far, or halves that do not add up to the step: a
+            # zero close by (its swing may have wrapped by a whole turn)
+            hidden = np.abs(h1 + h2 - dphi[todo]) > 1.0
+            hidden |= (np.abs(h1) > PHASE_STEP) | (np.abs(h2) > PHASE_STEP)
+            hidden |= np.abs(gm.real - g.real[todo]) > LOG_STEP
+            hidden |= np.abs(g.real[todo + 1] - gm.real) > LOG_STEP
+            hidden |= ~np.isfinite(gm)
+            checked[todo] = True
+            if not hidden.any():
+                return float(np.sum(dphi))
+            bad = np.zeros(t.size - 1, dtype=bool)
+            bad[todo[hidden]] = True
+        idx = np.flatnonzero(bad)
+        width = t[idx + 1] - t[idx]
+        if np.any(width * abs(b - a) < FINEST * max(abs(a), abs(b))):
+            near = a + (b - a) * t[idx[0]]
+            raise OnContour(f"a zero within round-off of the contour near {near}")
+        mid = 0.5 * (t[idx] + t[idx + 1])
+        gm = f(a + (b - a) * mid)
+        t = np.insert(t, idx + 1, mid)
+        g = np.insert(g, idx + 1, gm)
+        checked = np.insert(checked, idx + 1, False)
+        checked[idx] = False
+
+
+def winding(
+    f: _Function,
+    box: tuple[float, float, float, float],
+    n0: int = 32,
+    bottom: np.ndarray | None = None,
+) -> int:
+    """Number of zeros of f in the rectangle ``box = (x0, x1, y0, y1)`` of the w plane
+    (w_d from x0 to x1, sigma from y0 to y1), with multiplicity, by the argument principle;
+    ``bottom``: w_d values sampled from the start along the bottom edge (between the roots
+    near the real axis). Raises :class:`OnContour` when a zero lies on its boundary."""
+    x0, x1, y0, y1 = box
+    corners = [complex(x0, y0), complex(x1, y0), complex(x1, y1), complex(x0, y1)]
+    total = 0.0
+    for i in range(4):
+        nodes = None
+        if i == 0 and bottom is not None:
+            nodes = (np.asarray(bottom, dtype=float) - x0) / (x1 - x0)
+        total += edge_winding(f, corners[i], corners[(i + 1) % 4], n0, nodes)
+    n = total / (2.0 * math.pi)
+    if abs(n - round(n)) > WINDING_SLACK:
+        raise OnContour(f"winding number {n:.3f} is not an integer")
+    return int(round(n))
+
+
+def newton(
+    f: _Function, w: complex, multiplicity: int = 1, scale: float = 1.0, maxiter: int = 80
+) -> tuple[complex, bool]:
+    """The secant method on ``f^(1/m)`` from w (and a point 1e-7 beside it): each step
+    ``w2 = w1 - (w1 - w0) / (1 - (f0 / f1)^(1/m))`` with ``f0 / f1 = exp(log f0 - log f1)``,
+    so the scale of f never matters; superlinear for a simple root and needs no
+    derivative (a difference across the root of the singular log f would be garbage).
+    Converged when the step falls below ``NEWTON_TOL`` relative, or stops shrinking below
+    1e-11 relative (round-off of f). Returns (root, converged)."""
+    mag = max(abs(w), 1e-3 * scale)
+    w0 = w + 1e-7 * mag
+    g0 = f.one(w0)
+    w1, g1 = complex(w), f.one(w)
+    prev = math.inf
+    for _ in range(maxiter):
+        if not math.isfinite(g1.real):
+            return w1, True  # f = 0 exactly
+        if not math.isfinite(g0.real):
+            return w0, True
+        dg = complex(g0.real - g1.real, float(_wrap(g0.imag - g1.imag))) / multiplicity
+        if dg.real > 700.0:
+            return w1, False
+        denom = 1.0 - cmath.exp(dg)
+        if denom == 0:
+            return w1, False
+        step = -(w1 - w0) / denom
+        if not cmath.isfinite(step):
+            return w1, False
+        mag = max(abs(w1), 1e-3 * scale)
+        size = abs(step)
+        if size <= NEWTON_TOL * mag:
+            return w1 + step, True
+        if size <= 1e-11 * mag and size >= 0.5 * prev:
+            return w1, True
+        w0, g0 = w1, g1
+        w1 = w1 + step
+        g1 = f.one(w1)
+        prev = size
+    return w1, prev <= 1e-10 * max(abs(w1), 1e-3 * scale)
+
+
+def damping_scaled(p: np.ndarray, columns: np.ndarray, t: float) -> np.ndarray:
+    """The parameter vector with every damping value scaled by t."""
+    q = np.array(p, dtype=np.float64)
+    q[columns] *= t
+    return q
+
+
+@dataclass
+class _Problem:
+    """One damped search: the kernel, its function at full damping, the scales."""
+
+    kernel: Kernel
+    p: np.ndarray
+    f: _Function
+    columns: np.ndarray
+    unit: float  # the frequency unit sqrt(EI / mbar) / L^2 (rad/s)
+    viscous: bool  # no loss factor: f(-conj w) = conj f(w), axis roots exactly on the axis
+    order0: int  # order of the zero at w = 0
+    rigid: int  # rigid-body modes (zero frequencies reported)
+    #: The undamped roots (rad/s): bottom-edge samples of the count.
+    nodes: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    roots: list[DampedRoot] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    def inside(self, w: complex, box) -> bool:
+        x0, x1, y0, y1 = box
+        return x0 < w.real < x1 and y0 < w.imag < y1
+
+    def known(self, box) -> int:
+        """Zeros of f already known in the box: the origin's, the roots, and (viscous) the
+        mirror images of roots just right of the imaginary axis."""
+        n = self.order0 if self.inside(0j, box) else 0
+        for r in self.roots:
+            if r.omega == 0:
+                continue
+            if self.inside(r.omega, box):
+                n += r.multiplicity
+            mirror = complex(-r.omega.real, r.omega.imag)
+            if self.viscous and r.omega.real > 0 and self.inside(mirror, box):
+                n += r.multiplicity
+        return n
+
+    def add(self, w: complex, multiplicity: int, how: str, converged: bool = True) -> bool:
+        """Add a root unless it is one already known (within 1e-9 relative), or the zero
+        at the origin (whose order is known)."""
+        if self.order0 and abs(w) <= 1e-9 * self.unit:
+            return False
+        if self.viscous and abs(w.real) <= 1e-9 * abs(w):
+            w = complex(0.0, w.imag)  # an overdamped root: exactly on the axis
+        if self.viscous and w.real < 0:
+            w = complex(-w.real, w.imag)  # the mirror image of a root on the right
+        for r in self.roots:
+            if abs(r.omega - w) <= 1e-9 * max(abs(w), 1e-6 * self.unit):
+                return False
+        self.roots.append(DampedRoot(w, multiplicity, converged, how))
+        return True
+
+
+def _sigma_bound(scene, roots: list[DampedRoot], unit: float, w_top: float) -> float:
+    """Top of the counted rectangle: several times the largest decay rate the dampers can
+    give (a dashpot c on a mass m: c/m; a grounded dashpot pinning the beam: c^2 /
+    (8 sqrt(EI) mbar^1.5); a loss factor eta: eta w at the band's top) and the largest
+    sigma found."""
+    beam = scene.beam
+    segs = beam.segments or (beam,)
+    rates = [0.1 * w_top]
+    for s in segs:
+        eta = getattr(s, "loss_factor", 0.0)
+        rates.append(eta * w_top)
+        for a in scene.attachments:
+            c = getattr(a, "c", None) if a.kind != "support" else None
+            if c is None:
+                continue
+            cs = c if isinstance(c, tuple) else (c,)
+            ms = getattr(a, "m", None)
+            ms = ms if isinstance(ms, tuple) else ((ms,) if ms else ())
+            for ci in cs:
+                if ci <= 0:
+                    continue
+                for m in ms:
+                    rates.append(2.0 * ci / m)
+                rates.append(ci * ci / (8.0 * math.sqrt(s.EI) * s.mass_per_length**1.5))
+                rates.append(ci / (s.mass_per_length * beam.length))
+    rates += [abs(r.sigma) for r in roots]
+    return 4.0 * max(rates)
+
+
+def _continue(problem: _Problem, w0: float, pick) -> tuple[complex, bool]:
+    """Follow the root w0 of the undamped structure (damping scale 0) to full damping."""
+    w = complex(w0)
+    t = 0.0
+    dt = 1.0 / CONTINUATION_STEPS
+    while t < 1.0:
+        t_new = min(1.0, t + dt)
+        f = problem.f if t_new == 1.0 else _Function(problem.kernel, pick(t_new))
+        w_new, ok = newton(f, w, scale=problem.unit)
+        # a step that jumps further than the root moved so far is not trusted
+        if ok and abs(w_new - w) <= 0.25 * abs(w0) + 10.0 * abs(w - w0):
+            w, t = w_new, t_new
+            dt = min(2.0 * dt, 1.0 / CONTINUATION_STEPS)
+        else:
+            dt *= 0.5
+            if dt < 1e-4:
+                return w, False
+    return w, True
+
+
+def _axis_roots(problem: _Problem, sigma_lo: float, sigma_hi: float) -> None:
+    """The overdamped roots of a viscous scene: f(-conj w) = conj f(w), so on the
+    imaginary axis f is real up to a constant phase, and each root of odd multiplicity
+    there is a sign change. The axis is sampled (geometric and uniform nodes), each
+    change bisected to round-off (an even multiplicity, critical damping, shows no
+    change: the count finds it)."""
+    f = problem.f
+    sig = np.unique(
+        np.concatenate(
+            [np.geomspace(sigma_lo, sigma_hi, 400), np.linspace(sigma_lo, sigma_hi, 400)]
+        )
+    )
+    g = f(1j * sig)
+    ok = np.isfinite(g.real)
+    sig, g = sig[ok], g[ok]
+    if sig.size < 2:
+        return
+    ref = g.imag[0]
+    side = np.cos(g.imag - ref) > 0.0
+    for i in np.flatnonzero(side[1:] != side[:-1]):
+        a, b = sig[i], sig[i + 1]
+        sa = side[i]
+        while b - a > 4e-16 * b:
+            m = 0.5 * (a + b)
+            gm = f.one(1j * m)
+            if not math.isfinite(gm.real):
+                a = b = m
+                break
+            if (math.cos(gm.imag - ref) > 0.0) == sa:
+                a = m
+            else:
+                b = m
+        problem.add(complex(0.0, 0.5 * (a + b)), 1, "search")
+
+
+def _multiplicity(problem: _Problem, w: complex) -> int:
+    """The zeros of f in a small square around w (its multiplicity when w is a root; 0 when
+    it is not one after all)."""
+    h = 1e-7 * max(abs(w), 1e-3 * problem.unit)
+    for _ in range(4):
+        try:
+            return winding(problem.f, (w.real - h, w.real + h, w.imag - h, w.imag + h), n0=8)
+        except OnContour:
+            h *= 3.1
+    return 0
+
+
+def _fill(problem: _Problem, box, count: int, depth: int = 0) -> None:
+    """Find the roots the count says are in ``box`` but not yet known: the secant method
+    from a few points of the box (on f, then on f^(1/m) for m the zeros left: a multiple
+    root), each root's multiplicity from a small count around it; else split the box in
+    four and search each quarter whose count exceeds its known roots. A box as small as
+    round-off allows with m zeros left is a root of multiplicity m (``how = "count"``)."""
+    f = problem.f
+    left = count - problem.known(box)
+    if left <= 0:
+        return
+    x0, x1, y0, y1 = box
+    centre = complex(0.5 * (x0 + x1), 0.5 * (y0 + y1))
+    size = max(x1 - x0, y1 - y0)
+    if size <= 1e-12 * max(abs(centre), problem.unit * 1e-6) or depth > 60:
+        problem.add(centre, left, "count", converged=depth <= 60)
+        return
+    if left == 1 or depth > 4:
+        dx, dy = 0.25 * (x1 - x0), 0.25 * (y1 - y0)
+        starts = (centre, centre - dx - dy, centre + dx + dy, centre - dx + dy)
+        for start in starts:
+            for m in dict.fromkeys((1, left)):
+                w, ok = newton(f, start, multiplicity=m, scale=problem.unit)
+                if ok and problem.inside(w, box):
+                    mult = _multiplicity(problem, w)
+                    if mult > 0:
+                        problem.add(w, mult, "search")
+            if problem.known(box) >= count:
+                return
+    # split in four (lines a little off the middle: not through a symmetric root)
+    xm = x0 + 0.5123 * (x1 - x0)
+    ym = y0 + 0.4877 * (y1 - y0)
+    for q in ((x0, xm, y0, ym), (xm, x1, y0, ym), (x0, xm, ym, y1), (xm, x1, ym, y1)):
+        n = _count(problem, q)
+        if n is not None:
+            _fill(problem, q, n, depth + 1)
+
+
+def _count(problem: _Problem, box) -> int | None:
+    """``winding`` on ``box``, its edges nudged when a zero sits on one; the bottom edge
+    sampled between every two undamped roots and every two roots found."""
+    x0, x1, y0, y1 = box
+    known = np.sort(
+        np.concatenate([problem.nodes, [r.omega.real for r in problem.roots if r.omega != 0]])
+    )
+    between = 0.5 * (known[1:] + known[:-1]) if known.size > 1 else known
+    bottom = np.concatenate([known, between])
+    for k in range(6):
+        try:
+            return winding(problem.f, (x0, x1, y0, y1), bottom=bottom)
+        except OnContour:
+            d = 1e-3 * (k + 1) * max(x1 - x0, y1 - y0)
+            x0, x1, y0, y1 = x0 - 0.7 * d, x1 + 0.3 * d, y0 - 0.5 * d, y1 + 0.9 * d
+    problem.notes.append(f"the argument principle could not be evaluated on {box}")
+    return None
+
+
+def damped_roots(
+    scene,
+    kernel: Kernel,
+    p: np.ndarray,
+    undamped: np.ndarray,
+    w_top: float,
+) -> DampedRoots:
+    """Every damped root with ``w_d < w_top`` (rad/s) of a damped ``scene``.
+
+    ``kernel``, ``p``: the damped kernel and parameter vector; ``undamped``: the natural
+    frequencies of its undamped twin (rad/s, ascending, repeated by multiplicity, zeros
+    for rigid-body modes) up to beyond ``w_top``: the continuation starts from them."""
+    m = kernel.module
+    p = np.ascontiguousarray(p, dtype=np.float64)
+    columns = catalog.damping_columns(p, m.KINDS)
+    unit = math.sqrt(p[1] / p[2]) / (p[0] * p[0])
+    segs = scene.beam.segments or (scene.beam,)
+    viscous = all(getattr(s, "loss_factor", 0.0) == 0.0 for s in segs)
+    rigid = int(m.rigid_motions(p, False))
+    restrained = rigid - int(m.rigid_motions(p, True))
+    elastic = np.asarray([w for w in undamped if w > 0.0])
+    problem = _Problem(
+        kernel,
+        p,
+        _Function(kernel, p),
+        columns,
+        unit,
+        viscous,
+        2 * rigid - restrained,
+        rigid,
+        np.unique(elastic),
+    )
+
+    def pick(t: float) -> np.ndarray:
+        return damping_scaled(p, columns, t)
+
+    values, counts = np.unique(elastic, return_counts=True)
+    lost = 0
+    for w0, c in zip(values, counts):
+        if c > 1 or w0 > 1.5 * w_top:
+            continue  # a multiple root splits: the count finds its pieces
+        w, ok = _continue(problem, float(w0), pick)
+        if ok:
+            problem.add(w, 1, "continuation")
+        else:
+            lost += 1
+    scale = min([unit, *values[:1]])
+    # the origin (a zero of order order0) this far inside the left and bottom edges
+    eps = delta = 1e-3 * scale
+    sigma_top = _sigma_bound(scene, problem.roots, unit, w_top)
+    box = (-eps, w_top, -delta, sigma_top)
+    if viscous:
+        _axis_roots(problem, 1e-9 * scale, sigma_top)
+    count = _count(problem, box)
+    checked = count is not None
+    if count is not None:
+        _fill(problem, box, count)
+        found = problem.known(box)
+        if found != count:
+            checked = False
+            problem.notes.append(
+                f"the argument principle counts {count} zeros in w_d < {w_top:.6g},"
+                f" sigma < {sigma_top:.6g} rad/s (the origin's {problem.order0} included);"
+                f" {found} found"
+            )
+    inside = [
+        r for r in problem.roots if r.omega.real < w_top and -delta < r.omega.imag < sigma_top
+    ]
+    out = [DampedRoot(0j, rigid, True, "rigid")] if rigid else []
+    out += sorted(inside, key=lambda r: (r.omega.real > 0, r.omega.real, r.omega.imag))
+    return DampedRoots(out, checked, problem.notes, box)
+
+
+def undamped_twin(scene):
+    """The same structure without damping: the kinds that only damp (dashpots) left out,
+    every damping value (``Key.damping``) and loss factor set to 0. Its natural frequencies
+    are the damped roots at damping scale 0, where the continuation starts."""
+    import dataclasses
+
+    from .scene import scene_from_dict, scene_to_dict
+
+    data = scene_to_dict(scene)
+    beam = data["beam"]
+    beam.pop("loss_factor", None)
+    for seg in beam.get("segments", []):
+        seg.pop("loss_factor", None)
+    atts = []
+    for a in data["attachments"]:
+        if catalog.damping_only(a["type"]):
+            continue
+        for key in catalog.kind(a["type"]).KEYS[1:]:
+            if key.damping:
+                a.pop(key.name, None)
+        atts.append(a)
+    data["attachments"] = atts
+    twin = scene_from_dict(data, source=scene.source)
+    return dataclasses.replace(twin, name=scene.name)
+
+
+@dataclass
+class DampedSolution:
+    """Damped natural frequencies ``omega = w_d + i sigma`` (rad/s, complex; time
+    dependence exp(i w t), sigma > 0 decays), ascending in w_d with overdamped roots
+    (w_d = 0) first by sigma and rigid-body zeros first of all, repeated by multiplicity."""
+
+    scene: object
+    omega: np.ndarray
+    multiplicity: np.ndarray
+    converged: np.ndarray
+    kernel_origin: str
+    timings: dict
+    count_checked: bool
+    #: The rectangle of the w plane whose zeros were counted (w_d, w_d, sigma, sigma).
+    rectangle: tuple[float, float, float, float]
+    warnings: list[str] = field(default_factory=list)
+    truncated: bool = False
+    shapes: list | None = None
+    formulation: str = "stable"
+    damped: bool = True
+
+    @property
+    def w_d(self) -> np.ndarray:
+        """Damped frequencies (rad/s)."""
+        return self.omega.real
+
+    @property
+    def sigma(self) -> np.ndarray:
+        """Decay rates (1/s)."""
+        return self.omega.imag
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        """|omega| (rad/s)."""
+        return np.abs(self.omega)
+
+    @property
+    def zeta(self) -> np.ndarray:
+        """Damping ratios sigma / |omega| (0 at a rigid-body zero)."""
+        mag = np.abs(self.omega)
+        return np.divide(self.omega.imag, mag, out=np.zeros_like(mag), where=mag > 0)
+
+    @property
+    def hz(self) -> np.ndarray:
+        """Damped frequencies in Hz (w_d / 2 pi)."""
+        return self.omega.real / (2.0 * math.pi)
+
+    def to_dict(self, shapes: bool = False) -> dict:
+        """What ``mstmm solve --format json`` writes for a damped scene."""
+        out = {
+            "scene": self.scene.name,
+            "damped": True,
+            "formulation": self.formulation,
+            "w_d": self.w_d.tolist(),
+            "sigma": self.sigma.tolist(),
+            "abs_omega": self.magnitude.tolist(),
+            "zeta": self.zeta.tolist(),
+            "hz": self.hz.tolist(),
+            "multiplicity": self.multiplicity.tolist(),
+            "converged": self.converged.tolist(),
+            "count_checked": bool(self.count_checked),
+            "counted_rectangle": {
+                "w_d": [self.rectangle[0], self.rectangle[1]],
+                "sigma": [self.rectangle[2], self.rectangle[3]],
+            },
+            "truncated": bool(self.truncated),
+            "kernel": self.kernel_origin,
+            "timings": dict(self.timings),
+            "warnings": list(self.warnings),
+        }
+        if shapes and self.shapes is not None:
+            out["mode_shapes"] = [s.to_dict() for s in self.shapes]
+        return out
+
+
+def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True):
+    """The damped natural frequencies of a damped ``scene``: the lowest ``modes`` by w_d
+    (rigid-body zeros, then overdamped roots by sigma, first), or every one with
+    ``band[0] <= w_d <= band[1]`` (rad/s). See :func:`damped_roots`."""
+    import time
+
+    from .kernels import load_kernel
+    from .topology import parameter_vector, topology_of
+
+    if modes is None and band is None:
+        modes = 10
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    kernel = load_kernel(topology_of(scene))
+    twin = undamped_twin(scene)
+    twin_kernel = load_kernel(topology_of(twin))
+    p = parameter_vector(scene)
+    timings["load"] = time.perf_counter() - t0
+    t1 = time.perf_counter()
+    from .solve import solve
+
+    need = (modes if modes is not None else 10) + 4
+    while True:
+        if band is not None:
+            und = solve(twin, band=(0.0, 1.5 * band[1]), shapes=False, kernel=twin_kernel)
+            if und.omega.size < need:
+                und = solve(
+                    twin, modes=max(need, und.omega.size + 4), shapes=False, kernel=twin_kernel
+                )
+            w_top = band[1] * (1.0 + 1e-6)
+        else:
+            und = solve(twin, modes=need + 3, shapes=False, kernel=twin_kernel)
+            elastic = und.omega[und.omega > 0]
+            w_top = 0.5 * (elastic[-2] + elastic[-1]) if elastic.size >= 2 else None
+            if w_top is None:
+                w_top = 2.0 * float(und.omega.max() or 1.0)
+        found = damped_roots(scene, kernel, p, und.omega, w_top)
+        listed = sum(r.multiplicity for r in found.roots)
+        if band is not None or listed >= modes or need > 100_000:
+            break
+        need *= 2
+    roots = found.roots
+    truncated = False
+    if band is not None:
+        lo, hi = band
+        roots = [r for r in roots if lo <= r.omega.real <= hi or (lo <= 0.0 and r.omega == 0)]
+    timings["scan_refine"] = time.perf_counter() - t1
+    omega, mult, conv = [], [], []
+    for r in roots:
+        for _ in range(r.multiplicity):
+            omega.append(r.omega)
+            mult.append(r.multiplicity)
+            conv.append(r.converged)
+    if modes is not None and len(omega) > modes:
+        truncated = mult[modes - 1] > 1 and omega[modes] == omega[modes - 1]
+        omega, mult, conv = omega[:modes], mult[:modes], conv[:modes]
+    warnings = list(found.notes)
+    if not found.count_checked:
+        warnings.append(
+            "the damped roots disagree with the argument-principle count: some may be missing"
+        )
+    warnings += [
+        f"omega = {w:.17g} rad/s: not converged; this value is not trusted"
+        for w, c in zip(omega, conv)
+        if not c
+    ]
+    omega_arr = np.asarray(omega, dtype=complex)
+    shape_list = None
+    if shapes:
+        t2 = time.perf_counter()
+        shape_list = damped_shapes(kernel, p, omega_arr, mult)
+        timings["shapes"] = time.perf_counter() - t2
+    sol = DampedSolution(
+        scene,
+        omega_arr,
+        np.asarray(mult, dtype=int),
+        np.asarray(conv, dtype=bool),
+        kernel.origin,
+        timings,
+        found.count_checked,
+        found.rectangle,
+        warnings,
+        truncated,
+        shape_list,
+    )
+    return sol
+
+
+@dataclass(frozen=True)
+class DampedModeShape:
+    """A complex mode shape at a damped natural frequency ``omega`` (rad/s): the states
+    along the beam and the displacement of every hanging mass, complex amplitudes of
+    ``exp(i omega t)`` (the physical motion is their real part), scaled so that the
+    largest |Y| over the beam and the masses is 1 and real positive."""
+
+    omega: complex
+    x: np.ndarray
+    Y: np.ndarray
+    theta: np.ndarray
+    M: np.ndarray
+    Q: np.ndarray
+    mass_x: np.ndarray
+    mass_Y: np.ndarray
+    #: The end matrix's singular value for this shape over its largest (0: exactly null).
+    singular_ratio: float
+    multiplicity: int = 1
+
+    def to_dict(self) -> dict:
+        """JSON form: every complex array as ``*_re`` and ``*_im``."""
+        out: dict = {
+            "w_d": self.omega.real,
+            "sigma": self.omega.imag,
+            "x": self.x.tolist(),
+            "mass_x": self.mass_x.tolist(),
+            "singular_ratio": self.singular_ratio,
+            "multiplicity": self.multiplicity,
+        }
+        for name in ("Y", "theta", "M", "Q", "mass_Y"):
+            values = getattr(self, name)
+            out[f"{name}_re"] = values.real.tolist()
+            out[f"{name}_im"] = values.imag.tolist()
+        return out
+
+
+def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity) -> list:
+    """One :class:`DampedModeShape` per entry of ``omega`` (a root of multiplicity 2 gets
+    the end's two singular directions; higher multiplicities repeat the last). The march
+    of the frequency response without its load (``frf_march``, ``FRF_NULL``): the state
+    at every sample and every hanging mass's displacement carried forward, the end's null
+    vector applied at x = L. A rigid-body zero gets the rigid motion the ends allow."""
+    from .modes import sample_points
+
+    p = np.ascontiguousarray(p, dtype=np.float64)
+    L, EI = float(p[0]), float(p[1])
+    xs = sample_points(p, kernel)
+    masses = [(i, x) for i, (x, mass) in enumerate(kernel.unknowns(p)) if mass > 0.0]
+    rows = []
+    for x in xs:
+        rows += [[0, x, -1, L], [1, x, -1, 1.0], [3, x, -1, EI / L], [4, x, -1, EI / L**2]]
+    rows += [[2, 0.0, q, L] for q, _ in masses]
+    outputs = np.asarray(rows, dtype=np.float64)
+    fa = kernel._addresses("shape_event_c", "shape_sizes")
+    entry = kernel._entry("damped_shapes")
+    ends = kernel.module.SHAPE_ENDS
+    n = xs.size
+    out_shapes = []
+    k = 0
+    while k < len(omega):
+        w = complex(omega[k])
+        m = int(multiplicity[k])
+        kinds = [-1, -2][: min(m, 2)] + [-2] * max(0, m - 2)
+        inputs = np.asarray([[kind, 0.0, 0.0, 1.0] for kind in kinds], dtype=np.float64)
+        res = np.zeros((inputs.shape[0], outputs.shape[0]), dtype=np.complex128)
+        singular = np.zeros(inputs.shape[0])
+        if w == 0:  # the march cannot tell rigid motions apart at w = 0: the state is static
+            w = complex(1e-9 * math.sqrt(EI / p[2]) / (L * L), 0.0)
+        entry(fa, ends, kernel.topology.damped, w, p, inputs, outputs, res, singular)
+        for s in range(inputs.shape[0]):
+            v = res[s]
+            beam = v[: 4 * n].reshape(n, 4)
+            mass_y = v[4 * n :]
+            Y = beam[:, 0]
+            allY = np.concatenate([Y, mass_y])
+            j = int(np.nanargmax(np.abs(allY))) if allY.size else 0
+            scale = allY[j] if allY.size and abs(allY[j]) > 0 else 1.0
+            out_shapes.append(
+                DampedModeShape(
+                    complex(omega[k]),
+                    xs.copy(),
+                    Y / scale,
+                    beam[:, 1] / scale,
+                    beam[:, 2] / scale,
+                    beam[:, 3] / scale,
+                    np.asarray([x for _, x in masses]),
+                    mass_y / scale,
+                    float(singular[s]),
+                    m,
+                )
+            )
+        k += inputs.shape[0]
+    return out_shapes[: len(omega)]
