@@ -534,8 +534,18 @@ def damped_roots(
                 f" {found} found"
             )
     inside = [
-        r for r in problem.roots if r.omega.real < w_top and -delta < r.omega.imag < sigma_top
+        r
+        for r in problem.roots
+        if -eps < r.omega.real < w_top and -delta < r.omega.imag < sigma_top
     ]
+    left = [r for r in problem.roots if r.omega.real <= -eps]
+    if left:  # a loss factor's model: no mirror symmetry, a continuation may cross w_d = 0
+        problem.notes.append(
+            f"{len(left)} zero(s) of the characteristic function lie at w_d < 0 ("
+            + ", ".join(f"{r.omega.real:.6g}{r.omega.imag:+.6g}i" for r in left)
+            + " rad/s), left out: the loss factor's EI (1 + i eta) is a model of w_d > 0"
+            " only (a heavily damped pair near the imaginary axis)"
+        )
     out = [DampedRoot(0j, rigid, True, "rigid")] if rigid else []
     out += sorted(inside, key=lambda r: (r.omega.real > 0, r.omega.real, r.omega.imag))
     return DampedRoots(out, checked, problem.notes, box)
