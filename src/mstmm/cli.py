@@ -281,7 +281,8 @@ def _check_out_dir(path: Path, option: str = "--out") -> None:
     """An output file's directory must exist before any work is done."""
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
-        raise SceneError(COMMAND_LINE, option, "directory does not exist", str(parent))
+        # the path in full (a value's repr is cut at 80 characters)
+        raise SceneError(COMMAND_LINE, option, f"directory does not exist: {parent}")
 
 
 def _warn(message: str) -> None:
