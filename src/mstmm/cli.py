@@ -314,19 +314,6 @@ def _solve(args) -> int:
             + (" (the count confirms it)" if sol.count_checked else "")
         )
     _phase(args, "solve", **sol.timings)
-    if damped:
-        if args.format == "json":
-            text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
-            print(text)
-        elif args.format == "csv":
-            sys.stdout.write(
-                output.damped_shapes_csv(sol) if args.shapes else output.damped_csv(sol)
-            )
-        else:
-            sys.stdout.write(output.damped_table(sol))
-        for warning in sol.warnings:
-            _warn(warning)
-        return 0 if sol.count_checked and bool(sol.converged.all()) else EXIT_UNTRUSTED
     if args.format == "json":
         text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
         print(text)
@@ -335,8 +322,12 @@ def _solve(args) -> int:
                 f"{len(nulls)} non-finite number(s) written as null in the JSON output"
                 f" (first: {nulls[0]}); they cannot be trusted"
             )
+    elif args.format == "csv" and damped:
+        sys.stdout.write(output.damped_shapes_csv(sol) if args.shapes else output.damped_csv(sol))
     elif args.format == "csv":
         sys.stdout.write(output.shapes_csv(sol) if args.shapes else output.frequencies_csv(sol))
+    elif damped:
+        sys.stdout.write(output.damped_table(sol))
     else:
         sys.stdout.write(output.frequencies_table(sol))
         if args.shapes:
@@ -386,8 +377,7 @@ def _phase(args, what: str, **seconds: float) -> None:
 
 
 def _sweep(args) -> int:
-    import tempfile
-
+    from . import output
     from .study import sweep
 
     if args.out is not None:
@@ -414,10 +404,7 @@ def _sweep(args) -> int:
     if args.out is None:
         sys.stdout.write(buf.getvalue())
     else:
-        fd, tmp = tempfile.mkstemp(dir=args.out.parent or ".", prefix=".tmp-sweep-")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(buf.getvalue())
-        os.replace(tmp, args.out)
+        output.write_atomically(args.out, buf.getvalue())
         print(args.out)
     for w in caught:
         _warn(str(w.message))

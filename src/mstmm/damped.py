@@ -323,22 +323,25 @@ def _sigma_bound(scene, roots: list[DampedRoot], unit: float, w_top: float) -> f
     sigma found."""
     beam = scene.beam
     segs = beam.segments or (beam,)
+    dampers = []  # (damping values, masses) of each component, read from its kind's keys
+    for a in scene.attachments:
+        given = dict(a.values)
+        cs: list[float] = []
+        ms: list[float] = []
+        for key in catalog.kind(a.kind).KEYS[1:]:
+            v = catalog.value(a.kind, given, key)
+            vs = list(v) if key.shape == "list" else [v]
+            if key.damping:
+                cs += [c for c in vs if c > 0]
+            elif key.unit == "kg":
+                ms += vs
+        dampers.append((cs, ms))
     rates = [0.1 * w_top]
     for s in segs:
-        eta = getattr(s, "loss_factor", 0.0)
-        rates.append(eta * w_top)
-        for a in scene.attachments:
-            c = getattr(a, "c", None) if a.kind != "support" else None
-            if c is None:
-                continue
-            cs = c if isinstance(c, tuple) else (c,)
-            ms = getattr(a, "m", None)
-            ms = ms if isinstance(ms, tuple) else ((ms,) if ms else ())
+        rates.append(getattr(s, "loss_factor", 0.0) * w_top)
+        for cs, ms in dampers:
             for ci in cs:
-                if ci <= 0:
-                    continue
-                for m in ms:
-                    rates.append(2.0 * ci / m)
+                rates += [2.0 * ci / m for m in ms]
                 rates.append(ci * ci / (8.0 * math.sqrt(s.EI) * s.mass_per_length**1.5))
                 rates.append(ci / (s.mass_per_length * beam.length))
     rates += [abs(r.sigma) for r in roots]

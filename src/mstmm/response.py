@@ -81,10 +81,9 @@ def parse_point(spec, role: str, source: str = "<frf>") -> Point:
         raise SceneError(source, role, "a mass index is a whole number from 0", at)
     if not math.isfinite(value):
         raise SceneError(source, role, "must be finite", at)
-    canonical = "displacement" if names[quantity] == _FORCE and role == "output" else quantity
-    if role == "output" and names[quantity] == _MOMENT:
-        canonical = "rotation"
-    return Point(canonical, where, value)
+    if role == "output":  # y and theta are read as displacement and rotation
+        quantity = "displacement" if names[quantity] == _FORCE else "rotation"
+    return Point(quantity, where, value)
 
 
 def _row(point: Point, role: str, scene: Scene, masses: list[int], source: str) -> list[float]:
@@ -100,8 +99,6 @@ def _row(point: Point, role: str, scene: Scene, masses: list[int], source: str) 
                 source, role, f"the scene has {len(masses)} hanging masses (0..)", point.at
             )
         return [_MASS, 0.0, float(masses[j]), L * L / EI if role == "input" else L]
-    if point.where == "mass" or not math.isfinite(point.at):
-        raise SceneError(source, role, "not a position", point.at)
     x = float(point.at)
     if not 0.0 <= x <= L:
         raise SceneError(source, role, f"x must lie on the beam, in [0, {L:g}] m", x)

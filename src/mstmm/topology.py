@@ -57,10 +57,7 @@ def _components(scene) -> list[Component]:
 
 
 def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
-    # the event tags depend on the kinds present only: the damping test is left out
-    kinds = tuple(sorted({a.kind for a in scene.attachments}))
-    tags = Topology(scene.beam.left, scene.beam.right, kinds)
-    return layout(_segments(scene), _components(scene), tags)
+    return layout(_segments(scene), _components(scene), topology_of(scene))
 
 
 def parameter_vector(scene) -> np.ndarray:
