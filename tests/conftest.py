@@ -67,3 +67,40 @@ from hypothesis import settings  # noqa: E402
 settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
+
+
+def interrupt(argv: list[str], after: float) -> tuple[int, str, float]:
+    """Run ``mstmm`` with ``argv`` in a child process, send it SIGINT ``after`` seconds
+    after it started: (exit status, standard error, seconds from SIGINT to exit).
+
+    A shell's background job ignores SIGINT, and a child inherits that (Python then keeps
+    no handler): the child gets the default, as a terminal's foreground process has."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    code = (
+        "import sys\n"
+        "from mstmm.cli import main\n"
+        "sys.stderr.write('ready\\n'); sys.stderr.flush()\n"
+        "raise SystemExit(main(sys.argv[1:]))\n"
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code, *argv],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    try:
+        assert proc.stderr.readline() == "ready\n"
+        time.sleep(after)
+        assert proc.poll() is None, "the command ended before it could be interrupted"
+        proc.send_signal(signal.SIGINT)
+        t0 = time.perf_counter()
+        _, err = proc.communicate(timeout=120)
+        took = time.perf_counter() - t0
+    finally:
+        proc.kill()
+    return proc.returncode, err, took

@@ -215,9 +215,8 @@ def every_kind_vector() -> list[float]:
 @pytest.mark.parametrize(
     "path, cols",
     [
-        ("beam.EI", (1, 6)),  # the kernel's unit EI_0 and the first segment's own
-        ("beam.mass_per_length", (2, 7)),
-        ("beam.segments[0].EI", (1, 6)),
+        ("beam.segments[0].EI", (1, 6)),  # the kernel's unit EI_0 and the segment's own
+        ("beam.segments[0].mass_per_length", (2, 7)),
         ("beam.segments[1].EI", (10,)),
         ("beam.segments[1].mass_per_length", (11,)),
         ("attachments[0].k", (31,)),
@@ -240,7 +239,7 @@ def test_columns_of_every_kind(path, cols):
 def test_varying_values_of_every_kind():
     scene = mstmm.scene_from_dict(EVERY_KIND)
     vary = {
-        "beam.EI": [3.0e4],
+        "beam.segments[0].EI": [3.0e4],
         "beam.segments[1].mass_per_length": [9.0],
         "attachments[2].k[1]": [4.0e4],
         "attachments[4].J": [0.0],
@@ -308,3 +307,137 @@ def test_rotary_inertia_swept_onto_a_hinge_position_is_rejected():
         parameter_matrix(scene, {f"attachments[{i}].J": [0.0, 0.0, 0.5]})
     assert info.value.field == f"attachments[{i}].x" and "at point 2," in str(info.value)
     assert "ambiguous" in str(info.value)
+
+
+# ---------------------------------------------------------------------------
+# Damped studies (issue 20, item 5) and a stepped beam's per-segment fields
+
+
+def _pinned(eta: float = 0.0) -> mstmm.Scene:
+    beam = {"length": 2.0, "EI": 3.0, "mass_per_length": 1.5, "left": "pinned", "right": "pinned"}
+    if eta:
+        beam["loss_factor"] = eta
+    return mstmm.scene_from_dict({"beam": beam, "attachments": []})
+
+
+def _pinned_exact(eta: float, modes: int) -> np.ndarray:
+    """omega^2 = (1 + i eta) (n pi / L)^4 EI / mbar, the root with sigma > 0."""
+    n = np.arange(1, modes + 1)
+    return np.sqrt((1.0 + 1j * eta) * (n * np.pi / 2.0) ** 4 * 3.0 / 1.5)
+
+
+def test_loss_factor_swept_from_an_undamped_scene_gives_the_closed_form():
+    """The scene starts undamped (eta = 0): the varied loss factor makes it damped, every
+    point (eta = 0 included) is solved for complex roots."""
+    etas = np.array([0.0, 0.02, 0.3, 1.0])
+    omega = sweep(_pinned(), {"beam.loss_factor": etas}, modes=3)
+    assert omega.shape == (4, 3) and np.iscomplexobj(omega)
+    for eta, row in zip(etas, omega):
+        exact = _pinned_exact(eta, 3)
+        assert np.max(np.abs(row - exact) / np.abs(exact)) < 1e-12, (eta, row, exact)
+
+
+def test_damped_scene_sweeps_its_stiffness():
+    """A damped scene (eta = 0.1) swept in EI: the closed form at every point."""
+    eis = np.array([1.5, 3.0, 6.0])
+    omega = sweep(_pinned(0.1), {"beam.EI": eis}, modes=2)
+    for ei, row in zip(eis, omega):
+        exact = _pinned_exact(0.1, 2) * np.sqrt(ei / 3.0)
+        assert np.max(np.abs(row - exact) / np.abs(exact)) < 1e-12
+
+
+TMD = {
+    "beam": {
+        "length": 1.0,
+        "EI": 1.0e3,
+        "mass_per_length": 2.0,
+        "left": "clamped",
+        "right": "free",
+    },
+    "attachments": [{"type": "spring_mass", "x": 1.0, "k": 3.0e3, "m": 0.2}],
+}
+
+
+def test_absorber_damping_sweep_matches_the_mpmath_reference():
+    """A tuned mass at the free end, its dashpot c swept from 0 (the scene is undamped):
+    each point's complex roots against the independent global-assembly reference."""
+    scene = mstmm.scene_from_dict(TMD)
+    cs = np.array([0.0, 3.0, 30.0])
+    omega = sweep(scene, {"attachments[0].c": cs}, modes=3)
+    for c, row in zip(cs, omega):
+        data = {**TMD, "attachments": [{**TMD["attachments"][0], "c": float(c)}]}
+        exact = np.array([complex(w) for w in ref.damped_frequencies(data, 3, dps=30)])
+        assert np.max(np.abs(row - exact) / np.abs(exact)) < 1e-11, (c, row, exact)
+    assert np.all(omega[1:].imag > 0) and np.all(np.abs(omega[0].imag) < 1e-12 * omega[0].real)
+
+
+def _cli(*args: str, **kw) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "mstmm", "sweep", *args], capture_output=True, text=True, **kw
+    )
+
+
+def test_cli_damped_sweep_writes_w_d_sigma_zeta(tmp_path):
+    scene = tmp_path / "tmd.toml"
+    scene.write_text(
+        "[beam]\nlength = 1.0\nEI = 1000.0\nmass_per_length = 2.0\nleft = 'clamped'\n"
+        "right = 'free'\n[[attachments]]\ntype = 'spring_mass'\nx = 1.0\nk = 3000.0\n"
+        "m = 0.2\n"
+    )
+    out = tmp_path / "sweep.csv"
+    res = _cli(str(scene), "--vary", "attachments[0].c=0,30", "--modes", "2", "--out", str(out))
+    assert res.returncode == 0, res.stderr
+    rows = [line.split(",") for line in out.read_text().strip().splitlines()]
+    assert rows[0] == [
+        "attachments[0].c",
+        *(f"{q}_{i}" for i in (1, 2) for q in ("w_d", "sigma", "zeta")),
+    ]
+    for row, c in zip(rows[1:], (0.0, 30.0)):
+        data = {**TMD, "attachments": [{**TMD["attachments"][0], "c": c}]}
+        exact = [complex(w) for w in ref.damped_frequencies(data, 2, dps=30)]
+        values = [float(v) for v in row]
+        assert values[0] == c
+        for i, w in enumerate(exact):
+            w_d, sigma, zeta = values[1 + 3 * i : 4 + 3 * i]
+            assert abs(complex(w_d, sigma) - w) < 1e-11 * abs(w)
+            assert abs(zeta - w.imag / abs(w)) < 1e-11
+    assert float(rows[2][3]) > 0.01  # the absorber's dashpot damps the coupled modes
+
+
+@pytest.mark.parametrize("name", ["EI", "mass_per_length", "loss_factor"])
+def test_a_stepped_beams_field_is_refused_naming_its_segments(name):
+    """beam.EI on a stepped beam would change its first segment only: refused."""
+    scene = mstmm.scene_from_dict(EVERY_KIND)
+    with pytest.raises(ValueError) as info:
+        sweep(scene, {f"beam.{name}": [1.0, 2.0]}, modes=2)
+    assert info.value.field == f"beam.{name}"
+    assert f"beam.segments[i].{name}" in str(info.value) and "i = 0..1" in str(info.value)
+
+
+def test_cli_refuses_beam_ei_on_a_stepped_beam(tmp_path):
+    scene = tmp_path / "stepped.toml"
+    scene.write_text(
+        "[beam]\nleft = 'clamped'\nright = 'free'\n"
+        "[[beam.segments]]\nlength = 0.5\nEI = 2.0\nmass_per_length = 1.0\n"
+        "[[beam.segments]]\nlength = 0.5\nEI = 1.0\nmass_per_length = 1.0\n"
+    )
+    out = tmp_path / "x.csv"
+    res = _cli(str(scene), "--vary", "beam.EI=1,2", "--out", str(out))
+    assert res.returncode == 2
+    assert res.stderr.count("\n") == 1 and "beam.segments[i].EI" in res.stderr
+    assert not out.exists()
+
+
+def test_sigint_stops_a_long_sweep_within_two_seconds(tmp_path):
+    """Ctrl-C during a sweep of 2000 points: status 130 and one line within 2 s, and the
+    --out file is not written (not even in part)."""
+    from conftest import interrupt
+
+    out = tmp_path / "sweep.csv"
+    argv = ["sweep", str(mstmm.example_path("wu_chou_1998")), "--vary"]
+    argv += ["attachments[2].k=LOG:1e3:1e9:2000", "--modes", "100", "--out", str(out)]
+    status, err, took = interrupt(argv, after=4.0)
+    assert status == 130, err
+    assert err == "mstmm: interrupted\n"
+    assert took < 2.0, took
+    assert not out.exists() and not list(tmp_path.glob(".tmp-*"))

@@ -196,7 +196,10 @@ def build_parser() -> argparse.ArgumentParser:
     d = command("derive", "write the kernel of a scene's topology, print where")
     d.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
-    v = command("sweep", "lowest frequencies over a parameter study (all cores)")
+    v = command(
+        "sweep",
+        "lowest frequencies over a parameter study (all cores); damped: w_d, sigma, zeta",
+    )
     v.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     v.add_argument(
         "--vary",
@@ -377,6 +380,8 @@ def _phase(args, what: str, **seconds: float) -> None:
 
 
 def _sweep(args) -> int:
+    import numpy as np
+
     from . import output
     from .study import sweep
 
@@ -398,9 +403,18 @@ def _sweep(args) -> int:
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
-    wr.writerow([*vary, *(f"omega_{i + 1}" for i in range(args.modes))])
+    modes = range(1, args.modes + 1)
+    if np.iscomplexobj(omega):  # damped: per mode w_d, sigma and the damping ratio
+        wr.writerow([*vary, *(f"{q}_{i}" for i in modes for q in ("w_d", "sigma", "zeta"))])
+        mag = np.abs(omega)
+        zeta = np.divide(omega.imag, mag, out=np.zeros_like(mag), where=mag > 0)
+        zeta[np.isnan(mag)] = np.nan
+        cells = np.stack([omega.real, omega.imag, zeta], axis=2).reshape(len(omega), -1)
+    else:
+        wr.writerow([*vary, *(f"omega_{i}" for i in modes)])
+        cells = omega
     for j in range(omega.shape[0]):
-        wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, omega[j].tolist())])
+        wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, cells[j].tolist())])
     if args.out is None:
         sys.stdout.write(buf.getvalue())
     else:

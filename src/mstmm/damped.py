@@ -655,10 +655,12 @@ class DampedSolution:
         return out
 
 
-def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True):
+def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True, kernel=None):
     """The damped natural frequencies of a damped ``scene``: the lowest ``modes`` by w_d
     (rigid-body zeros, then overdamped roots by sigma, first), or every one with
-    ``band[0] <= w_d <= band[1]`` (rad/s). See :func:`damped_roots`."""
+    ``band[0] <= w_d <= band[1]`` (rad/s). See :func:`damped_roots`. ``kernel``: the
+    damped kernel of the scene's kinds (a parameter study passes it: a point whose
+    damping values are all 0 is solved in it too)."""
     import time
 
     from .kernels import load_kernel
@@ -668,7 +670,8 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
         modes = 10
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    kernel = load_kernel(topology_of(scene))
+    if kernel is None:
+        kernel = load_kernel(topology_of(scene))
     twin = undamped_twin(scene)
     twin_kernel = load_kernel(topology_of(twin))
     p = parameter_vector(scene)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+import time
 import warnings
 from collections.abc import Mapping
 
@@ -29,11 +30,18 @@ _ATTACHMENT = re.compile(r"attachments\[(\d+)\]\.(\w+)(?:\[(\d+)\])?$")
 SOURCE = "<sweep>"
 
 
+#: Beam fields a stepped beam carries per segment: varying ``beam.<field>`` there would
+#: change its first segment only, so a sweep names the segment.
+PER_SEGMENT = ("EI", "mass_per_length", "loss_factor")
+
+
 def _paths(scene: Scene) -> dict[str, int]:
     """The field paths a sweep may vary and their index in the parameter vector."""
     fields = field_index(scene)
     if scene.beam.segments:
         del fields["beam.length"]
+        for name in PER_SEGMENT:
+            del fields[f"beam.{name}"]
     else:
         fields = {f: i for f, i in fields.items() if not f.startswith("beam.segments[")}
     return fields
@@ -54,9 +62,9 @@ _TWINS = {
 def columns(scene: Scene, path: str) -> tuple[int, ...]:
     """Every index in the parameter vector a value of the field ``path`` is written to.
 
-    Paths: ``beam.length`` (a uniform beam only), ``beam.EI``, ``beam.mass_per_length``
-    (of a stepped beam: its first segment's), ``beam.segments[s].EI|mass_per_length``
-    (a stepped beam), ``attachments[i].x``, ``attachments[i].<key>`` and
+    Paths: ``beam.length|EI|mass_per_length|loss_factor`` (a uniform beam only),
+    ``beam.segments[s].EI|mass_per_length|loss_factor`` (a stepped beam),
+    ``attachments[i].x``, ``attachments[i].<key>`` and
     ``attachments[i].<key>[j]`` (``i`` in x order, as ``scene.attachments``). Raises
     :class:`SceneError` for a path the scene does not have, saying what it has there.
     """
@@ -67,6 +75,13 @@ def columns(scene: Scene, path: str) -> tuple[int, ...]:
         problem = (
             "a stepped beam's total length is not a sweep parameter, nor is a segment's"
             " length; sweep beam.segments[s].EI|mass_per_length"
+        )
+    elif scene.beam.segments and path in {f"beam.{name}" for name in PER_SEGMENT}:
+        name = path.split(".")[1]
+        last = len(scene.beam.segments) - 1
+        problem = (
+            f"a stepped beam has a {name} per segment: vary beam.segments[i].{name}"
+            f" (i = 0..{last}), each one you mean"
         )
     else:
         problem = _what_exists(scene, path, fields)
@@ -103,7 +118,19 @@ def _check_of(scene: Scene, path: str) -> str:
     if match:
         kind = catalog.kind(scene.attachments[int(match.group(1))].kind)
         return next(k.check for k in kind.KEYS if k.name == match.group(2))
+    if path.endswith(".loss_factor"):
+        return "nonnegative"
     return "positive"
+
+
+def is_damping(scene: Scene, path: str) -> bool:
+    """Whether a field path names a damping value: a loss factor, or a key its kind
+    declares ``damping`` (a dashpot's or a spring-mass's ``c``, a chain's ``c[j]``)."""
+    match = _ATTACHMENT.match(path)
+    if match:
+        kind = catalog.kind(scene.attachments[int(match.group(1))].kind)
+        return any(k.damping for k in kind.KEYS if k.name == match.group(2))
+    return path.endswith(".loss_factor")
 
 
 def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray:
@@ -168,24 +195,32 @@ def sweep(
     chunk: int = 2000,
     progress: bool = False,
 ) -> np.ndarray:
-    """Lowest ``modes`` frequencies (rad/s) at every point of a parameter study.
+    """Lowest ``modes`` natural frequencies (rad/s) at every point of a parameter study.
+
+    An undamped study returns a real ``(n_points, modes)`` array. A damped one (the scene
+    is damped, or a varied field is a damping value: a loss factor, a ``c``; see
+    :func:`is_damping`) solves every point's damped roots (:func:`mstmm.damped.solve_damped`,
+    in the damped kernel even where the point's damping is 0) and returns them complex:
+    ``omega = w_d + i sigma`` (``.real`` the damped frequency, ``.imag`` the decay rate,
+    ``sigma / abs(omega)`` the damping ratio), the lowest ``modes`` by ``w_d`` as
+    ``solve`` lists them.
 
     ``scheduler`` (e.g. ``"tcp://host:8786"``, or a ``distributed.Client``) runs the
     points in chunks of ``chunk`` on an existing Dask cluster (extra ``mstmm[dask]``);
     each worker loads (or derives) the same kernel and sweeps its chunk on all its cores.
     ``progress`` draws a bar on standard error (the command line does so on a terminal).
+    The points run in chunks of a fraction of a second each: Ctrl-C stops the study
+    between two of them (KeyboardInterrupt).
     """
     topology = topology_of(scene)
-    if topology.damped:
-        raise SceneError(
-            scene.source,
-            "scene",
-            "a parameter study of a damped scene (complex roots) is not supported: solve"
-            " each point with mstmm.solve, or sweep its undamped twin",
-            scene.name,
-        )
     P = parameter_matrix(scene, vary)
-    if scheduler is not None:
+    if topology.damped or any(is_damping(scene, path) for path in vary):
+        if scheduler is not None:
+            raise SceneError(
+                SOURCE, "scheduler", "a damped parameter study runs on the local cores only"
+            )
+        out, certified = _damped_sweep(scene, vary, modes, progress)
+    elif scheduler is not None:
         out, certified = _dask_sweep(scheduler, topology.key, P, modes, chunk, progress)
     else:
         if kernel is None:
@@ -202,19 +237,88 @@ def sweep(
     return out
 
 
+#: Seconds one chunk of a local sweep should take: Ctrl-C waits at most about this long
+#: (a compiled call cannot be interrupted; KeyboardInterrupt is raised between chunks).
+CHUNK_SECONDS = 0.25
+
+
 def _local_sweep(kernel: Kernel, P: np.ndarray, modes: int, show: bool):
-    if not show or len(P) < 100:
-        return kernel.sweep(P, modes)
-    parts = np.array_split(np.arange(len(P)), 40)
-    bar = Bar(len(P), "sweep", show=True)
-    outs, certs = [], []
-    for idx in parts:
-        o, c = kernel.sweep(P[idx], modes)
-        outs.append(o)
-        certs.append(c)
-        bar.update(len(idx))
+    """``kernel.sweep`` over the rows of P in chunks sized to take about CHUNK_SECONDS
+    each (the first chunk one row per thread, then grown or shrunk by the time taken)."""
+    import numba
+
+    threads = max(1, numba.get_num_threads())
+    out = np.empty((len(P), int(modes)))
+    certified = np.zeros(len(P), dtype=bool)
+    bar = Bar(len(P), "sweep", show=show and len(P) >= 100)
+    size, i = threads, 0
+    while i < len(P):
+        j = min(len(P), i + size)
+        t0 = time.perf_counter()
+        out[i:j], certified[i:j] = kernel.sweep(P[i:j], modes)
+        took = time.perf_counter() - t0
+        bar.update(j - i)
+        per_row = took / (j - i)
+        fits = int(CHUNK_SECONDS / per_row) if per_row > 0 else 8 * size
+        size = max(threads, min(8 * size, fits))
+        i = j
     bar.close()
-    return np.concatenate(outs), np.concatenate(certs)
+    return out, certified
+
+
+def scene_at(scene: Scene, vary: Mapping[str, np.ndarray], point: int) -> Scene:
+    """The scene of one point of a study: the varied fields (paths as :func:`columns`
+    takes them) set to their values at ``point``, validated again."""
+    from .scene import scene_from_dict, scene_to_dict
+
+    data = scene_to_dict(scene)
+    beam = data["beam"]
+    for path, values in vary.items():
+        v = float(np.atleast_1d(np.asarray(values, dtype=float))[point])
+        match = _ATTACHMENT.match(path)
+        if match:
+            i, key, j = int(match.group(1)), match.group(2), match.group(3)
+            a = data["attachments"][i]
+            if j is None:
+                a[key] = v
+            else:
+                given = {k: tuple(x) if isinstance(x, list) else x for k, x in a.items()}
+                kind = catalog.kind(a["type"])
+                k = next(k for k in kind.KEYS if k.name == key)
+                a[key] = [float(x) for x in catalog.value(a["type"], given, k)]
+                a[key][int(j)] = v
+            continue
+        segment = re.match(r"beam\.segments\[(\d+)\]\.(\w+)$", path)
+        if segment:
+            beam["segments"][int(segment.group(1))][segment.group(2)] = v
+        else:
+            beam[path.split(".", 1)[1]] = v
+    return scene_from_dict(data, source=SOURCE)
+
+
+def _damped_sweep(scene: Scene, vary: Mapping[str, np.ndarray], modes: int, show: bool):
+    """Every point's lowest ``modes`` damped roots, one damped solve each, all in the
+    damped kernel of the scene's topology (a point whose damping is 0 included: its roots
+    are then real). Certified: the count confirmed every root and each converged."""
+    from .damped import solve_damped
+    from .topology import Topology
+
+    base = topology_of(scene)
+    kernel = load_kernel(Topology(base.left, base.right, base.kinds, damped=True))
+    n = len(next(iter(vary.values())))
+    out = np.full((n, int(modes)), complex(math.nan, math.nan))
+    certified = np.zeros(n, dtype=bool)
+    bar = Bar(n, "damped sweep", show=show and n >= 10)
+    for i in range(n):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            sol = solve_damped(scene_at(scene, vary, i), modes=modes, shapes=False, kernel=kernel)
+        k = min(int(modes), sol.omega.size)
+        out[i, :k] = sol.omega[:k]
+        certified[i] = bool(sol.count_checked and sol.converged.all() and k == modes)
+        bar.update(1)
+    bar.close()
+    return out, certified
 
 
 def sweep_chunk(key: str, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
