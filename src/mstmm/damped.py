@@ -190,7 +190,9 @@ def edge_winding(
         t = np.insert(t, idx + 1, mid)
         g = np.insert(g, idx + 1, gm)
         checked = np.insert(checked, idx + 1, False)
-        checked[idx] = False
+        # both halves of every split step are checked again: the left half of the k-th
+        # split step now sits at idx[k] + k (each insertion before it shifted it by one)
+        checked[idx + np.arange(idx.size)] = False
 
 
 def winding(
@@ -218,14 +220,19 @@ def winding(
 
 
 def newton(
-    f: _Function, w: complex, multiplicity: int = 1, scale: float = 1.0, maxiter: int = 80
+    f: _Function,
+    w: complex,
+    multiplicity: int = 1,
+    scale: float = 1.0,
+    maxiter: int = 80,
+    tol: float = NEWTON_TOL,
 ) -> tuple[complex, bool]:
     """The secant method on ``f^(1/m)`` from w (and a point 1e-7 beside it): each step
     ``w2 = w1 - (w1 - w0) / (1 - (f0 / f1)^(1/m))`` with ``f0 / f1 = exp(log f0 - log f1)``,
     so the scale of f never matters; superlinear for a simple root and needs no
     derivative (a difference across the root of the singular log f would be garbage).
-    Converged when the step falls below ``NEWTON_TOL`` relative, or stops shrinking below
-    1e-11 relative (round-off of f). Returns (root, converged)."""
+    Converged when the step falls below ``tol`` relative (``NEWTON_TOL``: to round-off),
+    or stops shrinking below 1e-11 relative (round-off of f). Returns (root, converged)."""
     mag = max(abs(w), 1e-3 * scale)
     w0 = w + 1e-7 * mag
     g0 = f.one(w0)
@@ -247,7 +254,7 @@ def newton(
             return w1, False
         mag = max(abs(w1), 1e-3 * scale)
         size = abs(step)
-        if size <= NEWTON_TOL * mag:
+        if size <= tol * mag:
             return w1 + step, True
         if size <= 1e-11 * mag and size >= 0.5 * prev:
             return w1, True
@@ -348,24 +355,62 @@ def _sigma_bound(scene, roots: list[DampedRoot], unit: float, w_top: float) -> f
     return 4.0 * max(rates)
 
 
-def _continue(problem: _Problem, w0: float, pick) -> tuple[complex, bool]:
-    """Follow the root w0 of the undamped structure (damping scale 0) to full damping."""
-    w = complex(w0)
-    t = 0.0
-    dt = 1.0 / CONTINUATION_STEPS
+def _continue(
+    problem: _Problem, w0: float, pick, steps: int = CONTINUATION_STEPS
+) -> tuple[complex, bool]:
+    """Follow the root w0 of the undamped structure (damping scale 0) to full damping in
+    ``steps`` steps of the damping scale t (halved where Newton does not settle). Each
+    step starts from the root extrapolated along the path so far (a secant predictor: on
+    a path that bends slowly it lands within a fraction of the step, and does not stray
+    onto a neighbour's path), is polished to 1e-9 only (the last one to round-off), and is
+    refused when Newton lands much further from the prediction than the root moved so
+    far."""
+    w = w_prev = complex(w0)
+    t = t_prev = 0.0
+    dt = 1.0 / steps
     while t < 1.0:
         t_new = min(1.0, t + dt)
-        f = problem.f if t_new == 1.0 else _Function(problem.kernel, pick(t_new))
-        w_new, ok = newton(f, w, scale=problem.unit)
+        last = t_new == 1.0
+        f = problem.f if last else _Function(problem.kernel, pick(t_new))
+        guess = w if t == t_prev else w + (w - w_prev) * ((t_new - t) / (t - t_prev))
+        w_new, ok = newton(f, guess, scale=problem.unit, tol=NEWTON_TOL if last else 1e-9)
         # a step that jumps further than the root moved so far is not trusted
-        if ok and abs(w_new - w) <= 0.25 * abs(w0) + 10.0 * abs(w - w0):
+        if ok and abs(w_new - guess) <= 0.25 * abs(w0) + 10.0 * abs(w - w0):
+            w_prev, t_prev = w, t
             w, t = w_new, t_new
-            dt = min(2.0 * dt, 1.0 / CONTINUATION_STEPS)
+            dt = min(2.0 * dt, 1.0 / steps)
         else:
             dt *= 0.5
             if dt < 1e-4:
                 return w, False
     return w, True
+
+
+def _follow(problem: _Problem, todo: list[tuple[float, int]], pick) -> None:
+    """Continue each undamped root ``(w0, steps)`` of ``todo`` and add where it arrives.
+    Two paths that arrive at one root means one strayed onto its neighbour's (close roots,
+    damping that moves them further than they are apart): both are followed again in
+    eight times finer steps, down to 1/512 of the damping scale (what is still lost then
+    is left to the count)."""
+    start: dict[complex, tuple[float, int]] = {}  # each root continued: its w0 and steps
+    while todo:
+        w0, steps = todo.pop(0)
+        w, ok = _continue(problem, w0, pick, steps)
+        if not ok:
+            continue
+        if problem.add(w, 1, "continuation"):
+            start[problem.roots[-1].omega] = (w0, steps)
+            continue
+        near = (w, complex(-w.real, w.imag))
+        other = next(
+            (r for r in problem.roots for v in near if abs(r.omega - v) <= 1e-9 * abs(w)),
+            None,
+        )
+        if other is None or other.omega not in start or steps >= 64 * CONTINUATION_STEPS:
+            continue
+        w1, steps1 = start.pop(other.omega)
+        problem.roots.remove(other)
+        todo += [(w1, max(steps1, steps) * 8), (w0, steps * 8)]
 
 
 def _axis_roots(problem: _Problem, sigma_lo: float, sigma_hi: float) -> None:
@@ -508,15 +553,12 @@ def damped_roots(
         return damping_scaled(p, columns, t)
 
     values, counts = np.unique(elastic, return_counts=True)
-    lost = 0
-    for w0, c in zip(values, counts):
-        if c > 1 or w0 > 1.5 * w_top:
-            continue  # a multiple root splits: the count finds its pieces
-        w, ok = _continue(problem, float(w0), pick)
-        if ok:
-            problem.add(w, 1, "continuation")
-        else:
-            lost += 1
+    todo = [
+        (float(w0), CONTINUATION_STEPS)
+        for w0, c in zip(values, counts)
+        if c == 1 and w0 <= 1.5 * w_top  # a multiple root splits: the count finds its pieces
+    ]
+    _follow(problem, todo, pick)
     scale = min([unit, *values[:1]])
     # the origin (a zero of order order0) this far inside the left and bottom edges
     eps = delta = 1e-3 * scale
