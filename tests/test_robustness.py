@@ -268,6 +268,12 @@ def test_write_atomically_names_the_directory(tmp_path):
     blocker.write_text("")
     with pytest.raises(output.CannotWrite, match=f"cannot write to {blocker}"):
         output.write_atomically(blocker / "x.csv", "text")
+    # a file written is readable as any new file is (not mkstemp's 0600)
+    mask = os.umask(0o022)
+    os.umask(mask)
+    output.write_atomically(tmp_path / "y.csv", "text")
+    assert (tmp_path / "y.csv").stat().st_mode & 0o777 == 0o666 & ~mask
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f", "y.csv"]
 
 
 # ---------------------------------------------------------------------------
@@ -294,6 +300,7 @@ def test_frf_api_refuses_negative_and_nan_omega(free_free):
         assert "np.float64" not in str(info.value)
     with pytest.raises(ValueError, match="finite"):
         mstmm.frf(scene, "force:x=0", "displacement:x=0", [complex(1.0, math.inf)])
+    assert mstmm.frf(scene, "force:x=0", ["displacement:x=0"], []).shape == (0, 1, 1)
 
 
 def test_solve_api_refuses_what_the_cli_refuses(free_free):

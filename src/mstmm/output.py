@@ -439,6 +439,9 @@ def atomic_file(path) -> Iterator[Any]:
     try:
         with os.fdopen(fd, "w") as fh:
             yield fh
+        mask = os.umask(0o022)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # as open() would make it (mkstemp made it 0600)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):

@@ -191,7 +191,7 @@ def frf(
         parts = dask_map(scheduler, frf_chunk, pieces, args, "frf", False)
         H = job.scaled(ws, np.concatenate(parts) if parts else job.empty(0))
     else:
-        H = np.empty((ws.size, 0, 0), dtype=complex)
+        H = np.empty((0, len(_listed(input)), len(_listed(output))), dtype=complex)
         for at, part in frf_chunks(
             scene, input, output, ws, quantity=quantity, kernel=kernel, source=source
         ):
