@@ -259,33 +259,10 @@ def test_json_never_holds_nan(monkeypatch, capsys):
 
 def test_sigint_prints_one_line_and_exits_130():
     """Ctrl-C during a long solve (a band of about 7000 modes): one line, status 130."""
-    import signal
-    import time
+    from interrupt import interrupt
 
-    code = (
-        "import sys\n"
-        "from mstmm.cli import main\n"
-        "sys.stderr.write('ready\\n'); sys.stderr.flush()\n"
-        "raise SystemExit(main(['solve', '--band', '0', '3e10', '--format', 'csv']))\n"
-    )
-    # a shell's background job ignores SIGINT, and a child inherits that (Python then keeps
-    # no handler): give the child the default, as a terminal's foreground process has
-    proc = subprocess.Popen(
-        [sys.executable, "-c", code],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
-    )
-    try:
-        assert proc.stderr.readline() == "ready\n"
-        time.sleep(2.0)
-        assert proc.poll() is None, "the solve ended before it could be interrupted"
-        proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=120)
-    finally:
-        proc.kill()
-    assert proc.returncode == 130, err
+    status, _, err, _ = interrupt(["solve", "--band", "0", "3e10", "--format", "csv"], 2.0)
+    assert status == 130, err
     assert err == "mstmm: interrupted\n"
 
 

@@ -20,7 +20,9 @@ import csv
 import io
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -32,9 +34,19 @@ __all__ = [
     "SHAPE_SUMMARY_HEADER",
     "damped_csv",
     "damped_shapes_csv",
+    "damped_shapes_table",
     "damped_table",
+    "CannotWrite",
+    "atomic_file",
+    "check_writable",
     "frf_csv",
+    "frf_csv_header",
+    "frf_csv_rows",
     "frf_table",
+    "frf_table_header",
+    "frf_table_rows",
+    "json_numbers",
+    "write_atomically",
     "dumps",
     "finite",
     "frequencies_csv",
@@ -145,6 +157,32 @@ def damped_table(sol) -> str:
         f" principle checked: {sol.count_checked} (counted w_d < {x1:.6g} rad/s,"
         f" sigma < {y1:.6g} 1/s)"
     )
+    return "\n".join(lines) + "\n"
+
+
+def damped_shapes_table(sol) -> str:
+    """Per damped mode shape (``mstmm solve --shapes`` of a damped scene): where on the beam
+    |Y| peaks, the largest |Y| of a hanging mass, and the shape's complexity
+    ``1 - |sum Y^2| / sum |Y|^2`` over the beam samples and the masses (0: a real shape,
+    every point in phase, as an undamped mode; 1: a travelling wave). The shapes' samples
+    are in ``--format json`` or ``csv``."""
+    shapes = _shapes(sol)
+    lines = [
+        "damped mode shapes (complex, max |Y| = 1; samples with --format json or csv):",
+        f"{'mode':>4}  {'w_d [rad/s]':>22}  {'sigma [1/s]':>22}  {'peak |Y| at x [m]':>17}"
+        f"  {'max |mass Y|':>12}  {'complexity':>10}",
+    ]
+    for i, s in enumerate(shapes, start=1):
+        y = np.concatenate([s.Y, s.mass_Y])
+        power = float(np.sum(np.abs(y) ** 2))
+        complexity = 1.0 - abs(complex(np.sum(y * y))) / power if power > 0.0 else 0.0
+        peak = float(s.x[int(np.argmax(np.abs(s.Y)))]) if s.x.size else math.nan
+        mass = float(np.max(np.abs(s.mass_Y))) if s.mass_Y.size else math.nan
+        mass_text = f"{mass:>12.6g}" if s.mass_Y.size else f"{'-':>12}"
+        lines.append(
+            f"{i:>4}  {s.omega.real:>22.16g}  {s.omega.imag:>22.16g}  {peak:>17.6g}"
+            f"  {mass_text}  {max(complexity, 0.0):>10.4g}"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -290,13 +328,17 @@ def read_shapes_csv(text: str) -> dict[str, np.ndarray]:
     }
 
 
-def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
-    """``omega_rad_s,f_hz`` then per output ``<label>_re,_im,_abs,_phase_deg``, one row per
-    frequency (``mstmm frf``); H is (frequencies, outputs)."""
+def frf_csv_header(labels: Sequence[str]) -> str:
+    """The header row of :func:`frf_csv`."""
     header: list[str] = ["omega_rad_s", "f_hz"]
     for label in labels:
         header += [f"{label}_{part}" for part in ("re", "im", "abs", "phase_deg")]
-    rows: list[Sequence[Any]] = [header]
+    return _csv([header])
+
+
+def frf_csv_rows(omegas: np.ndarray, H: np.ndarray) -> str:
+    """The rows of :func:`frf_csv` (no header), one per frequency."""
+    rows: list[Sequence[Any]] = []
     for k, w in enumerate(omegas):
         row = [_num(w), _num(w / (2.0 * math.pi))]
         for j in range(H.shape[1]):
@@ -306,41 +348,112 @@ def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
     return _csv(rows)
 
 
-def frf_table(
-    name: str, quantity: str, source: str, omegas: np.ndarray, H: np.ndarray, labels
-) -> str:
-    """A readable table of ``mstmm frf``: |H| and its phase per output."""
-    lines = [f"{name}: {quantity} to {source}"]
+def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
+    """``omega_rad_s,f_hz`` then per output ``<label>_re,_im,_abs,_phase_deg``, one row per
+    frequency (``mstmm frf``); H is (frequencies, outputs)."""
+    return frf_csv_header(labels) + frf_csv_rows(omegas, H)
+
+
+def frf_table_header(name: str, quantity: str, source: str, labels: Sequence[str]) -> str:
+    """The two title lines of :func:`frf_table`."""
     head = f"{'omega [rad/s]':>16}"
     for label in labels:
         head += f"  {('|H| ' + label)[:28]:>28}  {'phase [deg]':>11}"
-    lines.append(head)
+    return f"{name}: {quantity} to {source}\n{head}\n"
+
+
+def frf_table_rows(omegas: np.ndarray, H: np.ndarray) -> str:
+    """The lines of :func:`frf_table` (no title), one per frequency."""
+    lines = []
     for k, w in enumerate(omegas):
         line = f"{w:>16.8g}"
         for j in range(H.shape[1]):
             h = complex(H[k, j])
             line += f"  {abs(h):>28.10g}  {math.degrees(np.angle(h)):>11.4f}"
-        lines.append(line)
-    return "\n".join(lines) + "\n"
+        lines.append(line + "\n")
+    return "".join(lines)
 
 
-def write_atomically(path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in its directory (never half
-    written)."""
+def frf_table(
+    name: str, quantity: str, source: str, omegas: np.ndarray, H: np.ndarray, labels
+) -> str:
+    """A readable table of ``mstmm frf``: |H| and its phase per output."""
+    return frf_table_header(name, quantity, source, labels) + frf_table_rows(omegas, H)
+
+
+def json_numbers(values: np.ndarray) -> tuple[str, int]:
+    """``values`` (floats) as the comma-separated items of a JSON array, a non-finite one as
+    ``null``, and how many were."""
+    bad = ~np.isfinite(values)
+    items = ["null" if b else repr(float(v)) for v, b in zip(values.tolist(), bad, strict=True)]
+    return ", ".join(items), int(bad.sum())
+
+
+class CannotWrite(OSError):
+    """An output file's directory does not take a new file (``directory``, ``reason``)."""
+
+    def __init__(self, directory, reason: str):
+        super().__init__(f"cannot write to {directory} ({reason})")
+        self.directory, self.reason = directory, reason
+
+
+def _directory(path) -> Path:
+    path = Path(path)
+    return path.parent if str(path.parent) else Path(".")
+
+
+def _reason(exc: OSError) -> str:
+    return (exc.strerror or str(exc)).lower()
+
+
+def check_writable(path) -> None:
+    """Raise :class:`CannotWrite` unless a file can be created in ``path``'s directory (by
+    creating one there and removing it: the permission bits alone do not tell, e.g. for
+    root or on a read-only file system)."""
+    import tempfile
+
+    directory = _directory(path)
+    if not directory.is_dir():
+        reason = "not a directory" if directory.exists() else "directory does not exist"
+        raise CannotWrite(directory, reason)
+    try:
+        with tempfile.TemporaryFile(dir=directory, prefix=".tmp-mstmm-"):
+            pass
+    except OSError as exc:
+        raise CannotWrite(directory, _reason(exc)) from None
+
+
+@contextmanager
+def atomic_file(path) -> Iterator[Any]:
+    """A text file to write ``path`` through: a temporary file in its directory, put in
+    place when the block ends, removed if it fails or is interrupted (never half written).
+    Raises :class:`CannotWrite` when the directory takes no new file."""
     import os
     import tempfile
-    from pathlib import Path
 
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=".tmp-")
+    directory = _directory(path)
+    try:
+        fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-")
+    except OSError as exc:
+        raise CannotWrite(directory, _reason(exc)) from None
     try:
         with os.fdopen(fd, "w") as fh:
-            fh.write(text)
+            yield fh
+        mask = os.umask(0o022)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # as open() would make it (mkstemp made it 0600)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+def write_atomically(path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in its directory (never half
+    written; :class:`CannotWrite` when the directory takes no new file)."""
+    with atomic_file(path) as fh:
+        fh.write(text)
 
 
 def damped_shapes_csv(sol) -> str:

@@ -11,7 +11,7 @@ import numpy as np
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
 from .scan import TRUST, find_roots
-from .scene import Scene
+from .scene import Scene, SceneError, check_band
 from .topology import parameter_vector, topology_of
 
 
@@ -87,6 +87,36 @@ class Solution:
         return out
 
 
+def checked_request(
+    scene: Scene, modes, band, source: str = "<solve>"
+) -> tuple[int | None, tuple[float, float] | None]:
+    """``modes`` and ``band`` of :func:`solve`, checked (ValueError, as the command line
+    refuses them): ``modes`` a whole number >= 1, ``band`` two finite ``0 <= lo <= hi``
+    within :func:`mstmm.scene.check_band`'s bounds, not both."""
+    if modes is not None and band is not None:
+        raise ValueError("give modes= or band=, not both")
+    if modes is not None:
+        if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 1:
+            raise SceneError(source, "modes", "must be a whole number >= 1", _plain(modes))
+        modes = int(modes)
+    if band is not None:
+        try:
+            lo, hi = (float(v) for v in band)
+        except (TypeError, ValueError):
+            raise SceneError(source, "band", "must be two numbers (lo, hi), rad/s", band) from None
+        if not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0.0:
+            raise SceneError(source, "band", "lo and hi must be finite and >= 0 rad/s", [lo, hi])
+        if hi < lo:
+            raise SceneError(source, "band", "hi must not be below lo", [lo, hi])
+        band = (lo, hi)
+        check_band(scene, band, source, "band")
+    return modes, band
+
+
+def _plain(value):
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def solve(
     scene: Scene,
     modes: int | None = None,
@@ -116,7 +146,12 @@ def solve(
     lowest ``modes`` end inside a multiple root, ``multiplicity`` gives its true
     multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
     exactly ``modes`` values.
+
+    Raises ValueError when ``modes`` is not a whole number >= 1, ``band`` not two finite
+    numbers ``0 <= lo <= hi`` within the bounds of ``mstmm solve --band``
+    (:func:`mstmm.scene.check_band`), or both are given.
     """
+    modes, band = checked_request(scene, modes, band)
     topology = topology_of(scene)
     if topology.damped:
         if formulation != "stable":
