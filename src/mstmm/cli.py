@@ -10,6 +10,7 @@ import argparse
 import csv
 import io
 import os
+import re
 import sys
 import time
 import warnings
@@ -285,8 +286,16 @@ def _check_out_dir(path: Path, option: str = "--out") -> None:
         raise SceneError(COMMAND_LINE, option, f"directory does not exist: {parent}")
 
 
+_NUMPY_SCALAR = re.compile(r"\bnp\.(?:float|int|uint|complex|bool_?)\d*\(([^()]*)\)")
+
+
+def _plain_numbers(message: str) -> str:
+    """``np.float64(0.5)`` in a message as ``0.5``: users read numbers, not numpy reprs."""
+    return _NUMPY_SCALAR.sub(r"\1", message)
+
+
 def _warn(message: str) -> None:
-    print(f"mstmm: warning: {message}", file=sys.stderr)
+    print(f"mstmm: warning: {_plain_numbers(message)}", file=sys.stderr)
 
 
 def _solve(args) -> int:
@@ -638,13 +647,13 @@ def _main(argv: list[str] | None) -> int:
             _phase(args, args.command, total=total)
         return status
     except NoRoots as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except SceneError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KernelError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except ImportError as exc:
         if args.debug:

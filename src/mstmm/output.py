@@ -20,6 +20,7 @@ import csv
 import io
 import json
 import math
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -66,9 +67,11 @@ def finite(value: Any, where: str = "", found: list[str] | None = None) -> Any:
         return [finite(v, f"{where}[{i}]", found) for i, v in enumerate(value)]
     if isinstance(value, np.ndarray):
         return finite(value.tolist(), where, found)
-    if isinstance(value, (float, np.floating)) and not math.isfinite(value):
-        found.append(where or "<value>")
-        return None
+    if isinstance(value, (float, np.floating)):
+        if not math.isfinite(value):
+            found.append(where or "<value>")
+            return None
+        return float(value) + 0.0  # + 0.0: never a negative zero
     if isinstance(value, np.generic):
         return value.item()
     return value
@@ -88,7 +91,23 @@ def _csv(rows: Sequence[Sequence[Any]]) -> str:
 
 
 def _num(value: float) -> str:
-    return repr(float(value))
+    return repr(float(value) + 0.0)  # + 0.0: never "-0.0"
+
+
+_NEGATIVE_ZERO = re.compile(r"-(?=0*(?:\.0*)?(?:e[+-]?\d+)?\s*$)")
+
+
+def _fmt(value: float, spec: str) -> str:
+    """``value`` formatted by ``spec``, without the sign of a number that prints as zero
+    (``-0``, ``-0.0000``: a negative zero, or round-off below the printed digits)."""
+    text = format(float(value) + 0.0, spec)
+    return _NEGATIVE_ZERO.sub(" " if text[:1] == " " or spec[:1] == ">" else "", text, count=1)
+
+
+def _phase_deg(h: complex) -> float:
+    """The phase of ``h`` in degrees, (-180, 180]: a signed zero in ``h`` does not decide
+    it (``-1 - 0j`` is 180, ``1 - 0j`` is 0)."""
+    return math.degrees(math.atan2(h.imag + 0.0, h.real + 0.0)) + 0.0
 
 
 DAMPED_HEADER = (
@@ -136,8 +155,9 @@ def damped_table(sol) -> str:
         flag = "" if sol.converged[i] else "  NOT TRUSTED"
         kind = "  overdamped" if sol.w_d[i] == 0.0 and sol.sigma[i] > 0.0 else ""
         lines.append(
-            f"{i + 1:>4}  {sol.w_d[i]:>22.16g}  {sol.sigma[i]:>22.16g}  {sol.magnitude[i]:>22.16g}"
-            f"  {sol.zeta[i]:>10.4g}  {sol.hz[i]:>12.6g}  {sol.multiplicity[i]:>4}{kind}{flag}"
+            f"{i + 1:>4}  {_fmt(sol.w_d[i], '>22.16g')}  {_fmt(sol.sigma[i], '>22.16g')}"
+            f"  {_fmt(sol.magnitude[i], '>22.16g')}  {_fmt(sol.zeta[i], '>10.4g')}"
+            f"  {_fmt(sol.hz[i], '>12.6g')}  {sol.multiplicity[i]:>4}{kind}{flag}"
         )
     t = sol.timings
     lines.append(
@@ -168,7 +188,7 @@ def frequencies_table(sol: Solution) -> str:
         zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
     ):
         flag = "" if c else "  NOT TRUSTED"
-        lines.append(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
+        lines.append(f"{i:>4}  {_fmt(w, '>24.17g')}  {_fmt(f, '>24.17g')}  {m:>4}{flag}")
     t = sol.timings
     machine = (
         "kernel run as Python (cheaper than loading machine code)"
@@ -213,8 +233,8 @@ def shapes_table(sol: Solution) -> str:
     ]
     for i, s in enumerate(shapes, start=1):
         lines.append(
-            f"{i:>4}  {s.omega:>24.17g}  {s.modal_mass:>16.6g}  {s.participation:>14.6g}"
-            f"  {s.effective_mass:>20.6g}"
+            f"{i:>4}  {_fmt(s.omega, '>24.17g')}  {_fmt(s.modal_mass, '>16.6g')}"
+            f"  {_fmt(s.participation, '>14.6g')}  {_fmt(s.effective_mass, '>20.6g')}"
         )
     total = total_mass(sol)
     summed = float(sum(s.effective_mass for s in shapes))
@@ -301,7 +321,7 @@ def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
         row = [_num(w), _num(w / (2.0 * math.pi))]
         for j in range(H.shape[1]):
             h = complex(H[k, j])
-            row += [_num(h.real), _num(h.imag), _num(abs(h)), _num(math.degrees(np.angle(h)))]
+            row += [_num(h.real), _num(h.imag), _num(abs(h)), _num(_phase_deg(h))]
         rows.append(row)
     return _csv(rows)
 
@@ -316,10 +336,10 @@ def frf_table(
         head += f"  {('|H| ' + label)[:28]:>28}  {'phase [deg]':>11}"
     lines.append(head)
     for k, w in enumerate(omegas):
-        line = f"{w:>16.8g}"
+        line = _fmt(w, ">16.8g")
         for j in range(H.shape[1]):
             h = complex(H[k, j])
-            line += f"  {abs(h):>28.10g}  {math.degrees(np.angle(h)):>11.4f}"
+            line += f"  {_fmt(abs(h), '>28.10g')}  {_fmt(_phase_deg(h), '>11.4f')}"
         lines.append(line)
     return "\n".join(lines) + "\n"
 

@@ -116,9 +116,21 @@ def _one_line(text: str) -> str:
     return " ".join(part for part in str(text).splitlines() if part) or "?"
 
 
+def _plain(value: Any) -> Any:
+    """``value`` with numpy scalars and arrays turned into Python numbers and lists, so that
+    a message shows ``1e+200``, not ``np.float64(1e+200)``."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return type(value)(_plain(v) for v in value)
+    return value
+
+
 def _short_repr(value: Any) -> str:
     try:
-        text = repr(value)
+        text = repr(_plain(value))
     except Exception:  # a broken __repr__ must not hide the real error
         text = f"<{type(value).__name__}>"
     text = _one_line(text)
@@ -915,7 +927,7 @@ def _checked(value: Any, check: str, field_path: str, source: str, length: float
     number = _number(value, field_path, source)
     passes, problem = CHECKS[check]
     if not passes(number, length):
-        raise SceneError(source, field_path, problem.format(length=length), value)
+        raise SceneError(source, field_path, problem.format(length=_plain(length)), value)
     return number + 0.0  # + 0.0 turns -0.0 into 0.0
 
 

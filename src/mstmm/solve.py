@@ -87,6 +87,26 @@ class Solution:
         return out
 
 
+#: A decay rate at most this many ulp of |omega| is round-off: printed and returned as 0.
+SIGMA_ROUNDOFF = 64
+
+
+def exact_zeros(omega: np.ndarray) -> np.ndarray:
+    """Damped roots with the decay rate's round-off removed: ``sigma`` with ``|sigma| <=
+    64 eps |omega|`` is 0 (an undamped mode of a damped scene, e.g. one whose shape has no
+    motion at any damper, has sigma = 0 exactly; the complex search leaves ~1e-18 of noise
+    there, of either sign), and no part is a negative zero."""
+    omega = np.asarray(omega, dtype=complex)
+    w_d, sigma = omega.real.copy(), omega.imag.copy()
+    noise = np.isfinite(omega) & (
+        np.abs(sigma) <= SIGMA_ROUNDOFF * np.finfo(float).eps * np.abs(omega)
+    )
+    sigma[noise] = 0.0
+    out = np.empty_like(omega)
+    out.real, out.imag = w_d + 0.0, sigma + 0.0  # + 0.0 turns -0.0 into 0.0
+    return out
+
+
 def solve(
     scene: Scene,
     modes: int | None = None,
@@ -126,7 +146,13 @@ def solve(
             )
         from .damped import solve_damped
 
-        return solve_damped(scene, modes, band, shapes=shapes)
+        # the damped search meets inf and nan where a bound or a box overflows (a dashpot
+        # of 1e200 N s/m): values its argument-principle check reports (count_checked
+        # False, a warning), never numpy's "overflow encountered" for the user to decode
+        with np.errstate(all="ignore"):
+            sol = solve_damped(scene, modes, band, shapes=shapes)
+        sol.omega = exact_zeros(sol.omega)
+        return sol
     if modes is None and band is None:
         modes = 10
     timings: dict[str, float] = {}
