@@ -193,3 +193,24 @@ def test_unknown_image_format_writes_nothing(scene, tmp_path):
     assert not list(tmp_path.iterdir())
     plot.save(fig, tmp_path / "out.svg")
     assert (tmp_path / "out.svg").read_text().lstrip().startswith("<?xml")
+
+
+def test_without_matplotlib_the_error_names_the_extra(tmp_path):
+    """Issue 20 item 14: ``pip install .`` then ``mstmm plot``: one line naming the extra."""
+    code = (
+        "import sys; sys.modules['matplotlib'] = None; from mstmm.cli import main;"
+        f" sys.exit(main(['plot', '-o', {str(tmp_path / 'f.png')!r}]))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 1
+    (line,) = run.stderr.splitlines()
+    assert line.startswith("mstmm: error: plotting needs matplotlib")
+    assert 'pip install ".[plot]"' in line and "mstmm[plot]" in line
+    assert not list(tmp_path.iterdir())
+
+
+def test_readme_says_how_to_install_plotting_before_the_first_plot():
+    text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    lines = text.splitlines()
+    first = next(i for i, ln in enumerate(lines) if ln.startswith("    ") and "mstmm plot" in ln)
+    assert 'pip install ".[plot]"' in lines[first]

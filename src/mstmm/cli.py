@@ -446,7 +446,11 @@ def _plot(args) -> int:
     except ModuleNotFoundError as exc:
         if (exc.name or "").split(".")[0] != "matplotlib":
             raise
-        print("mstmm: error: plotting needs matplotlib: pip install 'mstmm[plot]'", file=sys.stderr)
+        print(
+            "mstmm: error: plotting needs matplotlib, mstmm's optional extra 'plot':"
+            ' pip install "mstmm[plot]" (in a source tree: pip install ".[plot]")',
+            file=sys.stderr,
+        )
         return EXIT_FAILURE
     if args.out.suffix[1:].lower() not in plot.formats():
         raise SceneError(
