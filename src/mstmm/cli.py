@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import csv
 import io
+import math
 import os
 import re
 import sys
@@ -65,6 +66,11 @@ def _scene(path: str | None) -> Scene:
 
         return load_scene(example_path("wu_chou_1998"))
     return load_scene(path)
+
+
+#: ``--quantity`` of ``frf`` and ``plot --frf``.
+_QUANTITY = {"choices": ("receptance", "mobility", "accelerance"), "default": "receptance"}
+QUANTITY_HELP = "H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)"
 
 
 def _positive_int(text: str) -> int:
@@ -180,12 +186,7 @@ def build_parser() -> argparse.ArgumentParser:
         default="lin",
         help="frequencies spaced linearly or logarithmically (default: %(default)s)",
     )
-    f.add_argument(
-        "--quantity",
-        choices=("receptance", "mobility", "accelerance"),
-        default="receptance",
-        help="H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)",
-    )
+    f.add_argument("--quantity", **_QUANTITY, help=QUANTITY_HELP)
     f.add_argument(
         "--format",
         choices=("csv", "json", "table"),
@@ -251,6 +252,12 @@ def build_parser() -> argparse.ArgumentParser:
         default=2000,
         metavar="N",
         help="with --frf: number of frequencies (default: %(default)s)",
+    )
+    q.add_argument("--quantity", **_QUANTITY, help="with --frf: " + QUANTITY_HELP)
+    q.add_argument(
+        "--hz",
+        action="store_true",
+        help="with --frf: --band LO HI in Hz and the frequency axis in Hz (default: rad/s)",
     )
     w = command(
         "show",
@@ -465,7 +472,11 @@ def _plot(args) -> int:
         if args.band is None or args.sweep is not None:
             raise SceneError(COMMAND_LINE, "--frf", "needs --band LO HI (and no --sweep)", None)
         omegas, src, dst = _frf_request(args, scene)
-        plot.frf_figure(scene, src, dst, omegas, path=args.out)
+        if args.hz:
+            omegas = omegas * (2.0 * math.pi)
+        plot.frf_figure(scene, src, dst, omegas, path=args.out, quantity=args.quantity, hz=args.hz)
+    elif args.hz:
+        raise SceneError(COMMAND_LINE, "--hz", "only with --frf", None)
     elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
