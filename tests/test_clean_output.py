@@ -220,4 +220,7 @@ def test_exact_zeros_keeps_what_is_not_round_off():
     out = exact_zeros(w)
     assert str(out[0]) == "0j" and out[1] == 5.0 and out[2] == w[2]
     assert np.isinf(out[3].imag)
+    # an overdamped root's w_d of round-off (a clamped-end oscillator, k = 10, m = 0.02,
+    # c = 1.9: sigma = 47.5 -/+ sqrt(47.5^2 - 500), w_d = 0) is 0, labelled overdamped
+    assert exact_zeros(np.array([complex(-9.75e-26, 5.59236346)]))[0] == 5.59236346j
     assert output._fmt(-1e-9, ">11.4f") == "     0.0000" and output._fmt(-0.5, ".2f") == "-0.50"

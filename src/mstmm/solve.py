@@ -87,21 +87,22 @@ class Solution:
         return out
 
 
-#: A decay rate at most this many ulp of |omega| is round-off: printed and returned as 0.
+#: A part of a damped root at most this many ulp of |omega| is round-off: returned as 0.
 SIGMA_ROUNDOFF = 64
 
 
 def exact_zeros(omega: np.ndarray) -> np.ndarray:
-    """Damped roots with the decay rate's round-off removed: ``sigma`` with ``|sigma| <=
-    64 eps |omega|`` is 0 (an undamped mode of a damped scene, e.g. one whose shape has no
-    motion at any damper, has sigma = 0 exactly; the complex search leaves ~1e-18 of noise
-    there, of either sign), and no part is a negative zero."""
+    """Damped roots with round-off removed where the model says zero: a part (``sigma`` or
+    ``w_d``) of at most 64 eps ``|omega|`` is 0. An undamped mode of a damped scene (one
+    whose shape has no motion at any damper) has sigma = 0 exactly, an overdamped root
+    w_d = 0; the complex search leaves ~1e-18 relative of noise there, of either sign. No
+    part is a negative zero."""
     omega = np.asarray(omega, dtype=complex)
     w_d, sigma = omega.real.copy(), omega.imag.copy()
-    noise = np.isfinite(omega) & (
-        np.abs(sigma) <= SIGMA_ROUNDOFF * np.finfo(float).eps * np.abs(omega)
-    )
-    sigma[noise] = 0.0
+    bound = SIGMA_ROUNDOFF * np.finfo(float).eps * np.abs(omega)
+    finite = np.isfinite(omega)
+    sigma[finite & (np.abs(sigma) <= bound)] = 0.0
+    w_d[finite & (np.abs(w_d) <= bound)] = 0.0
     out = np.empty_like(omega)
     out.real, out.imag = w_d + 0.0, sigma + 0.0  # + 0.0 turns -0.0 into 0.0
     return out
