@@ -9,7 +9,9 @@ from __future__ import annotations
 import argparse
 import csv
 import io
+import math
 import os
+import re
 import sys
 import time
 import warnings
@@ -65,6 +67,11 @@ def _scene(path: str | None) -> Scene:
 
         return load_scene(example_path("wu_chou_1998"))
     return load_scene(path)
+
+
+#: ``--quantity`` of ``frf`` and ``plot --frf``.
+_QUANTITY = {"choices": ("receptance", "mobility", "accelerance"), "default": "receptance"}
+QUANTITY_HELP = "H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)"
 
 
 def _positive_int(text: str) -> int:
@@ -181,12 +188,7 @@ def build_parser() -> argparse.ArgumentParser:
         default="lin",
         help="frequencies spaced linearly or logarithmically (default: %(default)s)",
     )
-    f.add_argument(
-        "--quantity",
-        choices=("receptance", "mobility", "accelerance"),
-        default="receptance",
-        help="H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)",
-    )
+    f.add_argument("--quantity", **_QUANTITY, help=QUANTITY_HELP)
     f.add_argument(
         "--format",
         choices=("csv", "json", "table"),
@@ -253,6 +255,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="N",
         help="with --frf: number of frequencies (default: %(default)s)",
     )
+    q.add_argument("--quantity", **_QUANTITY, help="with --frf: " + QUANTITY_HELP)
+    q.add_argument(
+        "--hz",
+        action="store_true",
+        help="with --frf: --band LO HI in Hz and the frequency axis in Hz (default: rad/s)",
+    )
     w = command(
         "show",
         "print a scene's component matrices and structure (U_bar and det when small)",
@@ -289,8 +297,16 @@ def _check_out_dir(path: Path, option: str = "--out") -> None:
         raise SceneError(COMMAND_LINE, option, str(exc)) from None
 
 
+_NUMPY_SCALAR = re.compile(r"\bnp\.(?:float|int|uint|complex|bool_?)\d*\(([^()]*)\)")
+
+
+def _plain_numbers(message: str) -> str:
+    """``np.float64(0.5)`` in a message as ``0.5``: users read numbers, not numpy reprs."""
+    return _NUMPY_SCALAR.sub(r"\1", message)
+
+
 def _warn(message: str) -> None:
-    print(f"mstmm: warning: {message}", file=sys.stderr)
+    print(f"mstmm: warning: {_plain_numbers(message)}", file=sys.stderr)
 
 
 def _solve(args) -> int:
@@ -443,7 +459,11 @@ def _plot(args) -> int:
     except ModuleNotFoundError as exc:
         if (exc.name or "").split(".")[0] != "matplotlib":
             raise
-        print("mstmm: error: plotting needs matplotlib: pip install 'mstmm[plot]'", file=sys.stderr)
+        print(
+            "mstmm: error: plotting needs matplotlib, mstmm's optional extra 'plot':"
+            ' pip install "mstmm[plot]" (in a source tree: pip install ".[plot]")',
+            file=sys.stderr,
+        )
         return EXIT_FAILURE
     if args.out.suffix[1:].lower() not in plot.formats():
         raise SceneError(
@@ -458,7 +478,11 @@ def _plot(args) -> int:
         if args.band is None or args.sweep is not None:
             raise SceneError(COMMAND_LINE, "--frf", "needs --band LO HI (and no --sweep)", None)
         omegas, src, dst = _frf_request(args, scene)
-        plot.frf_figure(scene, src, dst, omegas, path=args.out)
+        if args.hz:
+            omegas = omegas * (2.0 * math.pi)
+        plot.frf_figure(scene, src, dst, omegas, path=args.out, quantity=args.quantity, hz=args.hz)
+    elif args.hz:
+        raise SceneError(COMMAND_LINE, "--hz", "only with --frf", None)
     elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
@@ -697,16 +721,16 @@ def _main(argv: list[str] | None) -> int:
             _phase(args, args.command, total=total)
         return status
     except NoRoots as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except SceneError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except CannotWrite as exc:  # --out's directory changed since it was checked
         print(f"mstmm: error: {SceneError(COMMAND_LINE, '--out', str(exc))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KernelError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except ImportError as exc:
         if args.debug:
