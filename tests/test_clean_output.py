@@ -107,9 +107,10 @@ def test_huge_dashpot_prints_no_numpy_warning_and_the_rigid_limit(tmp_path):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="issue 20 item 1 (damped.py, not this change): with c = 1e200 the counted"
-    " rectangle's height overflows, the count cannot be evaluated, and the two lowest"
-    " roots of the rigid limit (1.557, 16.25 rad/s) are not found (exit 3, warned)",
+    reason="not solved yet: with c = 1e200 the proved bound on the decay rate is beyond"
+    " what can be counted, the continuation cannot follow the undamped roots to the rigid"
+    " limit, and its two lowest roots (1.557, 16.25 rad/s) are not found (exit 3, warned:"
+    " count not checked)",
 )
 def test_huge_dashpot_finds_the_lowest_roots_of_the_rigid_limit(tmp_path):
     path = tmp_path / "rigid.toml"

@@ -439,15 +439,32 @@ def _cluster(problem: _Problem, centre: complex, r0: float) -> list[tuple[comple
     return [(complex(z), 1) for z in wide]
 
 
-def _sigma_top(scene, roots: list[DampedRoot], w_top: float) -> tuple[float, bool]:
+#: The tallest rectangle counted, in beam modes: its height is at most the frequency of
+#: the beam's mode of this number (its edges then turn the phase about as many times).
+TALLEST = 1.0e4
+
+
+def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tuple[float, str]:
     """Top of the counted rectangle: the proved bound on the decay rate of every root with
-    ``w_d <= w_top`` (:func:`mstmm.decay_bound.sigma_max`), and whether it is proved (where
-    the proof does not apply: several times the largest decay rate found, uncertified)."""
+    ``w_d <= w_top`` (:func:`mstmm.decay_bound.sigma_max`), and what to tell when it is not
+    proved (""): where the proof does not apply, several times the largest decay rate
+    found; where the bound exceeds what can be counted (the frequency of the beam's
+    ``TALLEST``-th mode), that height."""
     bound = sigma_max(scene, w_top)
     found = max([abs(r.sigma) for r in roots] + [0.1 * w_top])
     if bound is None:
-        return 4.0 * found, False
-    return max(bound.sigma, 1.01 * found), True
+        top = 4.0 * found
+        return top, (
+            "no proved bound on the decay rate applies (a damper on a massless coordinate):"
+            f" roots with sigma > {top:.6g} rad/s are not counted"
+        )
+    cap = max(unit * (TALLEST * math.pi) ** 2, 4.0 * found)
+    if not bound.sigma <= cap:
+        return cap, (
+            f"the proved bound on the decay rate ({bound.sigma:.6g} rad/s) is beyond what"
+            f" can be counted: roots with sigma > {cap:.6g} rad/s are not counted"
+        )
+    return max(bound.sigma, 1.01 * found), ""
 
 
 def _continue(problem: _Problem, w0: float, pick) -> tuple[complex, bool]:
@@ -569,7 +586,11 @@ def _count(problem: _Problem, box) -> int | None:
         except OnContour:
             d = 1e-3 * (k + 1) * max(x1 - x0, y1 - y0)
             x0, x1, y0, y1 = x0 - 0.7 * d, x1 + 0.3 * d, y0 - 0.5 * d, y1 + 0.9 * d
-    problem.notes.append(f"the argument principle could not be evaluated on {box}")
+    problem.notes.append(
+        "the argument principle could not be evaluated on the rectangle w_d in"
+        f" [{float(box[0]):.6g}, {float(box[1]):.6g}], sigma in [{float(box[2]):.6g},"
+        f" {float(box[3]):.6g}] rad/s"
+    )
     return None
 
 
@@ -622,12 +643,10 @@ def damped_roots(
     scale = min([unit, *values[:1]])
     # the origin (a zero of order order0) this far inside the left and bottom edges
     eps = delta = 1e-3 * scale
-    sigma_top, proved = _sigma_top(scene, problem.roots, w_top)
-    if not proved:
-        problem.notes.append(
-            "no proved bound on the decay rate applies (a damper on a massless coordinate):"
-            f" roots with sigma > {sigma_top:.6g} rad/s are not counted"
-        )
+    sigma_top, unproved = _sigma_top(scene, problem.roots, w_top, unit)
+    proved = not unproved
+    if unproved:
+        problem.notes.append(unproved)
     box = (-eps, w_top, -delta, sigma_top)
     if viscous:
         _axis_roots(problem, 1e-9 * scale, sigma_top)

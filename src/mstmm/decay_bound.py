@@ -85,16 +85,24 @@ def _grounded(kind: str) -> bool:
 
 def _positive_root(coefficients: list[float]) -> float:
     """The positive root of ``t^6 - a4 t^4 - a3 t^3 - a2 t^2 - a0`` (``coefficients`` =
-    ``[a0, a2, a3, a4]``, all >= 0; one sign change, so one positive root)."""
-    a0, a2, a3, a4 = coefficients
+    ``[a0, a2, a3, a4]``, all >= 0; one sign change, so one positive root), inf when it
+    overflows. At the root one term is at least a quarter of ``t^6``, so it lies below
+    ``T = max((4 a_k)^(1 / (6 - k)))``; the bisection runs on ``x = t / T`` in [0, 1] with
+    the coefficients scaled by ``T^(k - 6)`` in logarithms (no overflow for any input)."""
+    powers = (0, 2, 3, 4)
+    logs = [math.log(4.0 * a) / (6 - k) for a, k in zip(coefficients, powers) if a > 0.0]
+    if not logs:
+        return 0.0
+    log_T = max(logs)
+    scaled = [
+        math.exp(math.log(a) - (6 - k) * log_T) if a > 0.0 else 0.0
+        for a, k in zip(coefficients, powers)
+    ]
 
-    def g(t: float) -> float:
-        return t**6 - (a0 + a2 * t * t + a3 * t**3 + a4 * t**4)
+    def g(x: float) -> float:
+        return x**6 - sum(c * x**k for c, k in zip(scaled, powers))
 
-    hi = 1.0
-    while g(hi) <= 0.0:
-        hi *= 2.0
-    lo = 0.0
+    lo, hi = 0.0, 1.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if g(mid) <= 0.0:
@@ -103,7 +111,10 @@ def _positive_root(coefficients: list[float]) -> float:
             hi = mid
         if hi - lo <= 1e-15 * hi:
             break
-    return hi
+    try:
+        return math.exp(math.log(hi) + log_T)
+    except OverflowError:
+        return math.inf
 
 
 def sigma_max(scene, w_top: float) -> DecayBound | None:
@@ -161,4 +172,8 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     B = 16.0 * gamma / mbar * (4.0 * gamma / EI) ** (1.0 / 3.0)
     a = [X0 + W * math.sqrt(eta / 2.0), B, math.sqrt(eta * X0 / 2.0), math.sqrt(eta * B / 2.0)]
     t = _positive_root(a)
-    return DecayBound(max(W, t**6), gamma, rate, piece, eta)
+    try:
+        sigma = max(W, t**6)
+    except OverflowError:
+        sigma = math.inf
+    return DecayBound(sigma, gamma, rate, piece, eta)
