@@ -259,9 +259,9 @@ def test_json_never_holds_nan(monkeypatch, capsys):
 
 def test_sigint_prints_one_line_and_exits_130():
     """Ctrl-C during a long solve (a band of about 7000 modes): one line, status 130."""
-    from conftest import interrupt
+    from interrupt import interrupt
 
-    status, err, _ = interrupt(["solve", "--band", "0", "3e10", "--format", "csv"], after=2.0)
+    status, _, err, _ = interrupt(["solve", "--band", "0", "3e10", "--format", "csv"], 2.0)
     assert status == 130, err
     assert err == "mstmm: interrupted\n"
 

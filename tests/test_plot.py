@@ -126,7 +126,7 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     curves, masses = lines(fig, "mode"), lines(fig, "mass")
     assert len(curves) == len(masses) == len(lines(fig, "spring")) == 4
     assert len(lines(fig, "axis")) == 1
-    (att,) = lines(fig, "attachment")
+    (att,) = lines(fig, "attachment")  # three spring-masses: one kind, one marker line
     np.testing.assert_array_equal(att.get_xdata(), [a.x for a in scene.attachments])
     np.testing.assert_array_equal(att.get_ydata(), 0.0)
     for curve, mass, shape in zip(curves, masses, sol.shapes, strict=False):
@@ -137,7 +137,7 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     for i, w in enumerate(sol.omega[:4]):
         assert f"{w:.6g} rad/s" in labels[i] and f"{w / (2 * np.pi):.6g} Hz" in labels[i]
-    assert "attachment points (3)" in labels
+    assert "spring-mass (3)" in labels
 
 
 def test_mode_shapes_of_a_free_free_scene_skip_rigid_modes(free_free):
@@ -193,3 +193,135 @@ def test_unknown_image_format_writes_nothing(scene, tmp_path):
     assert not list(tmp_path.iterdir())
     plot.save(fig, tmp_path / "out.svg")
     assert (tmp_path / "out.svg").read_text().lstrip().startswith("<?xml")
+
+
+def test_without_matplotlib_the_error_names_the_extra(tmp_path):
+    """Issue 20 item 14: ``pip install .`` then ``mstmm plot``: one line naming the extra."""
+    code = (
+        "import sys; sys.modules['matplotlib'] = None; from mstmm.cli import main;"
+        f" sys.exit(main(['plot', '-o', {str(tmp_path / 'f.png')!r}]))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 1
+    (line,) = run.stderr.splitlines()
+    assert line.startswith("mstmm: error: plotting needs matplotlib")
+    assert 'pip install ".[plot]"' in line and "mstmm[plot]" in line
+    assert not list(tmp_path.iterdir())
+
+
+def test_readme_says_how_to_install_plotting_before_the_first_plot():
+    text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    lines = text.splitlines()
+    first = next(i for i, ln in enumerate(lines) if ln.startswith("    ") and "mstmm plot" in ln)
+    assert 'pip install ".[plot]"' in lines[first]
+
+
+# ---------------------------------------------------------------- issue 20, item 16
+
+
+def _legend_outside(fig, ax) -> None:
+    """The legend lies right of the axes: it covers no curve."""
+    fig.draw_without_rendering()
+    leg = ax.get_legend().get_window_extent()
+    box = ax.get_window_extent()
+    assert leg.x0 >= box.x1, (leg, box)
+
+
+def test_markers_tell_the_kinds_apart_with_a_legend(tmp_path):
+    """A hinge, a support, a mass, two spring-masses and a spring: one marker line per kind,
+    each its own marker, labelled with the kind and its count; every axis has a unit."""
+    scene = mstmm.scene_from_dict(
+        {
+            "name": "kinds",
+            "beam": {"length": 4.0, "EI": 1e4, "mass_per_length": 10.0, "left": "clamped",
+                     "right": "free"},
+            "attachments": [
+                {"type": "hinge", "x": 1.0, "k": 1e3},
+                {"type": "support", "x": 2.0},
+                {"type": "mass", "x": 3.0, "m": 5.0},
+                {"type": "spring_mass", "x": 3.5, "k": 1e4, "m": 2.0},
+                {"type": "spring_mass", "x": 4.0, "k": 2e4, "m": 2.0},
+                {"type": "spring", "x": 2.5, "k": 1e3},
+            ],
+        }
+    )  # fmt: skip
+    path = tmp_path / "kinds.png"
+    fig = plot.figure2(scene, path, modes=4)
+    att = lines(fig, "attachment", ax=1)
+    labels = sorted(a.get_label() for a in att)
+    assert labels == ["hinge (1)", "mass (1)", "spring (1)", "spring-mass (2)", "support (1)"]
+    assert len({a.get_marker() for a in att}) == 5
+    legend = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    assert set(labels) <= set(legend)
+    for ax in fig.axes[:2]:
+        for text in (ax.get_xlabel(), ax.get_ylabel()):
+            assert "[" in text and "]" in text, text
+    for ax in fig.axes[:2]:
+        _legend_outside(fig, ax)
+
+
+def test_plot_modes_8_marks_8_roots():
+    """absorbers: 8 % past the 8th root holds four more (a cluster); exactly 8 marked."""
+    scene = mstmm.load_scene(EXAMPLES / "absorbers.toml")
+    fig = plot.figure2(scene, modes=8)
+    (roots,) = lines(fig, "roots")
+    sol = mstmm.solve(scene, modes=8, shapes=False)
+    np.testing.assert_array_equal(roots.get_xdata(), sol.omega)
+    assert len(lines(fig, "mode", ax=1)) == 8
+
+
+def test_frf_figure_units_and_unwrapped_phase():
+    """A damped absorber: |H| in m/N, the phase unwrapped past -180 (the mass's response lags
+    by up to 360 deg), the axis in rad/s or in Hz."""
+    scene = mstmm.load_scene(EXAMPLES / "tmd_den_hartog.toml")
+    omegas = np.linspace(3.0, 20.0, 400)
+    out = ["displacement:x=5.0", "displacement:mass=0"]
+    fig = plot.frf_figure(scene, "force:x=5.0", out, omegas)
+    mag, ph = fig.axes[0], fig.axes[1]
+    assert "[m/N]" in mag.get_ylabel() and "[deg]" in ph.get_ylabel()
+    assert ph.get_xlabel() == r"$\omega$ [rad/s]"
+    curves = [ln for ln in ph.get_lines() if ln.get_gid() == "phase"]
+    H = mstmm.frf(scene, "force:x=5.0", out[1], omegas)
+    H = np.asarray(H).reshape(len(omegas), -1)[:, -1]
+    np.testing.assert_allclose(curves[1].get_ydata(), np.degrees(np.unwrap(np.angle(H))))
+    assert curves[1].get_ydata().min() < -270.0  # unwrapped, not folded into (-180, 180]
+    assert np.all(np.abs(np.diff(curves[1].get_ydata())) < 30.0)
+    _legend_outside(fig, mag)
+    hz = plot.frf_figure(scene, "force:x=5.0", out, omegas, hz=True, quantity="mobility")
+    assert hz.axes[1].get_xlabel() == "f [Hz]" and "[m/s/N]" in hz.axes[0].get_ylabel()
+    np.testing.assert_allclose(hz.axes[0].get_lines()[0].get_xdata(), omegas / (2 * np.pi))
+    rot = plot.frf_figure(scene, "moment:x=2.0", "rotation:x=2.0", omegas, quantity="accelerance")
+    assert "[rad/s^2/(N m)]" in rot.axes[0].get_ylabel()
+
+
+def test_cli_plot_frf_in_hz(tmp_path):
+    path = tmp_path / "frf.png"
+    run = subprocess.run(
+        [sys.executable, "-m", "mstmm", "plot", str(EXAMPLES / "tmd_den_hartog.toml"), "--frf",
+         "--band", "0.5", "3", "--hz", "--input", "force:x=5.0", "--output",
+         "displacement:x=5.0", "-o", str(path)],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert png_size(path) == (8 * plot.DPI, 6 * plot.DPI)
+    bad = subprocess.run(
+        [sys.executable, "-m", "mstmm", "plot", "--hz", "-o", str(tmp_path / "x.png")],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert bad.returncode == 2 and "--hz" in bad.stderr
+
+
+def test_veering_x_label_has_the_keys_unit(scene):
+    fig = plot.veering(scene, "attachments[2].k", np.logspace(3, 9, 5), modes=3)
+    assert fig.axes[0].get_xlabel() == "attachments[2].k [N/m]"
+    fig = plot.veering(scene, "beam.EI", np.linspace(5e4, 7e4, 3), modes=3)
+    assert fig.axes[0].get_xlabel() == "beam.EI [N m^2]"
+
+
+def test_veering_legend_covers_neither_curves_nor_the_hz_axis(scene):
+    fig = plot.veering(scene, "attachments[2].k", np.logspace(3, 9, 5), modes=3)
+    fig.draw_without_rendering()
+    (legend,) = fig.legends
+    ax = fig.axes[0]
+    right = max(c.get_tightbbox().x1 for c in ax.child_axes)  # the Hz ticks and label
+    assert legend.get_window_extent().x0 >= right

@@ -390,7 +390,7 @@ ERRORS = {
         uniform("free", "free") + attachment("support", x=1.5) + attachment("support", x=1.5),
         "attachments[1].x",
         "1.5",
-        "at the same x as the attachments[0]",
+        "the attachments[0] constraint at the same x already fixes Y",
     ),
     "two_hinges_at_one_x": (
         uniform("free", "free") + attachment("hinge", x=1.5) + attachment("hinge", x=1.5, k=2.0),

@@ -9,7 +9,9 @@ from __future__ import annotations
 import argparse
 import csv
 import io
+import math
 import os
+import re
 import sys
 import time
 import warnings
@@ -17,6 +19,7 @@ from pathlib import Path
 
 from . import __version__, progress
 from .kernels import FORMULATIONS, KernelError
+from .output import CannotWrite
 from .scene import Scene, SceneError, check_band, load_scene
 
 EXIT_FAILURE = 1
@@ -31,8 +34,8 @@ exit status:
   1    failure: no natural frequency in the band, a kernel cache that cannot be
        written, a missing dependency, an unexpected error (one line; --debug
        shows the traceback)
-  2    bad scene file or option (one line naming the file or option, the field
-       and the value; nothing is written)
+  2    bad scene file or option, or an --out whose directory takes no file (one
+       line naming the file or option, the field and the value; nothing is written)
   3    results written, but a root is NOT TRUSTED, the roots disagree with the
        Wittrick-Williams count, or (sweep) a point could not be certified (NaN)
   130  interrupted (Ctrl-C)
@@ -64,6 +67,11 @@ def _scene(path: str | None) -> Scene:
 
         return load_scene(example_path("wu_chou_1998"))
     return load_scene(path)
+
+
+#: ``--quantity`` of ``frf`` and ``plot --frf``.
+_QUANTITY = {"choices": ("receptance", "mobility", "accelerance"), "default": "receptance"}
+QUANTITY_HELP = "H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)"
 
 
 def _positive_int(text: str) -> int:
@@ -137,7 +145,8 @@ def build_parser() -> argparse.ArgumentParser:
         " per mode (omega, f, multiplicity, modal mass, participation, effective mass), then"
         " x,Y_1..Y_n (one row per point along the beam), then mass_x,Y_1..Y_n (one row per"
         " carried mass); with --format table a per-mode summary and the sum of effective"
-        " masses against the total mass (default: off)",
+        " masses against the total mass (a damped scene: w_d, sigma, where |Y| peaks and"
+        " the shape's complexity) (default: off)",
     )
     f = command(
         "frf",
@@ -179,12 +188,7 @@ def build_parser() -> argparse.ArgumentParser:
         default="lin",
         help="frequencies spaced linearly or logarithmically (default: %(default)s)",
     )
-    f.add_argument(
-        "--quantity",
-        choices=("receptance", "mobility", "accelerance"),
-        default="receptance",
-        help="H (m/N, rad/N, ...), i w H or -w^2 H (default: %(default)s)",
-    )
+    f.add_argument("--quantity", **_QUANTITY, help=QUANTITY_HELP)
     f.add_argument(
         "--format",
         choices=("csv", "json", "table"),
@@ -254,6 +258,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="N",
         help="with --frf: number of frequencies (default: %(default)s)",
     )
+    q.add_argument("--quantity", **_QUANTITY, help="with --frf: " + QUANTITY_HELP)
+    q.add_argument(
+        "--hz",
+        action="store_true",
+        help="with --frf: --band LO HI in Hz and the frequency axis in Hz (default: rad/s)",
+    )
     w = command(
         "show",
         "print a scene's component matrices and structure (U_bar and det when small)",
@@ -281,15 +291,25 @@ def _checked_band(args, scene: Scene) -> tuple[float, float] | None:
 
 
 def _check_out_dir(path: Path, option: str = "--out") -> None:
-    """An output file's directory must exist before any work is done."""
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        # the path in full (a value's repr is cut at 80 characters)
-        raise SceneError(COMMAND_LINE, option, f"directory does not exist: {parent}")
+    """An output file's directory must exist and take a new file before any work is done."""
+    from .output import CannotWrite, check_writable
+
+    try:
+        check_writable(path)
+    except CannotWrite as exc:  # the path in full (a value's repr is cut at 80 characters)
+        raise SceneError(COMMAND_LINE, option, str(exc)) from None
+
+
+_NUMPY_SCALAR = re.compile(r"\bnp\.(?:float|int|uint|complex|bool_?)\d*\(([^()]*)\)")
+
+
+def _plain_numbers(message: str) -> str:
+    """``np.float64(0.5)`` in a message as ``0.5``: users read numbers, not numpy reprs."""
+    return _NUMPY_SCALAR.sub(r"\1", message)
 
 
 def _warn(message: str) -> None:
-    print(f"mstmm: warning: {message}", file=sys.stderr)
+    print(f"mstmm: warning: {_plain_numbers(message)}", file=sys.stderr)
 
 
 def _solve(args) -> int:
@@ -331,6 +351,8 @@ def _solve(args) -> int:
         sys.stdout.write(output.shapes_csv(sol) if args.shapes else output.frequencies_csv(sol))
     elif damped:
         sys.stdout.write(output.damped_table(sol))
+        if args.shapes:
+            sys.stdout.write(output.damped_shapes_table(sol))
     else:
         sys.stdout.write(output.frequencies_table(sol))
         if args.shapes:
@@ -451,7 +473,11 @@ def _plot(args) -> int:
     except ModuleNotFoundError as exc:
         if (exc.name or "").split(".")[0] != "matplotlib":
             raise
-        print("mstmm: error: plotting needs matplotlib: pip install 'mstmm[plot]'", file=sys.stderr)
+        print(
+            "mstmm: error: plotting needs matplotlib, mstmm's optional extra 'plot':"
+            ' pip install "mstmm[plot]" (in a source tree: pip install ".[plot]")',
+            file=sys.stderr,
+        )
         return EXIT_FAILURE
     if args.out.suffix[1:].lower() not in plot.formats():
         raise SceneError(
@@ -466,13 +492,20 @@ def _plot(args) -> int:
         if args.band is None or args.sweep is not None:
             raise SceneError(COMMAND_LINE, "--frf", "needs --band LO HI (and no --sweep)", None)
         omegas, src, dst = _frf_request(args, scene)
-        plot.frf_figure(scene, src, dst, omegas, path=args.out)
+        if args.hz:
+            omegas = omegas * (2.0 * math.pi)
+        plot.frf_figure(scene, src, dst, omegas, path=args.out, quantity=args.quantity, hz=args.hz)
+    elif args.hz:
+        raise SceneError(COMMAND_LINE, "--hz", "only with --frf", None)
     elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
         path, values = _vary_item(args.sweep, "--sweep")
         plot.veering(scene, path, values, modes=args.modes or 5, path=args.out)
     else:
+        if args.input is not None or args.output:
+            option = "--input" if args.input is not None else "--output"
+            raise SceneError(COMMAND_LINE, option, "needs --frf (a frequency response plot)")
         band = _checked_band(args, scene)
         plot.figure2(
             scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
@@ -482,78 +515,128 @@ def _plot(args) -> int:
 
 
 def _frf_request(args, scene: Scene):
-    """The frequencies and the parsed --input / --output of ``frf`` and ``plot --frf``."""
+    """The frequencies and the parsed --input / --output of ``frf`` and ``plot --frf``,
+    checked: the band as ``solve --band`` checks it, at most
+    :data:`mstmm.response.MAX_RESPONSES` responses."""
     import numpy as np
 
-    from .response import parse_point
+    from .response import MAX_RESPONSES, parse_point
 
-    lo, hi = (float(v) for v in args.band)
-    if hi <= lo:
-        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", [lo, hi])
-    if getattr(args, "spacing", "lin") == "log":
-        if lo <= 0.0:
-            raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
-        omegas = np.geomspace(lo, hi, args.points)
-    else:
-        omegas = np.linspace(lo, hi, args.points)
     if args.input is None or not args.output:
-        raise SceneError(COMMAND_LINE, "--input", "--frf needs --input and --output", None)
+        raise SceneError(COMMAND_LINE, "--input", "--frf needs --input and --output")
     src = parse_point(args.input, "input", COMMAND_LINE)
     dst = [parse_point(o, "output", COMMAND_LINE) for o in args.output]
-    return omegas, src, dst
+    lo, hi = _checked_band(args, scene)
+    if getattr(args, "spacing", "lin") == "log" and lo <= 0.0:
+        raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
+    if args.points * len(dst) > MAX_RESPONSES:
+        raise SceneError(
+            COMMAND_LINE,
+            "--points",
+            f"{args.points} frequencies x {len(dst)} output(s) is more than {MAX_RESPONSES:.0e}"
+            " responses (16 bytes each): fewer points, or several runs over narrower bands",
+            args.points,
+        )
+    space = np.geomspace if getattr(args, "spacing", "lin") == "log" else np.linspace
+    return space(lo, hi, args.points), src, dst
 
 
 def _frf(args) -> int:
+    import contextlib
+
     import numpy as np
 
     from . import output
-    from .response import frf
+    from .response import frf_chunks
 
     if args.out is not None:
         _check_out_dir(args.out)
     scene = _scene(args.scene)
     omegas, src, dst = _frf_request(args, scene)
+    labels = [str(d) for d in dst]
     t0 = time.perf_counter()
-    H = frf(scene, [src], dst, omegas, quantity=args.quantity, source=COMMAND_LINE)[:, 0, :]
+    chunks = frf_chunks(scene, [src], dst, omegas, quantity=args.quantity, source=COMMAND_LINE)
+    with contextlib.ExitStack() as stack:
+        fh = sys.stdout if args.out is None else stack.enter_context(output.atomic_file(args.out))
+        if args.format == "json":
+            H = np.empty((omegas.size, len(dst)), dtype=complex)
+            for at, part in chunks:  # held (bounded by MAX_RESPONSES), written in pieces
+                H[at] = part[:, 0, :]
+            nulls = _frf_json(fh, scene, args.quantity, str(src), labels, omegas, H)
+            if nulls:
+                _warn(f"{nulls} non-finite value(s) written as null in the JSON output")
+        else:
+            header, rows = (
+                (output.frf_csv_header(labels), output.frf_csv_rows)
+                if args.format == "csv"
+                else (
+                    output.frf_table_header(scene.name, args.quantity, str(src), labels),
+                    output.frf_table_rows,
+                )
+            )
+            fh.write(header)
+            for at, part in chunks:  # computed and written chunk by chunk
+                fh.write(rows(omegas[at], part[:, 0, :]))
     _phase(args, "frf", frf=time.perf_counter() - t0)
-    if args.format == "json":
-        data = {
-            "scene": scene.name,
-            "quantity": args.quantity,
-            "input": str(src),
-            "outputs": [str(d) for d in dst],
-            "omega": omegas.tolist(),
-            "hz": (omegas / (2.0 * np.pi)).tolist(),
-            "re": H.real.T.tolist(),
-            "im": H.imag.T.tolist(),
-        }
-        text, nulls = output.dumps(data)
-        text += "\n"
-        if nulls:
-            _warn(f"{len(nulls)} non-finite value(s) written as null (at a natural frequency)")
-    elif args.format == "csv":
-        text = output.frf_csv(omegas, H, [str(d) for d in dst])
-    else:
-        labels = [str(d) for d in dst]
-        text = output.frf_table(scene.name, args.quantity, str(src), omegas, H, labels)
-    if args.out is None:
-        sys.stdout.write(text)
-    else:
-        output.write_atomically(args.out, text)
+    if args.out is not None:
         print(args.out)
     return 0
+
+
+def _frf_json(fh, scene: Scene, quantity: str, src: str, labels, omegas, H) -> int:
+    """``mstmm frf --format json`` written piece by piece: the keys of ``frf``'s JSON, each
+    array in chunks of :data:`mstmm.chunks.MOST` numbers; returns the count of nulls."""
+    import json
+
+    import numpy as np
+
+    from .chunks import MOST
+    from .output import json_numbers
+
+    head = {"scene": scene.name, "quantity": quantity, "input": src, "outputs": labels}
+    fh.write(json.dumps(head)[:-1])
+    nulls = 0
+
+    def array(values) -> None:
+        nonlocal nulls
+        fh.write("[")
+        for k in range(0, len(values), MOST):
+            text, bad = json_numbers(values[k : k + MOST])
+            fh.write((", " if k else "") + text)
+            nulls += bad
+        fh.write("]")
+
+    for key, values in (("omega", omegas), ("hz", omegas / (2.0 * np.pi))):
+        fh.write(f', "{key}": ')
+        array(values)
+    for key, part in (("re", H.real), ("im", H.imag)):
+        fh.write(f', "{key}": [')
+        for j in range(H.shape[1]):
+            fh.write(", " if j else "")
+            array(part[:, j])
+        fh.write("]")
+    fh.write("}\n")
+    return nulls
 
 
 def _derive(args) -> int:
     from .kernels import cache_dir, write_kernel
     from .topology import topology_of
 
+    if args.out is not None:  # a directory, made if missing: its first existing ancestor
+        existing = args.out
+        while not existing.exists() and existing != existing.parent:
+            existing = existing.parent
+        _check_out_dir(existing / "kernel.py")
     scene = _scene(args.scene)
     topology = topology_of(scene)
     out = args.out if args.out is not None else cache_dir()
     try:
         path = write_kernel(topology, out)
     except OSError as exc:
+        if args.out is not None:
+            reason = (exc.strerror or str(exc)).lower()
+            raise SceneError(COMMAND_LINE, "--out", f"cannot write to {out} ({reason})") from None
         raise KernelError(f"cannot write the kernel into {out}: {exc}") from exc
     print(path)
     return 0
@@ -652,13 +735,16 @@ def _main(argv: list[str] | None) -> int:
             _phase(args, args.command, total=total)
         return status
     except NoRoots as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except SceneError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except CannotWrite as exc:  # --out's directory changed since it was checked
+        print(f"mstmm: error: {SceneError(COMMAND_LINE, '--out', str(exc))}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KernelError as exc:
-        print(f"mstmm: error: {exc}", file=sys.stderr)
+        print(f"mstmm: error: {_plain_numbers(str(exc))}", file=sys.stderr)
         return EXIT_FAILURE
     except ImportError as exc:
         if args.debug:

@@ -45,6 +45,7 @@ import numpy as np
 
 from mstmm.derive import catalog
 
+from .decay_bound import sigma_max
 from .kernels import Kernel
 
 #: Largest phase step (radians) between neighbouring samples of the contour.
@@ -308,51 +309,169 @@ class _Problem:
         return n
 
     def add(self, w: complex, multiplicity: int, how: str, converged: bool = True) -> bool:
-        """Add a root unless it is one already known (within 1e-9 relative), or the zero
-        at the origin (whose order is known)."""
+        """Add a root unless it is one already known, or the zero at the origin (whose
+        order is known). A root close to a known one, to its own mirror image (viscous:
+        near the imaginary axis) or said to be multiple is resolved first by
+        :func:`_cluster`: the zeros in a disc around it, each to full accuracy (a
+        defective multiple root, critical damping, as one root of its multiplicity).
+        Returns whether anything new was added."""
         if self.order0 and abs(w) <= 1e-9 * self.unit:
             return False
-        if self.viscous and abs(w.real) <= 1e-9 * abs(w):
-            w = complex(0.0, w.imag)  # an overdamped root: exactly on the axis
-        if self.viscous and w.real < 0:
-            w = complex(-w.real, w.imag)  # the mirror image of a root on the right
-        for r in self.roots:
-            if abs(r.omega - w) <= 1e-9 * max(abs(w), 1e-6 * self.unit):
+        w = self.snap(w)
+        tiny = max(abs(w), 1e-6 * self.unit)
+        near = [r for r in self.roots if abs(r.omega - w) <= 1e-6 * tiny]
+        mirrored = self.viscous and 0.0 < w.real <= 1e-6 * tiny
+        if not (near or mirrored or multiplicity > 1):
+            self.roots.append(DampedRoot(w, multiplicity, converged, how))
+            return True
+        centre = complex(0.0, w.imag) if mirrored else w
+        spread = max([abs(r.omega - centre) for r in near] + [abs(w - centre)])
+        found = _cluster(self, centre, max(4.0 * spread, 1e-7 * tiny))
+        if found is None:  # the disc could not be resolved: keep what Newton gave
+            if near:
                 return False
-        self.roots.append(DampedRoot(w, multiplicity, converged, how))
-        return True
+            self.roots.append(DampedRoot(w, multiplicity, converged, how))
+            return True
+        before = {(r.omega, r.multiplicity) for r in near}
+        for r in near:
+            self.roots.remove(r)
+        added = False
+        for z, m in found:
+            z = self.snap(z)
+            if self.order0 and abs(z) <= 1e-9 * self.unit:
+                continue
+            if self.viscous and z.real < 0.0:
+                continue  # the mirror image of a root kept on the right
+            self.roots.append(DampedRoot(z, m, converged, how))
+            added |= (z, m) not in before
+        return added
+
+    def snap(self, w: complex) -> complex:
+        """A viscous scene's root: exactly on the imaginary axis when round-off away from
+        it (overdamped), else the one right of the axis (roots come in mirror pairs)."""
+        if self.viscous and abs(w.real) <= 1e-9 * abs(w):
+            return complex(0.0, w.imag)
+        if self.viscous and w.real < 0:
+            return complex(-w.real, w.imag)
+        return w
 
 
-def _sigma_bound(scene, roots: list[DampedRoot], unit: float, w_top: float) -> float:
-    """Top of the counted rectangle: several times the largest decay rate the dampers can
-    give (a dashpot c on a mass m: c/m; a grounded dashpot pinning the beam: c^2 /
-    (8 sqrt(EI) mbar^1.5); a loss factor eta: eta w at the band's top) and the largest
-    sigma found."""
-    beam = scene.beam
-    segs = beam.segments or (beam,)
-    dampers = []  # (damping values, masses) of each component, read from its kind's keys
-    for a in scene.attachments:
-        given = dict(a.values)
-        cs: list[float] = []
-        ms: list[float] = []
-        for key in catalog.kind(a.kind).KEYS[1:]:
-            v = catalog.value(a.kind, given, key)
-            vs = list(v) if key.shape == "list" else [v]
-            if key.damping:
-                cs += [c for c in vs if c > 0]
-            elif key.unit == "kg":
-                ms += vs
-        dampers.append((cs, ms))
-    rates = [0.1 * w_top]
-    for s in segs:
-        rates.append(getattr(s, "loss_factor", 0.0) * w_top)
-        for cs, ms in dampers:
-            for ci in cs:
-                rates += [2.0 * ci / m for m in ms]
-                rates.append(ci * ci / (8.0 * math.sqrt(s.EI) * s.mass_per_length**1.5))
-                rates.append(ci / (s.mass_per_length * beam.length))
-    rates += [abs(r.sigma) for r in roots]
-    return 4.0 * max(rates)
+#: Samples of a circle for the moments of a cluster (doubled until the phase is resolved).
+CLUSTER_SAMPLES = 64
+
+
+def _circle(f: _Function, centre: complex, r: float) -> tuple[np.ndarray, int] | None:
+    """log f at equispaced points of the circle |w - centre| = r (their phase unwrapped)
+    and the winding number; None when no sampling up to 4096 points resolves the phase
+    (a zero on or next to the circle)."""
+    n = CLUSTER_SAMPLES
+    while n <= 4096:
+        theta = 2.0 * np.pi * np.arange(n) / n
+        g = f(centre + r * np.exp(1j * theta))
+        if not np.all(np.isfinite(g)):
+            return None
+        steps = _wrap(np.diff(np.append(g.imag, g.imag[0])))
+        if np.max(np.abs(steps)) < 0.5 * np.pi:
+            turns = float(np.sum(steps)) / (2.0 * np.pi)
+            if abs(turns - round(turns)) < WINDING_SLACK:
+                phase = g.imag[0] + np.concatenate([[0.0], np.cumsum(steps[:-1])])
+                return g.real + 1j * phase, int(round(turns))
+        n *= 2
+    return None
+
+
+def _power_sums(g: np.ndarray, m: int, r: float) -> np.ndarray:
+    """``s_j = sum (z_i - centre)^j``, j = 1..m, over the m zeros inside the circle whose
+    log f samples are ``g``: with ``h = log f - m log(w - centre)`` (periodic on the
+    circle), ``s_j = -j r^j mean(e^(i j theta) h)`` (integration by parts of
+    ``(1 / 2 pi i) \u222e (w - centre)^j f'/f dw``; the trapezoidal rule is spectrally
+    accurate for a periodic analytic integrand: Delves & Lyness 1967)."""
+    n = g.size
+    theta = 2.0 * np.pi * np.arange(n) / n
+    h = g - m * (np.log(r) + 1j * theta)
+    return np.array([-j * r**j * np.mean(np.exp(1j * j * theta) * h) for j in range(1, m + 1)])
+
+
+def _zeros_from_sums(s: np.ndarray) -> np.ndarray:
+    """The m numbers whose power sums are ``s`` (Newton's identities, then the roots of
+    their monic polynomial)."""
+    m = s.size
+    e = [1.0 + 0j]
+    for k in range(1, m + 1):
+        e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
+    coeffs = [(-1) ** k * e[k] for k in range(m + 1)]
+    return np.roots(coeffs) if m > 1 else np.array([s[0]])
+
+
+def _cluster(problem: _Problem, centre: complex, r0: float) -> list[tuple[complex, int]] | None:
+    """The zeros of f in a disc around ``centre`` (radius ``r0`` at least), each with its
+    multiplicity. The disc grows (x4) while it holds the same number m of zeros, up to a
+    hundredth of |centre|, since the moments of the cluster are the better conditioned
+    the wider the circle; their power sums (:func:`_power_sums`) at the widest and at a
+    quarter of it give the zeros, and zeros whose spread is within what the two circles
+    disagree on form one multiple root at their mean (the mean of a cluster is well
+    conditioned where its members are not: a defective double root, critical damping, is
+    found to full accuracy). None when the disc cannot be resolved."""
+    f = problem.f
+    scale = max(abs(centre), 1e-3 * problem.unit)
+    first = _circle(f, centre, r0)
+    if first is None or first[1] <= 0:
+        return None
+    m = first[1]
+    if m > 8:
+        return None
+    radii, rings = [r0], [first[0]]
+    r = r0
+    while 4.0 * r <= 1e-2 * scale:
+        ring = _circle(f, centre, 4.0 * r)
+        if ring is None or ring[1] != m:
+            break
+        r *= 4.0
+        radii.append(r)
+        rings.append(ring[0])
+    wide = centre + _zeros_from_sums(_power_sums(rings[-1], m, radii[-1]))
+    if m == 1:
+        return [(complex(wide[0]), 1)]
+    mean = complex(np.mean(wide))
+    if len(rings) > 1:
+        narrow = centre + _zeros_from_sums(_power_sums(rings[-2], m, radii[-2]))
+        disagree = abs(complex(np.mean(narrow)) - mean) + max(
+            float(np.max(np.abs(np.sort_complex(narrow) - np.sort_complex(wide)))), 0.0
+        )
+    else:
+        disagree = 1e-8 * scale
+    spread = float(np.max(np.abs(wide - mean)))
+    if spread <= 10.0 * disagree + 1e-12 * scale:
+        return [(mean, m)]
+    return [(complex(z), 1) for z in wide]
+
+
+#: The tallest rectangle counted, in beam modes: its height is at most the frequency of
+#: the beam's mode of this number (its edges then turn the phase about as many times).
+TALLEST = 1.0e4
+
+
+def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tuple[float, str]:
+    """Top of the counted rectangle: the proved bound on the decay rate of every root with
+    ``w_d <= w_top`` (:func:`mstmm.decay_bound.sigma_max`), and what to tell when it is not
+    proved (""): where the proof does not apply, several times the largest decay rate
+    found; where the bound exceeds what can be counted (the frequency of the beam's
+    ``TALLEST``-th mode), that height."""
+    bound = sigma_max(scene, w_top)
+    found = max([abs(r.sigma) for r in roots] + [0.1 * w_top])
+    if bound is None:
+        top = 4.0 * found
+        return top, (
+            "no proved bound on the decay rate applies (a damper on a massless coordinate):"
+            f" roots with sigma > {top:.6g} rad/s are not counted"
+        )
+    cap = max(unit * (TALLEST * math.pi) ** 2, 4.0 * found)
+    if not bound.sigma <= cap:
+        return cap, (
+            f"the proved bound on the decay rate ({bound.sigma:.6g} rad/s) is beyond what"
+            f" can be counted: roots with sigma > {cap:.6g} rad/s are not counted"
+        )
+    return max(bound.sigma, 1.01 * found), ""
 
 
 def _continue(
@@ -512,7 +631,11 @@ def _count(problem: _Problem, box) -> int | None:
         except OnContour:
             d = 1e-3 * (k + 1) * max(x1 - x0, y1 - y0)
             x0, x1, y0, y1 = x0 - 0.7 * d, x1 + 0.3 * d, y0 - 0.5 * d, y1 + 0.9 * d
-    problem.notes.append(f"the argument principle could not be evaluated on {box}")
+    problem.notes.append(
+        "the argument principle could not be evaluated on the rectangle w_d in"
+        f" [{float(box[0]):.6g}, {float(box[1]):.6g}], sigma in [{float(box[2]):.6g},"
+        f" {float(box[3]):.6g}] rad/s"
+    )
     return None
 
 
@@ -562,12 +685,15 @@ def damped_roots(
     scale = min([unit, *values[:1]])
     # the origin (a zero of order order0) this far inside the left and bottom edges
     eps = delta = 1e-3 * scale
-    sigma_top = _sigma_bound(scene, problem.roots, unit, w_top)
+    sigma_top, unproved = _sigma_top(scene, problem.roots, w_top, unit)
+    proved = not unproved
+    if unproved:
+        problem.notes.append(unproved)
     box = (-eps, w_top, -delta, sigma_top)
     if viscous:
         _axis_roots(problem, 1e-9 * scale, sigma_top)
     count = _count(problem, box)
-    checked = count is not None
+    checked = count is not None and proved
     if count is not None:
         _fill(problem, box, count)
         found = problem.known(box)
@@ -583,7 +709,7 @@ def damped_roots(
         for r in problem.roots
         if -eps < r.omega.real < w_top and -delta < r.omega.imag < sigma_top
     ]
-    left = [r for r in problem.roots if r.omega.real <= -eps]
+    left = [r for r in problem.roots if r.omega.real <= -eps and -delta < r.omega.imag < sigma_top]
     if left:  # a loss factor's model: no mirror symmetry, a continuation may cross w_d = 0
         problem.notes.append(
             f"{len(left)} zero(s) of the characteristic function lie at w_d < 0 ("

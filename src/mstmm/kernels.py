@@ -17,6 +17,7 @@ numba's on-disk cache (keyed on the file) stays valid (DESIGN.md, tool-chain fac
 
 from __future__ import annotations
 
+import functools
 import importlib
 import importlib.metadata
 import importlib.util
@@ -313,7 +314,7 @@ class Kernel:
         (:func:`interpret.python_copy`)."""
         if self._python is None:
             self._python = interpret.python_copy(self.module)
-        return self._python[name]
+        return _ieee(self._python[name])
 
     def lowest(
         self,
@@ -528,6 +529,22 @@ class Kernel:
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
         return self._compiled("u_bar_paper")(float(omega), _params(p))
+
+
+def _ieee(f):
+    """``f`` run as the machine code runs it: IEEE arithmetic without numpy's warnings.
+
+    The compiled kernel divides by zero and overflows silently (inf and nan are values the
+    count and the search handle, e.g. ``k^2/d`` at a pole of a chain's stage); the same
+    function interpreted on numpy scalars would warn about them, and those warnings would
+    reach the user."""
+
+    @functools.wraps(f)
+    def quiet(*args):
+        with np.errstate(all="ignore"):
+            return f(*args)
+
+    return quiet
 
 
 def _params(p) -> np.ndarray:

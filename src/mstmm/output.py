@@ -20,7 +20,10 @@ import csv
 import io
 import json
 import math
-from collections.abc import Sequence
+import re
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -32,13 +35,24 @@ __all__ = [
     "SHAPE_SUMMARY_HEADER",
     "damped_csv",
     "damped_shapes_csv",
+    "damped_shapes_table",
     "damped_table",
+    "CannotWrite",
+    "atomic_file",
+    "check_writable",
     "frf_csv",
+    "frf_csv_header",
+    "frf_csv_rows",
     "frf_table",
+    "frf_table_header",
+    "frf_table_rows",
+    "json_numbers",
+    "write_atomically",
     "dumps",
     "finite",
     "frequencies_csv",
     "frequencies_table",
+    "read_csv",
     "read_shapes_csv",
     "shapes_csv",
     "shapes_table",
@@ -66,9 +80,11 @@ def finite(value: Any, where: str = "", found: list[str] | None = None) -> Any:
         return [finite(v, f"{where}[{i}]", found) for i, v in enumerate(value)]
     if isinstance(value, np.ndarray):
         return finite(value.tolist(), where, found)
-    if isinstance(value, (float, np.floating)) and not math.isfinite(value):
-        found.append(where or "<value>")
-        return None
+    if isinstance(value, (float, np.floating)):
+        if not math.isfinite(value):
+            found.append(where or "<value>")
+            return None
+        return float(value) + 0.0  # + 0.0: never a negative zero
     if isinstance(value, np.generic):
         return value.item()
     return value
@@ -88,7 +104,23 @@ def _csv(rows: Sequence[Sequence[Any]]) -> str:
 
 
 def _num(value: float) -> str:
-    return repr(float(value))
+    return repr(float(value) + 0.0)  # + 0.0: never "-0.0"
+
+
+_NEGATIVE_ZERO = re.compile(r"-(?=0*(?:\.0*)?(?:e[+-]?\d+)?\s*$)")
+
+
+def _fmt(value: float, spec: str) -> str:
+    """``value`` formatted by ``spec``, without the sign of a number that prints as zero
+    (``-0``, ``-0.0000``: a negative zero, or round-off below the printed digits)."""
+    text = format(float(value) + 0.0, spec)
+    return _NEGATIVE_ZERO.sub(" " if text[:1] == " " or spec[:1] == ">" else "", text, count=1)
+
+
+def _phase_deg(h: complex) -> float:
+    """The phase of ``h`` in degrees, (-180, 180]: a signed zero in ``h`` does not decide
+    it (``-1 - 0j`` is 180, ``1 - 0j`` is 0)."""
+    return math.degrees(math.atan2(h.imag + 0.0, h.real + 0.0)) + 0.0
 
 
 DAMPED_HEADER = (
@@ -136,8 +168,9 @@ def damped_table(sol) -> str:
         flag = "" if sol.converged[i] else "  NOT TRUSTED"
         kind = "  overdamped" if sol.w_d[i] == 0.0 and sol.sigma[i] > 0.0 else ""
         lines.append(
-            f"{i + 1:>4}  {sol.w_d[i]:>22.16g}  {sol.sigma[i]:>22.16g}  {sol.magnitude[i]:>22.16g}"
-            f"  {sol.zeta[i]:>10.4g}  {sol.hz[i]:>12.6g}  {sol.multiplicity[i]:>4}{kind}{flag}"
+            f"{i + 1:>4}  {_fmt(sol.w_d[i], '>22.16g')}  {_fmt(sol.sigma[i], '>22.16g')}"
+            f"  {_fmt(sol.magnitude[i], '>22.16g')}  {_fmt(sol.zeta[i], '>10.4g')}"
+            f"  {_fmt(sol.hz[i], '>12.6g')}  {sol.multiplicity[i]:>4}{kind}{flag}"
         )
     t = sol.timings
     lines.append(
@@ -145,6 +178,32 @@ def damped_table(sol) -> str:
         f" principle checked: {sol.count_checked} (counted w_d < {x1:.6g} rad/s,"
         f" sigma < {y1:.6g} 1/s)"
     )
+    return "\n".join(lines) + "\n"
+
+
+def damped_shapes_table(sol) -> str:
+    """Per damped mode shape (``mstmm solve --shapes`` of a damped scene): where on the beam
+    |Y| peaks, the largest |Y| of a hanging mass, and the shape's complexity
+    ``1 - |sum Y^2| / sum |Y|^2`` over the beam samples and the masses (0: a real shape,
+    every point in phase, as an undamped mode; 1: a travelling wave). The shapes' samples
+    are in ``--format json`` or ``csv``."""
+    shapes = _shapes(sol)
+    lines = [
+        "damped mode shapes (complex, max |Y| = 1; samples with --format json or csv):",
+        f"{'mode':>4}  {'w_d [rad/s]':>22}  {'sigma [1/s]':>22}  {'peak |Y| at x [m]':>17}"
+        f"  {'max |mass Y|':>12}  {'complexity':>10}",
+    ]
+    for i, s in enumerate(shapes, start=1):
+        y = np.concatenate([s.Y, s.mass_Y])
+        power = float(np.sum(np.abs(y) ** 2))
+        complexity = 1.0 - abs(complex(np.sum(y * y))) / power if power > 0.0 else 0.0
+        peak = float(s.x[int(np.argmax(np.abs(s.Y)))]) if s.x.size else math.nan
+        mass = float(np.max(np.abs(s.mass_Y))) if s.mass_Y.size else math.nan
+        mass_text = f"{mass:>12.6g}" if s.mass_Y.size else f"{'-':>12}"
+        lines.append(
+            f"{i:>4}  {s.omega.real:>22.16g}  {s.omega.imag:>22.16g}  {peak:>17.6g}"
+            f"  {mass_text}  {max(complexity, 0.0):>10.4g}"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -168,7 +227,7 @@ def frequencies_table(sol: Solution) -> str:
         zip(sol.omega, sol.hz, sol.multiplicity, sol.converged, strict=True), start=1
     ):
         flag = "" if c else "  NOT TRUSTED"
-        lines.append(f"{i:>4}  {w:>24.17g}  {f:>24.17g}  {m:>4}{flag}")
+        lines.append(f"{i:>4}  {_fmt(w, '>24.17g')}  {_fmt(f, '>24.17g')}  {m:>4}{flag}")
     t = sol.timings
     machine = (
         "kernel run as Python (cheaper than loading machine code)"
@@ -213,8 +272,8 @@ def shapes_table(sol: Solution) -> str:
     ]
     for i, s in enumerate(shapes, start=1):
         lines.append(
-            f"{i:>4}  {s.omega:>24.17g}  {s.modal_mass:>16.6g}  {s.participation:>14.6g}"
-            f"  {s.effective_mass:>20.6g}"
+            f"{i:>4}  {_fmt(s.omega, '>24.17g')}  {_fmt(s.modal_mass, '>16.6g')}"
+            f"  {_fmt(s.participation, '>14.6g')}  {_fmt(s.effective_mass, '>20.6g')}"
         )
     total = total_mass(sol)
     summed = float(sum(s.effective_mass for s in shapes))
@@ -259,88 +318,265 @@ def shapes_csv(sol: Solution) -> str:
     return _csv(rows)
 
 
-def read_shapes_csv(text: str) -> dict[str, np.ndarray]:
-    """Parse :func:`shapes_csv` back: ``omega``, ``modal_mass``, ``participation``,
-    ``effective_mass``, ``multiplicity``, ``x``, ``Y`` (samples x modes), ``mass_x``,
-    ``mass_Y`` (masses x modes)."""
+def _blocks(text: str) -> list[list[list[str]]]:
+    """The CSV's blocks (rows separated by an empty line), each a header and its rows."""
     blocks: list[list[list[str]]] = [[]]
     for row in csv.reader(io.StringIO(text)):
         if row:
             blocks[-1].append(row)
         elif blocks[-1]:
             blocks.append([])
-    summary, beam = blocks[0], blocks[1]
-    masses = blocks[2] if len(blocks) > 2 else [["mass_x", *beam[0][1:]]]
-    if tuple(summary[0]) != SHAPE_SUMMARY_HEADER or beam[0][0] != "x" or masses[0][0] != "mass_x":
-        raise ValueError("not a mode-shape CSV of mstmm")
-    n = len(beam[0]) - 1
-    table = np.array([[float(v) for v in r[1:3] + r[5:8]] for r in summary[1:]]).reshape(-1, 5)
-    beam_v = np.array([[float(v) for v in r] for r in beam[1:]]).reshape(-1, n + 1)
-    mass_v = np.array([[float(v) for v in r] for r in masses[1:]]).reshape(-1, n + 1)
-    return {
-        "omega": table[:, 0],
-        "modal_mass": table[:, 2],
-        "participation": table[:, 3],
-        "effective_mass": table[:, 4],
-        "multiplicity": np.array([int(r[3]) for r in summary[1:]], dtype=int),
-        "x": beam_v[:, 0],
-        "Y": beam_v[:, 1:],
-        "mass_x": mass_v[:, 0],
-        "mass_Y": mass_v[:, 1:],
-    }
+    return [b for b in blocks if b]
+
+
+def _column(values: list[str]) -> np.ndarray:
+    """One CSV column as an array: booleans, integers, or floats (an empty cell is NaN)."""
+    if values and all(v in ("True", "False") for v in values):
+        return np.array([v == "True" for v in values], dtype=bool)
+    try:
+        return np.array([int(v) for v in values], dtype=int)
+    except ValueError:
+        return np.array([float(v) if v else math.nan for v in values], dtype=float)
+
+
+def _points(block: list[list[str]], first: str) -> tuple[np.ndarray, np.ndarray]:
+    """A block ``first,Y_1,...`` (real shapes) or ``first,Y_1_re,Y_1_im,...`` (complex):
+    the positions and the matrix (points x modes)."""
+    head = block[0]
+    if head[0] != first:
+        raise ValueError(f"not a mode-shape block of mstmm: expected {first!r}, got {head[0]!r}")
+    values = np.array([[float(v) for v in r] for r in block[1:]], dtype=float)
+    values = values.reshape(len(block) - 1, len(head))
+    if len(head) > 1 and head[1].endswith("_re"):
+        return values[:, 0], values[:, 1::2] + 1j * values[:, 2::2]
+    return values[:, 0], values[:, 1:]
+
+
+#: Which table a CSV's first header row starts: what :func:`read_csv` reports as ``kind``.
+_KINDS = {
+    SHAPE_SUMMARY_HEADER: "shapes",
+    DAMPED_HEADER: "damped",
+    ("mode", "omega_rad_s", "f_hz", "multiplicity", "converged"): "frequencies",
+}
+
+
+def read_csv(text: str) -> dict[str, Any]:
+    """Read any CSV mstmm writes back into arrays, recognising it by its header rows.
+
+    * ``solve --format csv``: ``kind`` ``"frequencies"`` (undamped) or ``"damped"``;
+    * ``solve --shapes --format csv``: ``"shapes"`` or ``"damped_shapes"``, the summary's
+      columns plus ``x``, ``Y`` (points x modes; complex for a damped scene), ``mass_x``,
+      ``mass_Y`` (empty without hanging masses);
+    * ``frf``: ``"frf"``, ``omega_rad_s``, ``f_hz`` and ``<output>_re``, ``_im``, ``_abs``,
+      ``_phase_deg`` per output, plus ``H`` (frequencies x outputs, complex) and
+      ``outputs`` (their labels);
+    * ``sweep``: ``"sweep"``, a column per varied field and ``omega`` (points x modes)
+      beside the ``omega_<i>`` columns.
+
+    Every first-block column is an array under its header name (booleans, integers or
+    floats). Raises ValueError on a text mstmm did not write.
+    """
+    blocks = _blocks(text)
+    if not blocks:
+        raise ValueError("not a CSV of mstmm: empty")
+    head, rows = blocks[0][0], blocks[0][1:]
+    if len(set(head)) != len(head) or any(len(r) != len(head) for r in rows):
+        raise ValueError("not a CSV of mstmm: rows of unequal length or repeated columns")
+    out: dict[str, Any] = {name: _column([r[j] for r in rows]) for j, name in enumerate(head)}
+    kind = _KINDS.get(tuple(head))
+    if kind is None and head[:2] == ["omega_rad_s", "f_hz"]:
+        kind = "frf"
+        labels = [h[: -len("_re")] for h in head[2::4]]
+        if [h for h in head[2:]] != [f"{o}_{p}" for o in labels for p in _FRF_PARTS]:
+            raise ValueError("not an frf CSV of mstmm: unexpected columns")
+        out["outputs"] = labels
+        out["H"] = np.column_stack([out[f"{o}_re"] + 1j * out[f"{o}_im"] for o in labels]).reshape(
+            len(rows), len(labels)
+        )
+    elif kind is None and any(h.startswith("omega_") for h in head):
+        kind = "sweep"
+        modes = [h for h in head if re.fullmatch(r"omega_\d+", h)]
+        out["omega"] = np.column_stack([out[h] for h in modes]).reshape(len(rows), len(modes))
+    elif kind is None:
+        raise ValueError(f"not a CSV of mstmm: unknown header {','.join(head)!r}")
+    if len(blocks) > 1:
+        if kind not in ("shapes", "damped"):
+            raise ValueError("not a CSV of mstmm: a second block after a one-block table")
+        kind = "shapes" if kind == "shapes" else "damped_shapes"
+        out["x"], out["Y"] = _points(blocks[1], "x")
+        if len(blocks) > 2:
+            out["mass_x"], out["mass_Y"] = _points(blocks[2], "mass_x")
+        else:
+            out["mass_x"], out["mass_Y"] = np.empty(0), out["Y"][:0]
+    out["kind"] = kind
+    return out
+
+
+def read_shapes_csv(text: str) -> dict[str, np.ndarray]:
+    """Parse :func:`shapes_csv` or :func:`damped_shapes_csv` back: ``omega`` (complex,
+    ``w_d + i sigma``, for a damped scene), ``multiplicity``, ``x``, ``Y`` (samples x
+    modes, complex when damped), ``mass_x``, ``mass_Y`` (masses x modes); undamped also
+    ``modal_mass``, ``participation``, ``effective_mass``; damped also ``w_d``, ``sigma``,
+    ``zeta``, ``converged`` (see :func:`read_csv`)."""
+    data = read_csv(text)
+    if data["kind"] == "shapes":
+        return {
+            "omega": data["omega_rad_s"].astype(float),
+            "modal_mass": data["modal_mass_kg"].astype(float),
+            "participation": data["participation"].astype(float),
+            "effective_mass": data["effective_mass_kg"].astype(float),
+            "multiplicity": data["multiplicity"],
+            "x": data["x"],
+            "Y": data["Y"],
+            "mass_x": data["mass_x"],
+            "mass_Y": data["mass_Y"],
+        }
+    if data["kind"] == "damped_shapes":
+        w_d, sigma = data["w_d_rad_s"].astype(float), data["sigma_1_s"].astype(float)
+        return {
+            "omega": w_d + 1j * sigma,
+            "w_d": w_d,
+            "sigma": sigma,
+            "zeta": data["zeta"].astype(float),
+            "multiplicity": data["multiplicity"],
+            "converged": data["converged"],
+            "x": data["x"],
+            "Y": data["Y"],
+            "mass_x": data["mass_x"],
+            "mass_Y": data["mass_Y"],
+        }
+    raise ValueError("not a mode-shape CSV of mstmm")
+
+
+_FRF_PARTS = ("re", "im", "abs", "phase_deg")
+
+
+def frf_csv_header(labels: Sequence[str]) -> str:
+    """The header row of :func:`frf_csv`."""
+    header: list[str] = ["omega_rad_s", "f_hz"]
+    for label in labels:
+        header += [f"{label}_{part}" for part in _FRF_PARTS]
+    return _csv([header])
+
+
+def frf_csv_rows(omegas: np.ndarray, H: np.ndarray) -> str:
+    """The rows of :func:`frf_csv` (no header), one per frequency."""
+    rows: list[Sequence[Any]] = []
+    for k, w in enumerate(omegas):
+        row = [_num(w), _num(w / (2.0 * math.pi))]
+        for j in range(H.shape[1]):
+            h = complex(H[k, j])
+            row += [_num(h.real), _num(h.imag), _num(abs(h)), _num(_phase_deg(h))]
+        rows.append(row)
+    return _csv(rows)
 
 
 def frf_csv(omegas: np.ndarray, H: np.ndarray, labels: Sequence[str]) -> str:
     """``omega_rad_s,f_hz`` then per output ``<label>_re,_im,_abs,_phase_deg``, one row per
     frequency (``mstmm frf``); H is (frequencies, outputs)."""
-    header: list[str] = ["omega_rad_s", "f_hz"]
+    return frf_csv_header(labels) + frf_csv_rows(omegas, H)
+
+
+def frf_table_header(name: str, quantity: str, source: str, labels: Sequence[str]) -> str:
+    """The two title lines of :func:`frf_table`."""
+    head = f"{'omega [rad/s]':>16}"
     for label in labels:
-        header += [f"{label}_{part}" for part in ("re", "im", "abs", "phase_deg")]
-    rows: list[Sequence[Any]] = [header]
+        head += f"  {('|H| ' + label)[:28]:>28}  {'phase [deg]':>11}"
+    return f"{name}: {quantity} to {source}\n{head}\n"
+
+
+def frf_table_rows(omegas: np.ndarray, H: np.ndarray) -> str:
+    """The lines of :func:`frf_table` (no title), one per frequency."""
+    lines = []
     for k, w in enumerate(omegas):
-        row = [_num(w), _num(w / (2.0 * math.pi))]
+        line = _fmt(w, ">16.8g")
         for j in range(H.shape[1]):
             h = complex(H[k, j])
-            row += [_num(h.real), _num(h.imag), _num(abs(h)), _num(math.degrees(np.angle(h)))]
-        rows.append(row)
-    return _csv(rows)
+            line += f"  {_fmt(abs(h), '>28.10g')}  {_fmt(_phase_deg(h), '>11.4f')}"
+        lines.append(line + "\n")
+    return "".join(lines)
 
 
 def frf_table(
     name: str, quantity: str, source: str, omegas: np.ndarray, H: np.ndarray, labels
 ) -> str:
     """A readable table of ``mstmm frf``: |H| and its phase per output."""
-    lines = [f"{name}: {quantity} to {source}"]
-    head = f"{'omega [rad/s]':>16}"
-    for label in labels:
-        head += f"  {('|H| ' + label)[:28]:>28}  {'phase [deg]':>11}"
-    lines.append(head)
-    for k, w in enumerate(omegas):
-        line = f"{w:>16.8g}"
-        for j in range(H.shape[1]):
-            h = complex(H[k, j])
-            line += f"  {abs(h):>28.10g}  {math.degrees(np.angle(h)):>11.4f}"
-        lines.append(line)
-    return "\n".join(lines) + "\n"
+    return frf_table_header(name, quantity, source, labels) + frf_table_rows(omegas, H)
 
 
-def write_atomically(path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in its directory (never half
-    written)."""
+def json_numbers(values: np.ndarray) -> tuple[str, int]:
+    """``values`` (floats) as the comma-separated items of a JSON array, a non-finite one as
+    ``null``, and how many were."""
+    bad = ~np.isfinite(values)
+    items = ["null" if b else repr(float(v)) for v, b in zip(values.tolist(), bad, strict=True)]
+    return ", ".join(items), int(bad.sum())
+
+
+class CannotWrite(OSError):
+    """An output file's directory does not take a new file (``directory``, ``reason``)."""
+
+    def __init__(self, directory, reason: str):
+        super().__init__(f"cannot write to {directory} ({reason})")
+        self.directory, self.reason = directory, reason
+
+
+def _directory(path) -> Path:
+    path = Path(path)
+    return path.parent if str(path.parent) else Path(".")
+
+
+def _reason(exc: OSError) -> str:
+    return (exc.strerror or str(exc)).lower()
+
+
+def check_writable(path) -> None:
+    """Raise :class:`CannotWrite` unless a file can be created in ``path``'s directory (by
+    creating one there and removing it: the permission bits alone do not tell, e.g. for
+    root or on a read-only file system)."""
+    import tempfile
+
+    directory = _directory(path)
+    if not directory.is_dir():
+        reason = "not a directory" if directory.exists() else "directory does not exist"
+        raise CannotWrite(directory, reason)
+    try:
+        with tempfile.TemporaryFile(dir=directory, prefix=".tmp-mstmm-"):
+            pass
+    except OSError as exc:
+        raise CannotWrite(directory, _reason(exc)) from None
+
+
+@contextmanager
+def atomic_file(path) -> Iterator[Any]:
+    """A text file to write ``path`` through: a temporary file in its directory, put in
+    place when the block ends, removed if it fails or is interrupted (never half written).
+    Raises :class:`CannotWrite` when the directory takes no new file."""
     import os
     import tempfile
-    from pathlib import Path
 
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=".tmp-")
+    directory = _directory(path)
+    try:
+        fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-")
+    except OSError as exc:
+        raise CannotWrite(directory, _reason(exc)) from None
     try:
         with os.fdopen(fd, "w") as fh:
-            fh.write(text)
+            yield fh
+        mask = os.umask(0o022)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # as open() would make it (mkstemp made it 0600)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+def write_atomically(path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in its directory (never half
+    written; :class:`CannotWrite` when the directory takes no new file)."""
+    with atomic_file(path) as fh:
+        fh.write(text)
 
 
 def damped_shapes_csv(sol) -> str:

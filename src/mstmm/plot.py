@@ -16,8 +16,11 @@ Artists carry a ``gid`` so that a figure can be inspected: ``"delta"`` (the curv
 ``log10|Delta|``), ``"roots"`` (one marker per root, repeated by multiplicity),
 ``"root-line"`` (one vertical line per distinct root), ``"mode"`` (a mode-shape or
 veering curve), ``"mass"`` / ``"spring"`` (hanging masses of one mode and their
-springs), ``"attachment"`` (attachment points on the beam axis), ``"axis"`` (the
-beam axis), ``"uncoupled"`` (``sqrt(k/m)`` of a varied attachment).
+springs), ``"attachment"`` (attachment points on the beam axis: one line per kind,
+its marker from :data:`ATTACHMENT_MARKERS`, labelled ``"spring-mass (3)"``), ``"axis"``
+(the beam axis), ``"uncoupled"`` (``sqrt(k/m)`` of a varied attachment), ``"frf"`` /
+``"phase"`` (an frf's magnitude and unwrapped phase). Every axis is labelled with its
+unit; legends sit beside the axes, where they cover no curve.
 """
 
 from __future__ import annotations
@@ -139,6 +142,61 @@ def _finish(fig: Figure, path: PathLike | None) -> Figure:
     return fig
 
 
+def _legend(ax: Axes) -> None:
+    """The legend beside the axes (right of them), where it covers no curve."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8)
+
+
+#: Attachment markers: matplotlib marker and colour per kind, keyed by the kind's name
+#: (kept here, not in the kinds' files under derive/, which plotting must not reach into).
+#: A kind not listed (a kind added later) gets a marker from :data:`_SPARE_MARKERS`.
+ATTACHMENT_MARKERS: dict[str, tuple[str, str]] = {
+    "support": ("^", "k"),
+    "hinge": ("o", "C1"),
+    "mass": ("s", "C2"),
+    "spring_mass": ("v", "C4"),
+    "spring": ("d", "C5"),
+    "rotational_spring": ("P", "C6"),
+    "oscillator_chain": ("X", "C7"),
+    "dashpot": ("*", "C8"),
+}
+_SPARE_MARKERS = ("h", "p", "<", ">", "8", "H")
+
+
+def _marker(kind: str, spare: list[str]) -> tuple[str, str]:
+    if kind in ATTACHMENT_MARKERS:
+        return ATTACHMENT_MARKERS[kind]
+    if kind not in spare:
+        spare.append(kind)
+    return _SPARE_MARKERS[(spare.index(kind)) % len(_SPARE_MARKERS)], "0.3"
+
+
+def _draw_attachments(ax: Axes, scene: Scene) -> None:
+    """One marker line per kind present (``gid`` ``"attachment"``), labelled in the legend
+    with the kind and how many sit on the beam."""
+    kinds: dict[str, list[float]] = {}
+    for a in scene.attachments:
+        kinds.setdefault(a.kind, []).append(float(a.x))
+    spare: list[str] = []
+    for kind, xs in kinds.items():
+        marker, color = _marker(kind, spare)
+        ax.plot(
+            xs,
+            np.zeros(len(xs)),
+            ls="none",
+            marker=marker,
+            ms=8,
+            mfc="none" if marker not in ("^", "*") else color,
+            mec=color,
+            color=color,
+            mew=1.4,
+            clip_on=False,
+            zorder=5,
+            gid="attachment",
+            label=f"{kind.replace('_', '-')} ({len(xs)})",
+        )
+
+
 def _distinct(sol: Solution) -> list[tuple[int, float, int]]:
     """``(mode number from 1, omega, multiplicity)`` of each distinct root of ``sol``."""
     out, i = [], 0
@@ -171,13 +229,16 @@ def _band_solution(
         if not (0.0 <= lo < hi and math.isfinite(hi)):
             raise ValueError(f"band must satisfy 0 <= lo < hi < inf (got {band!r})")
         return solve(scene, band=(lo, hi), formulation=formulation), lo, hi
-    lowest = solve(scene, modes=modes or 10, formulation=formulation, shapes=False)
-    top = float(np.max(lowest.omega)) if len(lowest.omega) else 0.0
+    count = modes or 10
+    lowest = solve(scene, modes=count + 1, formulation=formulation, shapes=False)
+    top = float(lowest.omega[count - 1]) if len(lowest.omega) >= count else 0.0
     if top <= 0.0:  # only rigid-body modes asked for: show up to the first elastic one
         first = solve(scene, modes=_rigid_body_modes(scene) + 1, shapes=False)
         top = float(first.omega[-1])
-    # every root in the plotted band is marked, not only the lowest ``modes``
     hi = MARGIN * top
+    nxt = float(lowest.omega[count]) if len(lowest.omega) > count else math.inf
+    if top < nxt < hi:  # a root just above: stop half way, so the lowest ``modes`` are marked
+        hi = 0.5 * (top + nxt)
     return solve(scene, band=(0.0, hi), formulation=formulation), 0.0, hi
 
 
@@ -223,11 +284,11 @@ def _draw_characteristic(
     )
     ax.set_xlim(lo, hi)
     ax.set_xlabel(r"$\omega$ [rad/s]")
-    ax.set_ylabel(r"$\log_{10}|\Delta(\omega)|$")
+    ax.set_ylabel(r"$\log_{10}|\Delta(\omega)|$ [-] (scaled determinant)")
     ax.set_title(f"{scene.name}: characteristic function ({formulation})", fontsize=10)
     sec = ax.secondary_xaxis("top", functions=(_to_hz, _to_rad))
     sec.set_xlabel("f [Hz]")
-    ax.legend(loc="best", fontsize=8)
+    _legend(ax)
 
 
 def characteristic(
@@ -309,25 +370,13 @@ def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) 
                 gid="mass",
             )
     ax.axhline(0.0, color="0.4", lw=0.8, gid="axis")
-    xs = np.array([a.x for a in scene.attachments], dtype=float)
-    if len(xs):
-        ax.plot(
-            xs,
-            np.zeros_like(xs),
-            ls="none",
-            marker="^",
-            ms=7,
-            color="k",
-            clip_on=False,
-            gid="attachment",
-            label=f"attachment points ({len(xs)})",
-        )
+    _draw_attachments(ax, scene)
     L = scene.beam.length
     ax.set_xlim(-0.02 * L, 1.02 * L)
     ax.set_xlabel(f"x [m]   ({scene.beam.left} - {scene.beam.right})")
-    ax.set_ylabel("Y (max |Y| = 1; circles: hanging masses)")
+    ax.set_ylabel("Y [-] (normalised: max |Y| = 1; circles: hanging masses)")
     ax.set_title(f"{scene.name}: mode shapes", fontsize=10)
-    ax.legend(loc="best", fontsize=8)
+    _legend(ax)
 
 
 def mode_shapes(
@@ -396,6 +445,23 @@ def figure2(
     return _finish(fig, path)
 
 
+_BEAM_UNITS = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
+
+
+def _field_unit(scene: Scene, path_name: str) -> str:
+    """The unit of a sweep field: the beam's, or the key's as its kind declares it."""
+    from mstmm.derive.catalog import kind
+
+    name = re.sub(r"\[\d+\]$", "", path_name).rsplit(".", 1)[-1]
+    match = re.match(r"attachments\[(\d+)\]\.", path_name)
+    if match:
+        a = scene.attachments[int(match.group(1))]
+        for key in kind(a.kind).KEYS:
+            if key.name == name:
+                return key.unit or "-"
+    return _BEAM_UNITS.get(name, "-")
+
+
 def veering(
     scene: Scene,
     path_name: str,
@@ -453,12 +519,15 @@ def veering(
         ax.set_ylim(bottom / 1.3, top * 1.3)
     else:
         ax.set_ylim(0.0, top * 1.05)
-    ax.set_xlabel(path_name)
+    ax.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
     ax.set_ylabel(r"$\omega$ [rad/s]")
     ax.set_title(f"{scene.name}: natural frequencies against {path_name}", fontsize=10)
     sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
     sec.set_ylabel("f [Hz]")
-    ax.legend(loc="best", fontsize=8)
+    if len(fig.axes) == 1:  # our own figure: the legend right of the Hz axis, which it
+        fig.legend(loc="outside right upper", fontsize=8)  # would otherwise cover
+    else:
+        _legend(ax)
     return _finish(fig, path)
 
 
@@ -471,11 +540,14 @@ def frf_figure(
     quantity: str = "receptance",
     ax: tuple[Axes, Axes] | None = None,
     label: str | None = None,
+    hz: bool = False,
 ) -> Figure:
     """Frequency response of ``outputs`` to ``source`` (``mstmm.response`` points or their
-    strings) over ``omegas`` (rad/s): magnitude (log scale) above, phase (degrees) below,
-    the natural frequencies in the band marked (w_d of a damped scene). ``ax``: draw into
-    these two axes (a before/after comparison), labelled ``label``."""
+    strings) over ``omegas`` (rad/s): magnitude (log scale, in the quantity's unit: m/N,
+    rad/N, m/(N m), ... for a receptance) above, the unwrapped phase (degrees) below, the
+    natural frequencies in the band marked (w_d of a damped scene). The frequency axis is
+    in rad/s, or in Hz when ``hz``. ``ax``: draw into these two axes (a before/after
+    comparison), labelled ``label``."""
     from .response import frf, parse_point
     from .solve import solve
 
@@ -488,21 +560,45 @@ def frf_figure(
     else:
         ax_mag, ax_ph = ax
         fig = ax_mag.get_figure()
-    f = _to_hz(omegas)
+    f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
+    units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
     for j, d in enumerate(dst):
         name = f"{label}: {d}" if label else str(d)
-        ax_mag.semilogy(f, np.abs(H[:, j]), lw=1.2, label=name)
-        ax_ph.plot(f, np.degrees(np.angle(H[:, j])), lw=1.0, label=name)
+        if len(units) > 1:
+            name += f" [{_frf_unit(quantity, d.quantity, src.quantity)}]"
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mag = np.abs(H[:, j])
+            phase = np.full(len(f), np.nan)
+            ok = np.isfinite(H[:, j]) & (mag > 0)
+            phase[ok] = np.degrees(np.unwrap(np.angle(H[ok, j])))
+        ax_mag.semilogy(f, mag, lw=1.2, label=name, gid="frf")
+        ax_ph.plot(f, phase, lw=1.0, label=name, gid="phase")
     sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
     marks = np.unique(np.real(sol.omega))
+    scale = 1.0 / _TWO_PI if hz else 1.0
     for w in marks[marks > 0]:
-        ax_mag.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
-        ax_ph.axvline(w / _TWO_PI, color="0.6", lw=0.6, ls=":")
-    units = {"receptance": "|H|", "mobility": "|i w H|", "accelerance": "|w^2 H|"}[quantity]
-    ax_mag.set_ylabel(f"{units} (SI)")
-    ax_ph.set_ylabel("phase [deg]")
-    ax_ph.set_xlabel("f [Hz]")
-    ax_ph.set_ylim(-180.0, 180.0)
+        ax_mag.axvline(w * scale, color="0.6", lw=0.6, ls=":", gid="root-line")
+        ax_ph.axvline(w * scale, color="0.6", lw=0.6, ls=":", gid="root-line")
+    symbol = {"receptance": "|H|", "mobility": r"|i$\omega$H|", "accelerance": r"|$\omega^2$H|"}
+    unit = units.pop() if len(units) == 1 else "see legend"
+    ax_mag.set_ylabel(f"{quantity} {symbol[quantity]} [{unit}]")
+    ax_ph.set_ylabel("phase (unwrapped) [deg]")
+    ax_ph.set_xlabel("f [Hz]" if hz else r"$\omega$ [rad/s]")
+    ax_ph.set_xlim(f[0], f[-1])
     ax_mag.set_title(f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10)
-    ax_mag.legend(fontsize=8)
+    _legend(ax_mag)
     return _finish(fig, path)
+
+
+#: The unit of a response per unit load: (response, load) -> unit of the receptance; the
+#: mobility adds "/s", the accelerance "/s^2" to the response.
+_RESPONSE_UNITS = {"displacement": "m", "y": "m", "rotation": "rad", "theta": "rad"}
+_LOAD_UNITS = {"force": "N", "moment": "N m"}
+
+
+def _frf_unit(quantity: str, response: str, load: str) -> str:
+    """``m/N``, ``rad/(N m)``, ``m/s/N``, ``rad/s^2/(N m)``, ... of an frf ``quantity``."""
+    top = _RESPONSE_UNITS.get(response.lower(), "?")
+    top += {"receptance": "", "mobility": "/s", "accelerance": "/s^2"}[quantity]
+    bottom = _LOAD_UNITS.get(load.lower(), "?")
+    return f"{top}/({bottom})" if " " in bottom else f"{top}/{bottom}"

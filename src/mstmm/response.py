@@ -23,12 +23,13 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .kernels import Kernel, load_kernel
-from .scene import Scene, SceneError
+from .scene import Scene, SceneError, check_band
 from .topology import parameter_vector, topology_of
 
 #: Kinds of the numerics' march (``FRF_FORCE``, ``FRF_MOMENT``, ``FRF_MASS``).
@@ -119,6 +120,38 @@ def hanging_masses(kernel: Kernel, p: np.ndarray) -> list[int]:
     return [i for i, (_, mass) in enumerate(kernel.unknowns(p)) if mass > 0.0]
 
 
+#: At most this many responses (frequencies x inputs x outputs, 16 bytes each: 160 MB)
+#: in one call of :func:`frf` or one ``mstmm frf``; more: several calls over narrower bands.
+MAX_RESPONSES = 10_000_000
+#: An infinite response: NaN in both parts.
+_NAN = complex(math.nan, math.nan)
+
+
+def checked_omega(scene: Scene, omega, source: str = "<frf>", field: str = "omega") -> np.ndarray:
+    """``omega`` as a 1-D array, refused (:class:`SceneError`, a ValueError) when a value is
+    NaN or infinite, a real one negative, or the largest beyond what ``mstmm solve
+    --band`` accepts for the scene (:func:`mstmm.scene.check_band`)."""
+    ws = np.atleast_1d(np.asarray(omega))
+    if ws.ndim != 1 or ws.dtype.kind not in "iufc":
+        raise SceneError(source, field, "must be a number or a 1-D array of numbers", omega)
+    bad = ~np.isfinite(ws)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise SceneError(source, field, f"must be finite (rad/s); index {k} is", _plain(ws[k]))
+    if np.isrealobj(ws) and (ws < 0).any():
+        k = int(np.argmax(ws < 0))
+        raise SceneError(source, field, f"must be >= 0 rad/s; index {k} is", _plain(ws[k]))
+    if ws.size:
+        size = np.abs(ws)
+        check_band(scene, (float(size.min()), float(size.max())), source, field)
+    return ws
+
+
+def _plain(value) -> float | complex:
+    """A numpy scalar as a Python number (its message prints 1.5, not np.float64(1.5))."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def frf(
     scene: Scene,
     input,
@@ -132,41 +165,146 @@ def frf(
     chunk: int = 20_000,
 ) -> np.ndarray:
     """The frequency response of ``output`` to a unit harmonic ``input`` at each ``omega``
-    (rad/s; real, or complex for the analytic continuation), complex, SI: receptance H (m/N,
-    rad/N, m/(N m), rad/(N m)), ``mobility`` i w H or ``accelerance`` -w^2 H. ``input`` and
-    ``output`` may be lists: the result then has shape ``(len(omega), len(inputs),
-    len(outputs))``; with one of each it is ``(len(omega),)``. The frequencies run in
-    parallel on all cores; ``scheduler`` (a Dask address or ``distributed.Client``) spreads
-    them over a cluster in chunks of ``chunk`` (extra ``mstmm[dask]``)."""
-    if quantity not in QUANTITIES:
-        raise ValueError(f"quantity must be one of {QUANTITIES}, got {quantity!r}")
+    (rad/s; real >= 0, or complex for the analytic continuation), complex, SI: receptance H
+    (m/N, rad/N, m/(N m), rad/(N m)), ``mobility`` i w H or ``accelerance`` -w^2 H.
+    ``input`` and ``output`` may be lists: the result then has shape ``(len(omega),
+    len(inputs), len(outputs))``; with one of each it is ``(len(omega),)``. The frequencies
+    run in parallel on all cores, in chunks of about 0.2 s (Ctrl-C is seen between them);
+    ``scheduler`` (a Dask address or ``distributed.Client``) spreads them over a cluster in
+    chunks of ``chunk`` (extra ``mstmm[dask]``).
+
+    NaN where the response is infinite, with a warning: at omega = 0 on a scene with a
+    rigid-body mode (the static problem is singular), and exactly at a natural frequency.
+    Raises ValueError (:class:`SceneError`) on a bad point, quantity or omega (NaN,
+    negative, beyond the bounds of ``mstmm solve --band``), or more than
+    :data:`MAX_RESPONSES` responses."""
     many_in = isinstance(input, list)
     many_out = isinstance(output, list)
-    ins = [parse_point(s, "input", source) for s in (input if many_in else [input])]
-    outs = [parse_point(s, "output", source) for s in (output if many_out else [output])]
-    if kernel is None:
-        kernel = load_kernel(topology_of(scene))
-    p = parameter_vector(scene)
-    masses = hanging_masses(kernel, p)
-    rows_in = np.array([_row(pt, "input", scene, masses, source) for pt in ins])
-    rows_out = np.array([_row(pt, "output", scene, masses, source) for pt in outs])
-    ws = np.atleast_1d(np.asarray(omega))
-    if scheduler is None:
-        H = kernel.frf(ws, p, rows_in, rows_out)
-    else:
+    ws = checked_omega(scene, omega, source)
+    if scheduler is not None:
+        job = _Job(scene, input, output, quantity, kernel, source, ws.size)
         from .study import dask_map
 
         pieces = [ws[i : i + chunk] for i in range(0, len(ws), chunk)]
-        key = kernel.topology.key
-        parts = dask_map(scheduler, frf_chunk, pieces, (key, p, rows_in, rows_out), "frf", False)
-        H = np.concatenate(parts)
-    if quantity == "mobility":
-        H = H * (1j * ws)[:, None, None]
-    elif quantity == "accelerance":
-        H = H * (-(ws**2))[:, None, None]
+        key = job.kernel.topology.key
+        args = (key, job.p, job.rows_in, job.rows_out)
+        parts = dask_map(scheduler, frf_chunk, pieces, args, "frf", False)
+        H = job.scaled(ws, np.concatenate(parts) if parts else job.empty(0))
+    else:
+        H = np.empty((0, len(_listed(input)), len(_listed(output))), dtype=complex)
+        for at, part in frf_chunks(
+            scene, input, output, ws, quantity=quantity, kernel=kernel, source=source
+        ):
+            if at.start == 0:
+                H = np.empty((ws.size, *part.shape[1:]), dtype=complex)
+            H[at] = part
     if not many_in and not many_out:
         return H[:, 0, 0]
     return H
+
+
+def _listed(spec) -> list:
+    return spec if isinstance(spec, list) else [spec]
+
+
+class _Job:
+    """What every chunk of one frequency response shares: the kernel, the parameters and
+    the rows of the points."""
+
+    def __init__(self, scene, input, output, quantity, kernel, source, n):
+        if quantity not in QUANTITIES:
+            raise SceneError(source, "quantity", f"must be one of {list(QUANTITIES)}", quantity)
+        ins = [parse_point(s, "input", source) for s in _listed(input)]
+        outs = [parse_point(s, "output", source) for s in _listed(output)]
+        if n * len(ins) * len(outs) > MAX_RESPONSES:
+            raise SceneError(
+                source,
+                "omega",
+                f"{n} frequencies x {len(ins)} input(s) x {len(outs)} output(s) is more than"
+                f" {MAX_RESPONSES:.0e} responses: compute them in several calls",
+                n,
+            )
+        self.quantity = quantity
+        self.kernel = load_kernel(topology_of(scene)) if kernel is None else kernel
+        self.p = parameter_vector(scene)
+        masses = hanging_masses(self.kernel, self.p)
+        self.rows_in = np.array([_row(pt, "input", scene, masses, source) for pt in ins])
+        self.rows_out = np.array([_row(pt, "output", scene, masses, source) for pt in outs])
+
+    def empty(self, n: int) -> np.ndarray:
+        return np.empty((n, len(self.rows_in), len(self.rows_out)), dtype=complex)
+
+    def scaled(self, ws: np.ndarray, H: np.ndarray) -> np.ndarray:
+        """Receptances H as the quantity asked for."""
+        if self.quantity == "mobility":
+            return H * (1j * ws)[:, None, None]
+        if self.quantity == "accelerance":
+            return H * (-(ws**2))[:, None, None]
+        return H
+
+    def march(self, ws: np.ndarray) -> np.ndarray:
+        """The kernel's receptances at ``ws``; NaN at a frequency where its end matrix is
+        exactly singular (the march divides by zero there: a natural frequency)."""
+        try:
+            return self.kernel.frf(ws, self.p, self.rows_in, self.rows_out)
+        except (ZeroDivisionError, SystemError) as exc:
+            cause = exc if isinstance(exc, ZeroDivisionError) else exc.__cause__ or exc.__context__
+            if not isinstance(cause, ZeroDivisionError):
+                raise
+        if ws.size == 1:
+            return np.full((1, len(self.rows_in), len(self.rows_out)), _NAN)
+        half = ws.size // 2  # find the singular frequencies by halving
+        return np.concatenate([self.march(ws[:half]), self.march(ws[half:])])
+
+
+def frf_chunks(
+    scene: Scene,
+    input,
+    output,
+    omega,
+    *,
+    quantity: str = "receptance",
+    kernel: Kernel | None = None,
+    source: str = "<frf>",
+):
+    """:func:`frf` piece by piece: ``(slice of omega, responses)`` pairs in order, each
+    responses of shape ``(frequencies, inputs, outputs)``, each chunk taking about
+    :data:`mstmm.chunks.TARGET_SECONDS` (with the caller's own work on it: write it before
+    asking for the next). Checks everything, and warns of a rigid-body mode at omega = 0,
+    before the first chunk."""
+    from .chunks import spans
+
+    ws = checked_omega(scene, omega, source)
+    job = _Job(scene, input, output, quantity, kernel, source, ws.size)
+    static = ws == 0.0
+    rigid = bool(static.any()) and job.kernel.rigid_body_modes(job.p) > 0
+    if rigid:
+        what = "" if quantity == "receptance" else f"{quantity} is undefined: the "
+        warnings.warn(
+            f"at omega = 0 the {what}receptance is infinite (a rigid-body mode): NaN there"
+            " (null in JSON)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    singular: list[float] = []
+    for at in spans(ws.size):
+        w = ws[at]
+        H = job.empty(w.size)
+        live = ~static[at] if rigid else np.ones(w.size, dtype=bool)
+        H[~live] = _NAN
+        if live.any():
+            H[live] = job.march(w[live])
+            hit = live & ~np.isfinite(H).all(axis=(1, 2))
+            singular += [float(abs(v)) for v in w[hit]]
+        yield at, job.scaled(w, H)
+    if singular:
+        warnings.warn(
+            f"the response is infinite at {len(singular)} frequency(ies) exactly at a"
+            " natural frequency (first: omega = {singular[0]:.17g} rad/s): NaN"
+            " there (null in JSON)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
 
 
 def frf_chunk(key: str, omegas: np.ndarray, p, rows_in, rows_out) -> np.ndarray:

@@ -21,8 +21,8 @@ shape): there is no per-kind code here. A key of another kind is an unknown key;
 key without a default is required; a list key (an oscillator chain's ``k`` and ``m``)
 is a non-empty list of numbers, and the keys a kind names in ``SAME_LENGTH`` have equal
 lengths. Placement rules that hold for any kind of a given ``COUNT``: a constraint
-(a support) may not sit where an end already fixes Y, nor two at one x, nor two hinges
-at one x; a component
+(a support) may not sit where an end or another constraint already fixes Y (one message,
+"a redundant constraint"), nor two hinges at one x; a component
 that acts on the rotation (a key in N m/rad or kg m^2 with a value > 0) may not sit
 at exactly the x of a hinge (``COUNT = "split"``), whose two sides rotate apart.
 
@@ -116,9 +116,21 @@ def _one_line(text: str) -> str:
     return " ".join(part for part in str(text).splitlines() if part) or "?"
 
 
+def _plain(value: Any) -> Any:
+    """``value`` with numpy scalars and arrays turned into Python numbers and lists, so that
+    a message shows ``1e+200``, not ``np.float64(1e+200)``."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return type(value)(_plain(v) for v in value)
+    return value
+
+
 def _short_repr(value: Any) -> str:
     try:
-        text = repr(value)
+        text = repr(_plain(value))
     except Exception:  # a broken __repr__ must not hide the real error
         text = f"<{type(value).__name__}>"
     text = _one_line(text)
@@ -401,6 +413,15 @@ def _acts_on_rotation(key: catalog.Key) -> bool:
     return key.unit in ("N m/rad", "kg m^2")
 
 
+#: The one message of every redundant constraint (a second fix of Y at one point: the
+#: damped chain is singular there). A spring where its motion is already fixed is no
+#: constraint: accepted, it changes nothing.
+_REDUNDANT = (
+    "a {kind} where {why} already fixes Y is a redundant constraint (refused: it changes"
+    " nothing, and leaves the damped chain singular); leave it out"
+)
+
+
 def check_placement(
     P: np.ndarray,
     source: str,
@@ -440,8 +461,7 @@ def check_placement(
                 raise SceneError(
                     source,
                     f"attachments[{labels[c]}].x",
-                    f"{where(row)}a {kind} at the {end} end, which already fixes Y there:"
-                    f" leave the {kind} out",
+                    f"{where(row)}{_REDUNDANT.format(kind=kind, why=f'the {end} end')}",
                     float(x[row, c]),
                 )
     if len(constraints) > 1:
@@ -451,10 +471,8 @@ def check_placement(
             np.ones((len(P), len(constraints)), bool),
             [labels[c] for c in constraints],
             [],
-            lambda other: (
-                f"at the same x as the attachments[{other}]"
-                " constraint: a second constraint there fixes nothing more;"
-                " leave one out"
+            lambda other: _REDUNDANT.format(
+                kind="constraint", why=f"the attachments[{other}] constraint at the same x"
             ),
             source,
             where,
@@ -915,7 +933,7 @@ def _checked(value: Any, check: str, field_path: str, source: str, length: float
     number = _number(value, field_path, source)
     passes, problem = CHECKS[check]
     if not passes(number, length):
-        raise SceneError(source, field_path, problem.format(length=length), value)
+        raise SceneError(source, field_path, problem.format(length=_plain(length)), value)
     return number + 0.0  # + 0.0 turns -0.0 into 0.0
 
 

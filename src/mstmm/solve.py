@@ -11,7 +11,7 @@ import numpy as np
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
 from .scan import TRUST, find_roots
-from .scene import Scene
+from .scene import Scene, SceneError, check_band
 from .topology import parameter_vector, topology_of
 
 
@@ -87,6 +87,57 @@ class Solution:
         return out
 
 
+def checked_request(
+    scene: Scene, modes, band, source: str = "<solve>"
+) -> tuple[int | None, tuple[float, float] | None]:
+    """``modes`` and ``band`` of :func:`solve`, checked (ValueError, as the command line
+    refuses them): ``modes`` a whole number >= 1, ``band`` two finite ``0 <= lo <= hi``
+    within :func:`mstmm.scene.check_band`'s bounds, not both."""
+    if modes is not None and band is not None:
+        raise ValueError("give modes= or band=, not both")
+    if modes is not None:
+        if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 1:
+            raise SceneError(source, "modes", "must be a whole number >= 1", _plain(modes))
+        modes = int(modes)
+    if band is not None:
+        try:
+            lo, hi = (float(v) for v in band)
+        except (TypeError, ValueError):
+            raise SceneError(source, "band", "must be two numbers (lo, hi), rad/s", band) from None
+        if not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0.0:
+            raise SceneError(source, "band", "lo and hi must be finite and >= 0 rad/s", [lo, hi])
+        if hi < lo:
+            raise SceneError(source, "band", "hi must not be below lo", [lo, hi])
+        band = (lo, hi)
+        check_band(scene, band, source, "band")
+    return modes, band
+
+
+def _plain(value):
+    return value.item() if isinstance(value, np.generic) else value
+
+
+#: A part of a damped root at most this many ulp of |omega| is round-off: returned as 0.
+SIGMA_ROUNDOFF = 64
+
+
+def exact_zeros(omega: np.ndarray) -> np.ndarray:
+    """Damped roots with round-off removed where the model says zero: a part (``sigma`` or
+    ``w_d``) of at most 64 eps ``|omega|`` is 0. An undamped mode of a damped scene (one
+    whose shape has no motion at any damper) has sigma = 0 exactly, an overdamped root
+    w_d = 0; the complex search leaves ~1e-18 relative of noise there, of either sign. No
+    part is a negative zero."""
+    omega = np.asarray(omega, dtype=complex)
+    w_d, sigma = omega.real.copy(), omega.imag.copy()
+    bound = SIGMA_ROUNDOFF * np.finfo(float).eps * np.abs(omega)
+    finite = np.isfinite(omega)
+    sigma[finite & (np.abs(sigma) <= bound)] = 0.0
+    w_d[finite & (np.abs(w_d) <= bound)] = 0.0
+    out = np.empty_like(omega)
+    out.real, out.imag = w_d + 0.0, sigma + 0.0  # + 0.0 turns -0.0 into 0.0
+    return out
+
+
 def solve(
     scene: Scene,
     modes: int | None = None,
@@ -116,7 +167,12 @@ def solve(
     lowest ``modes`` end inside a multiple root, ``multiplicity`` gives its true
     multiplicity, ``truncated`` is True and a warning says so; ``omega`` keeps
     exactly ``modes`` values.
+
+    Raises ValueError when ``modes`` is not a whole number >= 1, ``band`` not two finite
+    numbers ``0 <= lo <= hi`` within the bounds of ``mstmm solve --band``
+    (:func:`mstmm.scene.check_band`), or both are given.
     """
+    modes, band = checked_request(scene, modes, band)
     topology = topology_of(scene)
     if topology.damped:
         if formulation != "stable":
@@ -126,7 +182,13 @@ def solve(
             )
         from .damped import solve_damped
 
-        return solve_damped(scene, modes, band, shapes=shapes)
+        # the damped search meets inf and nan where a bound or a box overflows (a dashpot
+        # of 1e200 N s/m): values its argument-principle check reports (count_checked
+        # False, a warning), never numpy's "overflow encountered" for the user to decode
+        with np.errstate(all="ignore"):
+            sol = solve_damped(scene, modes, band, shapes=shapes)
+        sol.omega = exact_zeros(sol.omega)
+        return sol
     if modes is None and band is None:
         modes = 10
     timings: dict[str, float] = {}

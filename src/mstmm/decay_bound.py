@@ -1,0 +1,179 @@
+"""A proved upper bound on the decay rate of every damped root in a band.
+
+The damped search counts zeros in the rectangle ``-eps < w_d < W``, ``-delta < sigma <
+S`` of the ``w = w_d + i sigma`` plane. A root with ``sigma > S`` would be outside what
+is counted, so ``S`` must be an upper bound that is *proved*, not a guess: this module
+gives one, :func:`sigma_max`, from the energies of the structure (docs: README, "Damped
+roots").
+
+**The relation.** A damped mode ``u`` (beam deflection ``u(x)`` and every lumped
+coordinate ``q``) with time dependence ``exp(i w t)`` satisfies
+``(K (1 + i eta) + i w C - w^2 M) u = 0`` in weak form. With the Rayleigh forms
+``m = u* M u > 0``, ``c = u* C u >= 0``, ``k_R = u* K u >= 0`` (bending, springs) and
+``k_I = u* K_eta u`` (the loss factors' part, ``0 <= k_I <= eta_max k_R``):
+
+    m w^2 - i c w - (k_R + i k_I) = 0.
+
+Its real part gives ``k_R = m (w_d^2 - sigma^2) + c sigma <= m W^2 + c sigma`` for a
+root with ``|w_d| <= W``. Solving the quadratic, ``sigma = Im w <= c / m +
+sqrt(k_I / (2 m))`` (``Im sqrt(a + i b) <= sqrt(b / 2) + sqrt(max(-a, 0))`` with
+``-a <= c^2``). So, with ``X = c / m``:
+
+    (1)  sigma <= X + sqrt(eta_max (sigma X + W^2) / 2).
+
+**Point dampers.** ``c`` is a sum over dashpots of ``c_j |relative motion|^2``. A
+dashpot between the beam and the ground gives ``c_j |u(x_j)|^2``; one between the beam
+and a lumped mass (or between two masses) at most ``2 c_j (|u(x_j)|^2 + |q|^2)``, and
+``2 c_j |q_a|^2 <= (2 c_j / m_a) m``. Hence ``c <= Gamma max|u|^2 + R m`` with
+``Gamma`` the beam-side sum and ``R`` the largest ``2 sum(c) / m_a`` of a component.
+
+**Interpolation.** On an interval ``I`` of length ``l`` free of hinges (where ``u`` is
+in ``H^2``), ``|u(x)|^2 <= 8 ||u||^2 / l + 2 l^3 ||u''||^2`` for ``x`` in ``I`` (split
+``u`` into its L2 projection ``p`` on linear functions, ``max|p|^2 <= 4 ||p||^2 / l``,
+and the rest ``e``, which is orthogonal to linears, so ``e`` and ``e'`` vanish in
+``I`` and ``|e| <= l^(3/2) ||e''||``). With ``m >= mbar_min ||u||^2`` and
+``EI_min ||u''||^2 <= k_R <= m (sigma X + W^2)``:
+
+    X <= R + 8 Gamma / (mbar_min l) + 2 Gamma l^3 (sigma X + W^2) / EI_min
+
+for every ``l <= P`` (``P``: the shortest hinge-free piece that holds a damper; one at a
+hinge takes the wider piece beside it). Choosing
+``l = min(P, (EI_min / (4 Gamma sigma))^(1/3))`` and ``sigma >= W``:
+
+    (2)  X <= X0 + B sigma^(1/3),   X0 = 2 R + 16 Gamma / (mbar_min P) + W,
+                                    B = 16 Gamma / mbar_min (4 Gamma / EI_min)^(1/3).
+
+**The bound.** (1) and (2) with ``t = sigma^(1/6)``: every root with ``|w_d| <= W`` and
+``sigma >= W`` has ``t^6 <= a0 + a2 t^2 + a3 t^3 + a4 t^4`` (``a0 = X0 + W
+sqrt(eta/2)``, ``a2 = B``, ``a3 = sqrt(eta X0 / 2)``, ``a4 = sqrt(eta B / 2)``), whose
+right side minus the left has one positive root ``t*`` (one sign change, Descartes).
+So no root lies above ``S = max(W, t*^6)``.
+
+The bound is loose (tens of times the largest decay rate for a dashpot at a free end)
+but certain; the argument principle then counts what lies below it.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+
+from mstmm.derive import catalog
+
+
+@dataclass(frozen=True)
+class DecayBound:
+    """The proved bound and what it was made of (SI)."""
+
+    sigma: float  # no root with |w_d| <= W has a larger decay rate (1/s)
+    gamma: float  # Gamma: beam-side damping (N s/m)
+    rate: float  # R: the largest 2 sum(c) / m of a component (1/s)
+    piece: float  # P: the shortest hinge-free piece holding a damper (m)
+    eta: float  # the largest loss factor
+
+
+def _splits_rotation(kind: str) -> bool:
+    """Whether a kind lets the rotation jump where it sits (a hinge)."""
+    return any(str(r).startswith("kink") for r in getattr(catalog.kind(kind), "RIGID", ()))
+
+
+def _grounded(kind: str) -> bool:
+    """Whether a kind's damping acts between the beam and the ground (a dashpot)."""
+    return "Y" in getattr(catalog.kind(kind), "DAMPS", ())
+
+
+def _positive_root(coefficients: list[float]) -> float:
+    """The positive root of ``t^6 - a4 t^4 - a3 t^3 - a2 t^2 - a0`` (``coefficients`` =
+    ``[a0, a2, a3, a4]``, all >= 0; one sign change, so one positive root), inf when it
+    overflows. At the root one term is at least a quarter of ``t^6``, so it lies below
+    ``T = max((4 a_k)^(1 / (6 - k)))``; the bisection runs on ``x = t / T`` in [0, 1] with
+    the coefficients scaled by ``T^(k - 6)`` in logarithms (no overflow for any input)."""
+    powers = (0, 2, 3, 4)
+    logs = [math.log(4.0 * a) / (6 - k) for a, k in zip(coefficients, powers) if a > 0.0]
+    if not logs:
+        return 0.0
+    log_T = max(logs)
+    scaled = [
+        math.exp(math.log(a) - (6 - k) * log_T) if a > 0.0 else 0.0
+        for a, k in zip(coefficients, powers)
+    ]
+
+    def g(x: float) -> float:
+        return x**6 - sum(c * x**k for c, k in zip(scaled, powers))
+
+    lo, hi = 0.0, 1.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if g(mid) <= 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    try:
+        return math.exp(math.log(hi) + log_T)
+    except OverflowError:
+        return math.inf
+
+
+def sigma_max(scene, w_top: float) -> DecayBound | None:
+    """An upper bound on ``sigma`` of every damped root of ``scene`` with ``|w_d| <=
+    w_top`` (rad/s), proved as in the module's docstring; None when the proof does not
+    apply (a damper on a massless coordinate, a damping value in a unit other than
+    N s/m)."""
+    beam = scene.beam
+    segs = beam.segments or (beam,)
+    EI = min(s.EI for s in segs)
+    mbar = min(s.mass_per_length for s in segs)
+    eta = max(float(getattr(s, "loss_factor", 0.0) or 0.0) for s in segs)
+    breaks = {0.0, float(beam.length)}
+    gamma = 0.0
+    rate = 0.0
+    where: list[float] = []
+    for a in scene.attachments:
+        if _splits_rotation(a.kind):
+            breaks.add(float(a.x))
+        given = dict(a.values)
+        cs: list[float] = []
+        ms: list[float] = []
+        for key in catalog.kind(a.kind).KEYS[1:]:
+            v = catalog.value(a.kind, given, key)
+            vs = [float(c) for c in v] if key.shape == "list" else [float(v)]
+            if key.damping:
+                if any(c > 0.0 for c in vs) and key.unit != "N s/m":
+                    return None
+                cs += [c for c in vs if c > 0.0]
+            elif key.unit == "kg":
+                ms += vs
+        if not cs:
+            continue
+        where.append(float(a.x))
+        total = math.fsum(cs)
+        if _grounded(a.kind) and not ms:
+            gamma += total
+            continue
+        gamma += 2.0 * total
+        if ms:
+            if min(ms) <= 0.0:
+                return None
+            rate = max(rate, 2.0 * total / min(ms))
+    points = sorted(breaks)
+    piece = float(beam.length)
+    for x in where:  # the interval around each damper lies in its hinge-free piece
+        i = bisect.bisect_right(points, x)
+        lo, hi = points[max(i - 1, 0)], points[min(i, len(points) - 1)]
+        if lo == x and i >= 2:  # at a hinge: the wider of the two pieces beside it
+            hi = max(hi - x, x - points[i - 2])
+            lo = 0.0
+        piece = min(piece, hi - lo)
+    W = abs(float(w_top))
+    X0 = 2.0 * rate + 16.0 * gamma / (mbar * piece) + W
+    B = 16.0 * gamma / mbar * (4.0 * gamma / EI) ** (1.0 / 3.0)
+    a = [X0 + W * math.sqrt(eta / 2.0), B, math.sqrt(eta * X0 / 2.0), math.sqrt(eta * B / 2.0)]
+    t = _positive_root(a)
+    try:
+        sigma = max(W, t**6)
+    except OverflowError:
+        sigma = math.inf
+    return DecayBound(sigma, gamma, rate, piece, eta)
