@@ -118,6 +118,24 @@ def node_stiffness(d: Descriptor) -> tuple[sp.Expr, sp.Expr]:
     return sp.expand(k_y), sp.expand(k_t)
 
 
+def point_inertia(d: Descriptor) -> sp.Matrix:
+    """The mass matrix (units mbar_0 L, mbar_0 L^2, mbar_0 L^3) a component holds on the
+    beam's own ``[Y, theta]`` in its ``A`` (a lumped mass and rotary inertia, paper Eq.
+    (1)): ``Q+ = Q + b4 (M_YY Y + M_Yt theta)``, ``M+ = M - b4 (M_tY Y + M_tt theta)``, so
+    ``M = [[A_QY, A_Qt], [-A_MY, -A_Mt]]`` differentiated by b4. The inertia of its
+    unknowns ``q`` is ``qmass``, not this. ``A`` must be affine in b4, with b4 only in
+    those four entries (an inertia force on Y or theta); else a ValueError."""
+    A = d.A.applyfunc(sp.expand)
+    dA = A.diff(b4)
+    if dA.diff(b4) != sp.zeros(4, 4):
+        raise ValueError("a component's A must be affine in b4 (its inertia a mass matrix)")
+    for r in range(4):
+        for c in range(4):
+            if (r, c) not in ((3, 0), (3, 1), (2, 0), (2, 1)) and dA[r, c] != 0:
+                raise ValueError(f"b4 in A[{r}, {c}]: not an inertia force on [Y, theta]")
+    return sp.Matrix([[dA[3, 0], dA[3, 1]], [-dA[2, 0], -dA[2, 1]]])
+
+
 def internal_b4(d: Descriptor) -> list[sp.Expr]:
     """The component's own squared frequencies (b4 where det Cq = 0), when they exist."""
     if d.n_q == 0:

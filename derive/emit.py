@@ -267,6 +267,17 @@ def _nq_lines(module, d: descriptor.Descriptor) -> list[str]:
     return [f"return {getattr(module, 'N_Q', d.n_q)}"]
 
 
+def _inertia_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """Fill Mp (2 x 2) with the mass matrix the component holds on [Y, theta]
+    (``descriptor.point_inertia``); return 1, or 0 where it holds none."""
+    M = descriptor.point_inertia(d)
+    if M == sp.zeros(2, 2):
+        return ["return 0"]
+    targets = [f"Mp[{r}, {c}]" for r in range(2) for c in range(2)]
+    lines = assignments(targets, list(M), indent="")
+    return _value_lines(module)[0] + lines + ["return 1"]
+
+
 #: Flags of ``event_rigid``: the kinematic constraint a component puts on rigid motions.
 RIGID_FLAGS = {"Y": 1, "theta": 2, "kink_if_free": 3}
 
@@ -339,6 +350,14 @@ def dispatch_table(damped: bool) -> tuple:
             "return 0, 0",
             "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units\n"
             "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
+        ),
+        (
+            "inertia",
+            "p, o, L, EI, mbar, Mp",
+            _inertia_lines,
+            "return 0",
+            "Fill Mp with the mass matrix the component holds on [Y, theta] (units L = EI =\n"
+            "    mbar = 1; the b4 part of its A); return 1, or 0 where it holds none.",
         ),
         (
             "internal",

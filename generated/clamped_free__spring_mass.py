@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "7137072ff6e6d507e774e5c6d01e1b6633d10ace"
+SIGNATURE = "94c6126cfff6e4ce7b3587f2b039aac7287dfe7a"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,9 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
-#: Relative singular value below which a rigid-motion constraint is dependent.
-RIGID_RANK = 1e-9
+NUMERICS = "e088e65a1de3c3cb33ce5b165a0fb2a38893649c"
 
 
 @njit(cache=True)
@@ -80,6 +78,15 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         qmass[0] = val_m
         return 1, 1
     return 0, 0
+
+
+@njit(cache=True)
+def event_inertia(tag, p, o, L, EI, mbar, Mp):
+    """Fill Mp with the mass matrix the component holds on [Y, theta] (units L = EI =
+    mbar = 1; the b4 part of its A); return 1, or 0 where it holds none."""
+    if tag == 0:  # spring_mass
+        return 0
+    return 0
 
 
 @njit(cache=True)
@@ -352,6 +359,13 @@ def shape_event(p, row, b4, Cz, Cq, A, B, qmass):
 
 
 @njit(cache=True)
+def shape_inertia(p, row, Mp):
+    """The mass matrix on [Y, theta] of the component at event row ``row`` into Mp
+    (``event_inertia``); 1 if it holds one, else 0."""
+    return event_inertia(int(p[row]), p, int(p[row + 2]), p[0], p[1], p[2], Mp)
+
+
+@njit(cache=True)
 def u_bar_paper(omega, p):
     """U_bar of paper Eq. (4) after the boundary reduction (units L = EI_0 = mbar_0 = 1).
 
@@ -487,47 +501,27 @@ def rigid_body_modes(p):
 def rigid_motions(p, dampers):
     """Dimension of the rigid motions the ends and components leave free; with
     ``dampers``, grounded dashpots count as Y = 0 too (the rigid motions that store no
-    energy and dissipate none)."""
+    energy and dissipate none). Exact: ``rigid_dimension`` on the components' positions."""
     rows = event_order(p)
     n_ev = rows.shape[0]
-    L = p[0]
-    kinks = np.empty(n_ev)
+    knots = np.empty(n_ev)
+    cx = np.empty(n_ev + 4)
+    ct = np.empty(n_ev + 4, dtype=np.int64)
     h = 0
-    for r in range(n_ev):
-        if rigid_flag(p, rows[r], dampers) == 3:
-            kinks[h] = p[rows[r] + 1] / L
-            h += 1
-    R = np.zeros((4 + n_ev, 2 + h))
     n = 0
-    for r in range(n_ev + 2):
-        if r < n_ev:
-            flag = rigid_flag(p, rows[r], dampers)
-            x = p[rows[r] + 1] / L
-            y_row = flag == 1
-            t_row = flag == 2
-        else:
-            known = LEFT_KNOWN if r == n_ev else RIGHT_KNOWN
-            x = 0.0 if r == n_ev else 1.0
-            y_row = known[0] == 0 or known[1] == 0
-            t_row = known[0] == 1 or known[1] == 1
-        if y_row:
-            R[n, 0] = 1.0
-            R[n, 1] = x
-            for j in range(h):
-                R[n, 2 + j] = max(x - kinks[j], 0.0)
+    for r in range(n_ev):
+        flag = rigid_flag(p, rows[r], dampers)
+        if flag == 3:
+            knots[h] = p[rows[r] + 1]
+            h += 1
+        elif flag != 0:
+            cx[n] = p[rows[r] + 1]
+            ct[n] = flag
             n += 1
-        if t_row:
-            R[n, 1] = 1.0
-            for j in range(h):
-                R[n, 2 + j] = 1.0 if x > kinks[j] else 0.0
-            n += 1
-    if n == 0:
-        return 2 + h
-    V = np.empty((2 + h, 2 + h))
-    s = jacobi_svd(R[:n].copy(), V)
-    top = s.max()
-    rank = 0
-    for i in range(s.shape[0]):
-        if s[i] > RIGID_RANK * top:
-            rank += 1
-    return 2 + h - rank
+    for x, known in ((0.0, LEFT_KNOWN), (p[0], RIGHT_KNOWN)):
+        for d in known:
+            if d < 2:  # Y (1) or theta (2) held by the end
+                cx[n] = x
+                ct[n] = d + 1
+                n += 1
+    return rigid_dimension(p[0], knots, h, cx, ct, n)

@@ -23,7 +23,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "b15edb54cf53b90dd544a7e281d68ee4a3adcbaa"
+DIGEST = "e088e65a1de3c3cb33ce5b165a0fb2a38893649c"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 4
@@ -39,8 +39,6 @@ RICCATI_STEP = 1.0
 NODES_PER_MODE = 8
 #: The scan's nodes beside a component's own frequency w0 are w0 (1 -+ OSC_SIDE).
 OSC_SIDE = 1e-9
-#: Relative singular value below which a rigid-motion constraint is dependent.
-RIGID_RANK = 1e-9
 
 
 @njit(cache=True, inline="always")
@@ -772,6 +770,77 @@ def isolate(delta, count, a, b, na, nb, p, out, flags, k, modes, state, rtol):
 
 
 @njit(cache=True)
+def rigid_dimension(L, knots, h, cx, ct, n):
+    """Dimension of the rigid motions left free by n constraints, exactly (no threshold).
+
+    A rigid motion is continuous and piecewise linear on [0, L] with kinks only at the h
+    free hinges knots[0] <= ... <= knots[h-1]: with the nodes 0, knots..., L it is its
+    values v_0..v_{h+1} there (hat basis), dimension 2 + h. Constraint c sits at cx[c]
+    (SI), ct[c] = 1 for Y = 0, 2 for theta = 0; it acts in the piece i = the number of
+    knots < cx[c] (on a hinge it acts on its left side), on (v_i, v_{i+1}) only: a Y at x
+    as the row (n_{i+1} - x, x - n_i), a theta as (-1, 1). Per piece, by exact float
+    comparisons: two Y at different x, or a Y and a theta, have a 2 x 2 determinant
+    (n_{i+1} - n_i)(x_2 - x_1) resp. n_{i+1} - n_i, nonzero: both node values are 0. Else
+    the rows are one up to scale: a Y at a node zeroes that node's value; a Y inside links
+    v_{i+1} = c v_i, c = -(n_{i+1} - x)/(x - n_i) != 0; a theta links v_{i+1} = v_i. The
+    constraints then say: along each run of linked nodes the values are one times nonzero
+    factors, zero if one of them is zeroed; so the dimension is the number of such runs
+    (connected components of the link graph, a path) holding no zeroed node.
+    Degenerate pieces (n_i = n_{i+1}: a hinge at an end, two hinges at one x) are the
+    same point: v_i = v_{i+1} (a link), plus a slope of their own (one more dimension,
+    unless a theta constraint acts on it: only at x = 0 with a hinge there); a Y there
+    zeroes the node. This is the dimension of the null space of the exact constraints
+    on W(x) = a + b x + sum_j c_j (x - k_j)_+ with the same assignment of constraints to
+    pieces (``tests/reference_model.rigid_body_mode_count``)."""
+    m = h + 1
+    n_y = np.zeros(m, dtype=np.int64)
+    y_at = np.zeros(m)
+    two_y = np.zeros(m, dtype=np.bool_)
+    theta = np.zeros(m, dtype=np.bool_)
+    for c in range(n):
+        i = 0
+        while i < h and cx[c] > knots[i]:
+            i += 1
+        if ct[c] == 2:
+            theta[i] = True
+        elif n_y[i] == 0:
+            n_y[i] = 1
+            y_at[i] = cx[c]
+        elif cx[c] != y_at[i]:
+            two_y[i] = True
+    zero = np.zeros(m + 1, dtype=np.bool_)
+    link = np.zeros(m, dtype=np.bool_)
+    dim = 0
+    for i in range(m):
+        a = 0.0 if i == 0 else knots[i - 1]
+        b = L if i == h else knots[i]
+        if a == b:
+            link[i] = True
+            zero[i] = zero[i] or n_y[i] > 0
+            if not theta[i]:
+                dim += 1
+        elif two_y[i] or (n_y[i] > 0 and theta[i]):
+            zero[i] = True
+            zero[i + 1] = True
+        elif n_y[i] > 0 and y_at[i] == a:
+            zero[i] = True
+        elif n_y[i] > 0 and y_at[i] == b:
+            zero[i + 1] = True
+        else:
+            link[i] = n_y[i] > 0 or theta[i]
+    i = 0
+    while i <= m:
+        dead = zero[i]
+        while i < m and link[i]:
+            i += 1
+            dead = dead or zero[i]
+        if not dead:
+            dim += 1
+        i += 1
+    return dim
+
+
+@njit(cache=True)
 def lowest_start(count, rigid_modes, p, modes, out, flags, state, certify):
     """Start the search of the lowest ``modes``: the rigid-body zeros into out, the
     state at the bottom of the scan (lowest node beta = 1e-3). With ``certify`` the
@@ -1275,7 +1344,9 @@ def shape_steps(p, beta, rows):
 
 
 @njit(cache=True)
-def mode_shapes(event, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, gram, part, ratio):
+def mode_shapes(
+    event, inertia, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, gram, part, ratio
+):
     """The ``m`` shapes of the eigenspace at omega (a root of multiplicity m, or the centre
     of a cluster of m roots), units L = EI_0 = mbar_0 = 1.
 
@@ -1283,12 +1354,15 @@ def mode_shapes(event, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, 
     right limits at a point component); q_out (m, n_q): the unknowns of every point
     component, q_x (n_q) the x (SI) of the component each belongs to and q_mass (n_q) the
     mass moving with it (units mbar_0 L; 0 for a reaction or a rotation); gram (m, m) and
-    part (m): the mass inner products int mbar Y_i Y_j + sum mu q_i q_j and int mbar Y_i +
-    sum mu q_i (for the participation factor); ratio (m): singular value of each shape over
-    the largest of the end matrix. Shapes are the right singular vectors of the end matrix
-    for its m smallest singular values, walked back to the left end. ``event(p, row, b4,
-    Cz, Cq, A, B, qmass)`` fills a component's descriptor, ``sizes(p)`` gives the unknowns
-    (total, most of one), ``ends`` = the left end's unknowns and the right end's knowns."""
+    part (m): the mass inner products int mbar Y_i Y_j + sum mu q_i q_j + sum z_i^T M z_j
+    and int mbar Y_i + sum mu q_i + sum (M z_i)_Y (for the participation factor in a base
+    translation), z = [Y, theta] at a component holding the point mass matrix M on the
+    beam (a lumped mass and its rotary inertia); ratio (m): singular value of each shape
+    over the largest of the end matrix. Shapes are the right singular vectors of the end
+    matrix for its m smallest singular values, walked back to the left end. ``event(p,
+    row, b4, Cz, Cq, A, B, qmass)`` fills a component's descriptor, ``inertia(p, row, M)``
+    its point mass matrix (returns 0 if none), ``sizes(p)`` gives the unknowns (total,
+    most of one), ``ends`` = the left end's unknowns and the right end's knowns."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -1325,6 +1399,8 @@ def mode_shapes(event, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, 
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
     ev_mass = np.zeros(nb)
+    Mp = np.zeros((2, 2))
+    Mbuf = np.zeros((n_steps, 2, 2))
     G = np.zeros((width, width))
     s = 0
     nq_total = 0
@@ -1363,6 +1439,10 @@ def mode_shapes(event, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, 
             break
         nc, nq = event(p, rows[i], b4, Cz, Cq, Ad, B, ev_mass)
         nf = event_step(W, G, Cz, Cq, Ad, B, nc, nq)
+        if inertia(p, rows[i], Mp) != 0:
+            for r in range(2):
+                for c in range(2):
+                    Mbuf[s, r, c] = Mp[r, c]
         kind[s] = 1
         nq_s[s] = nq
         nf_s[s] = nf
@@ -1439,6 +1519,13 @@ def mode_shapes(event, sizes, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, 
     ns = xs.shape[0]
     for t in range(n_steps):
         if kind[t] != 0:
+            # a point mass matrix on [Y, theta] left of the component (where A acts)
+            for k in range(m):
+                mk0 = Mbuf[t, 0, 0] * Zn[k, t, 0] + Mbuf[t, 0, 1] * Zn[k, t, 1]
+                mk1 = Mbuf[t, 1, 0] * Zn[k, t, 0] + Mbuf[t, 1, 1] * Zn[k, t, 1]
+                part[k] += mk0
+                for l in range(m):
+                    gram[k, l] += Zn[l, t, 0] * mk0 + Zn[l, t, 1] * mk1
             continue
         x0 = x_s[t]
         x1 = x0 + rho_s[t]
@@ -2013,6 +2100,7 @@ COUNT = FunctionType(_i8(_f8, _A1))
 OSC = FunctionType(_A1(_A1))
 RIGID = FunctionType(_i8(_A1))
 EVENT = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _f8, _A2, _A2, _A2, _A2, _A1))
+INERTIA = FunctionType(_i8(_A1, _i8, _A2))
 _c16 = types.complex128
 _C2 = types.complex128[:, ::1]
 EVENT_C = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _c16, _C2, _C2, _C2, _C2, _A1))
@@ -2026,7 +2114,8 @@ FA_PAPER = 8
 FA_EVENT = 10
 FA_SIZES = 12
 FA_EVENT_C = 14
-FA_SIZE = 16
+FA_INERTIA = 16
+FA_SIZE = 18
 FUNCTION_TYPES = {
     "delta_stable": (FA_STABLE, DELTA),
     "count_below": (FA_COUNT, COUNT),
@@ -2036,6 +2125,7 @@ FUNCTION_TYPES = {
     "shape_event": (FA_EVENT, EVENT),
     "shape_sizes": (FA_SIZES, SIZES),
     "shape_event_c": (FA_EVENT_C, EVENT_C),
+    "shape_inertia": (FA_INERTIA, INERTIA),
 }
 
 
@@ -2065,6 +2155,7 @@ as_rigid = _function_value(RIGID)
 as_event = _function_value(EVENT)
 as_sizes = _function_value(SIZES)
 as_event_c = _function_value(EVENT_C)
+as_inertia = _function_value(INERTIA)
 
 
 @njit(cache=True)
@@ -2160,6 +2251,7 @@ def entry_mode_shapes(fa, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, gram
     """``mode_shapes`` with the kernel's descriptor functions."""
     return mode_shapes(
         as_event(fa[FA_EVENT], fa[FA_EVENT + 1]),
+        as_inertia(fa[FA_INERTIA], fa[FA_INERTIA + 1]),
         as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1]),
         ends,
         omega,

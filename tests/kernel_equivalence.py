@@ -53,6 +53,7 @@ PUBLIC = (
     "oscillator_frequencies",
     "rigid_body_modes",
     "shape_event",
+    "shape_inertia",
     "shape_sizes",
 )
 #: The shared numerics' printed functions compared one by one.
@@ -324,6 +325,7 @@ def _compare_at(ref: dict, new: dict, p: np.ndarray, rng: np.random.Generator, i
             gram, part, ratio = np.zeros((1, 1)), np.zeros(1), np.zeros(1)
             k["mode_shapes"](
                 k["shape_event"],
+                k["shape_inertia"],
                 k["shape_sizes"],
                 k["SHAPE_ENDS"],
                 r,

@@ -471,11 +471,11 @@ class Kernel:
         xs = np.ascontiguousarray(xs, dtype=np.float64)
         m = int(m)
         python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
-        names = ("shape_event", "shape_sizes")
+        names = ("shape_event", "shape_inertia", "shape_sizes")
         if python:
-            event, sizes = (self._python_function(n) for n in names)
+            event, inertia, sizes = (self._python_function(n) for n in names)
         else:
-            event, sizes = (self._compiled(n) for n in names)
+            event, inertia, sizes = (self._compiled(n) for n in names)
             fa = self._addresses(*names)
         nq = int(sizes(p)[0])
         Z = np.zeros((m, xs.shape[0], 4))
@@ -488,7 +488,7 @@ class Kernel:
         args = (self.module.SHAPE_ENDS, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part)
         args += (ratio,)
         if python:
-            interpret.timed_call(self._python_function("mode_shapes"), event, sizes, *args)
+            interpret.timed_call(self._python_function("mode_shapes"), event, inertia, sizes, *args)
         else:
             self._entry("mode_shapes")(fa, *args)
             self.warmed.add("mode_shapes")
