@@ -98,6 +98,8 @@ def test_huge_dashpot_prints_no_numpy_warning_and_the_rigid_limit(tmp_path):
     exact = [b**2 for b in _tip_mass_cantilever(8, 1.0)]  # L = EI = mbar = 1: omega = b^2
     assert data["w_d"], data
     for w_d, sigma in zip(data["w_d"], data["sigma"], strict=True):
+        if abs(complex(w_d, sigma)) < 1e-12:
+            continue  # the dashpot-spring's slow root, sigma = k / c = 1e-200: 0 in the limit
         assert min(abs(w_d - e) / e for e in exact) < 1e-10, (w_d, exact)
         assert sigma == 0.0
     table = _run("solve", str(path), "--modes", "4")

@@ -280,7 +280,7 @@ def test_moving_a_support_keeps_it_apart_from_the_mass_sharing_its_offset():
         ({"attachments[2].k[0]": [1.0, -1.0]}, "attachments[2].k[0]", "at point 1, must be > 0"),
         ({"attachments[4].J": [1.0, -1.0]}, "attachments[4].J", "at point 1, must be >= 0"),
         ({"attachments[1].x": [0.5, 1.0]}, "attachments[1].x", "at point 1, must lie inside"),
-        ({"attachments[3].x": [0.5, 0.0]}, "attachments[3].x", "at point 1, a support at"),
+        ({"attachments[3].x": [0.5, 0.0]}, "attachments[3].x", "at point 1, a support where"),
         ({"attachments[4].x": [0.6, 0.3]}, "attachments[4].x", "at point 1, at exactly the x"),
         ({"attachments[2].m[1]": [1.0, 1e-300]}, "attachments[2].m[1]", "at point 1, must lie"),
         ({"beam.segments[1].EI": [1.0, 1e300]}, "beam.segments[1].EI", "at point 1, must lie"),
@@ -429,13 +429,13 @@ def test_cli_refuses_beam_ei_on_a_stepped_beam(tmp_path):
 
 
 def test_sigint_stops_a_long_sweep_within_two_seconds(tmp_path):
-    """Ctrl-C during a sweep of 2000 points: status 130 and one line within 2 s, and the
+    """Ctrl-C during a sweep of 20000 points: status 130 and one line within 2 s, and the
     --out file is not written (not even in part)."""
     from interrupt import interrupt
 
     out = tmp_path / "sweep.csv"
     argv = ["sweep", str(mstmm.example_path("wu_chou_1998")), "--vary"]
-    argv += ["attachments[2].k=LOG:1e3:1e9:2000", "--modes", "100", "--out", str(out)]
+    argv += ["attachments[2].k=LOG:1e3:1e9:20000", "--modes", "100", "--out", str(out)]
     status, _, err, took = interrupt(argv, 4.0)
     assert status == 130, err
     assert err == "mstmm: interrupted\n"

@@ -467,9 +467,10 @@ def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tup
         )
     cap = max(unit * (TALLEST * math.pi) ** 2, 4.0 * found)
     if not bound.sigma <= cap:
-        return cap, (
+        top = 4.0 * found  # what can be searched reliably: several times the rates found
+        return top, (
             f"the proved bound on the decay rate ({bound.sigma:.6g} rad/s) is beyond what"
-            f" can be counted: roots with sigma > {cap:.6g} rad/s are not counted"
+            f" can be counted: roots with sigma > {top:.6g} rad/s are not counted"
         )
     return max(bound.sigma, 1.01 * found), ""
 
