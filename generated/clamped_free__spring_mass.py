@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "94c6126cfff6e4ce7b3587f2b039aac7287dfe7a"
+SIGNATURE = "aee0d5c73c1990d9328a65f9666075bf537fc955"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "e088e65a1de3c3cb33ce5b165a0fb2a38893649c"
+NUMERICS = "0c60ddf6263e1098d6dcf74bc514a44d5453e910"
 
 
 @njit(cache=True)

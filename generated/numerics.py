@@ -23,7 +23,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "e088e65a1de3c3cb33ce5b165a0fb2a38893649c"
+DIGEST = "0c60ddf6263e1098d6dcf74bc514a44d5453e910"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 4

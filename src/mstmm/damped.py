@@ -50,8 +50,10 @@ from .kernels import Kernel
 
 #: Largest phase step (radians) between neighbouring samples of the contour.
 PHASE_STEP = math.pi / 4
-#: Largest step of log|f| between neighbouring samples (a root near the contour).
-LOG_STEP = 1.0
+#: Largest departure of log f at a step's midpoint from the mean of its ends (a zero
+#: near the contour bends log f sharply; far from every zero it is smooth, however fast
+#: |f| grows along a tall edge).
+BEND = 0.5
 #: Samples of the contour are refined down to this relative length at most.
 FINEST = 1e-13
 #: A winding number this far from an integer is not trusted (the sampling is refined).
@@ -60,6 +62,10 @@ WINDING_SLACK = 0.05
 NEWTON_TOL = 4e-16
 #: Steps of the damping scale t in the continuation (halved on failure).
 CONTINUATION_STEPS = 8
+#: Scenes with this many components evaluate batches of at least PARALLEL_BATCH points
+#: on every core (below, starting the threads costs more than it saves).
+PARALLEL_EVENTS = 64
+PARALLEL_BATCH = 4
 
 
 @dataclass(frozen=True)
@@ -112,8 +118,12 @@ class _Function:
     phase taken from f's value (mod 2 pi), so any branch of the kernel's scaling is fine."""
 
     def __init__(self, kernel: Kernel, p: np.ndarray):
-        self.evaluate = kernel.module.evaluate_damped
-        self.delta = kernel.module.delta_damped
+        module = kernel.module
+        self.evaluate = module.evaluate_damped
+        # the parallel twin where a batch of PARALLEL_BATCH points outweighs the threads
+        parallel = getattr(module, "evaluate_damped_parallel", None)
+        self.parallel = parallel if int(p[4]) >= PARALLEL_EVENTS else None
+        self.delta = module.delta_damped
         self.p = np.ascontiguousarray(p, dtype=np.float64)
         self.calls = 0
 
@@ -121,7 +131,10 @@ class _Function:
         ws = np.ascontiguousarray(ws, dtype=np.complex128)
         mant = np.empty_like(ws)
         logs = np.empty_like(ws)
-        self.evaluate(ws, self.p, mant, logs)
+        if self.parallel is not None and ws.size >= PARALLEL_BATCH:
+            self.parallel(ws, self.p, mant, logs)
+        else:
+            self.evaluate(ws, self.p, mant, logs)
         self.calls += ws.size
         with np.errstate(divide="ignore"):
             return np.log(np.abs(mant)) + logs.real + 1j * (np.angle(mant) + logs.imag)
@@ -143,7 +156,10 @@ def edge_winding(
     f: _Function, a: complex, b: complex, n0: int = 32, nodes: np.ndarray | None = None
 ) -> float:
     """The change of arg f along the segment from a to b (radians), sampled adaptively
-    until no step of the phase exceeds PHASE_STEP and none of log|f| exceeds LOG_STEP;
+    until no step of the phase exceeds PHASE_STEP and log f at the midpoint of every step
+    is within BEND of the mean of its ends (a zero near the segment, at a distance below a
+    third of the step or so, bends it further; the rise of |f| along a tall edge far from
+    every zero does not, and costs no samples);
     ``nodes`` (fractions of the segment) are sampled from the start: one between any two
     roots near the segment, so that no two of them share a step (their phase swings would
     add to 2 pi and wrap to nothing). Raises :class:`OnContour` when a zero sits on the
@@ -157,8 +173,18 @@ def edge_winding(
         if not np.all(np.isfinite(g)):
             raise OnContour(f"f = 0 on the contour near {a + (b - a) * t[~np.isfinite(g)][0]}")
         dphi = _wrap(np.diff(g.imag))
-        dlog = np.abs(np.diff(g.real))
-        bad = (np.abs(dphi) > PHASE_STEP) | (dlog > LOG_STEP)
+        bad = np.abs(dphi) > PHASE_STEP
+        if t.size > 2:
+            # log|f| over a step against what its neighbours' slopes predict: a zero close
+            # to the segment (a double one turns the phase by a whole turn, which wraps
+            # to nothing) breaks the trend
+            dlog = np.diff(g.real)
+            h = np.diff(t)
+            slope = dlog / h
+            trend = np.empty_like(slope)
+            trend[1:-1] = 0.5 * (slope[:-2] + slope[2:])
+            trend[0], trend[-1] = slope[1], slope[-2]
+            bad |= np.abs(dlog - h * trend) > 2.0 * BEND
         if not bad.any():
             # each step once more through its midpoint: a step whose phase turned by a
             # whole turn more than it shows (a zero close by) splits in two there
@@ -173,8 +199,8 @@ def edge_winding(
             # zero close by (its swing may have wrapped by a whole turn)
             hidden = np.abs(h1 + h2 - dphi[todo]) > 1.0
             hidden |= (np.abs(h1) > PHASE_STEP) | (np.abs(h2) > PHASE_STEP)
-            hidden |= np.abs(gm.real - g.real[todo]) > LOG_STEP
-            hidden |= np.abs(g.real[todo + 1] - gm.real) > LOG_STEP
+            hidden |= np.abs(gm.real - 0.5 * (g.real[todo] + g.real[todo + 1])) > BEND
+            hidden |= np.abs(0.5 * (h1 - h2)) > BEND
             hidden |= ~np.isfinite(gm)
             checked[todo] = True
             if not hidden.any():
@@ -208,11 +234,18 @@ def winding(
     near the real axis). Raises :class:`OnContour` when a zero lies on its boundary."""
     x0, x1, y0, y1 = box
     corners = [complex(x0, y0), complex(x1, y0), complex(x1, y1), complex(x0, y1)]
+    # a tall box: its sides sampled at heights growing geometrically from the bottom,
+    # where the zeros are (f changes on the scale of the distance to them)
+    rise = np.zeros(0)
+    if y1 - y0 > 8.0 * (x1 - x0):
+        rise = (x1 - x0) * 2.0 ** np.arange(int(math.log2((y1 - y0) / (x1 - x0))) + 1) / (y1 - y0)
     total = 0.0
     for i in range(4):
         nodes = None
         if i == 0 and bottom is not None:
             nodes = (np.asarray(bottom, dtype=float) - x0) / (x1 - x0)
+        elif i in (1, 3):
+            nodes = rise if i == 1 else 1.0 - rise
         total += edge_winding(f, corners[i], corners[(i + 1) % 4], n0, nodes)
     n = total / (2.0 * math.pi)
     if abs(n - round(n)) > WINDING_SLACK:
@@ -266,6 +299,57 @@ def newton(
     return w1, prev <= 1e-10 * max(abs(w1), 1e-3 * scale)
 
 
+def newton_many(
+    f: _Function, ws: np.ndarray, scale: float = 1.0, maxiter: int = 80, tol: float = NEWTON_TOL
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`newton` (multiplicity 1) from every start in ``ws`` at once: each step
+    evaluates f at all the starts still moving in one call (on every core for a large
+    scene). Returns (roots, converged), arrays."""
+    w1 = np.array(ws, dtype=np.complex128).ravel()
+    n = w1.size
+    w0 = w1 + 1e-7 * np.maximum(np.abs(w1), 1e-3 * scale)
+    g = f(np.concatenate([w0, w1])) if n else np.zeros(0, dtype=np.complex128)
+    g0, g1 = g[:n], g[n:]
+    out = w1.copy()
+    ok = np.zeros(n, dtype=bool)
+    done = np.zeros(n, dtype=bool)
+    prev = np.full(n, math.inf)
+    for _ in range(maxiter):
+        exact1 = ~done & ~np.isfinite(g1.real)  # f = 0 exactly
+        exact0 = ~done & ~exact1 & ~np.isfinite(g0.real)
+        out[exact1], out[exact0] = w1[exact1], w0[exact0]
+        ok |= exact1 | exact0
+        done |= exact1 | exact0
+        live = np.flatnonzero(~done)
+        if live.size == 0:
+            break
+        dg = g0[live].real - g1[live].real + 1j * _wrap(g0[live].imag - g1[live].imag)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            denom = 1.0 - np.exp(np.minimum(dg.real, 700.0) + 1j * dg.imag)
+            step = -(w1[live] - w0[live]) / denom
+        mag = np.maximum(np.abs(w1[live]), 1e-3 * scale)
+        size = np.abs(step)
+        bad = (dg.real > 700.0) | (denom == 0) | ~np.isfinite(step)
+        conv = ~bad & (size <= tol * mag)
+        stall = ~bad & ~conv & (size <= 1e-11 * mag) & (size >= 0.5 * prev[live])
+        out[live[bad]] = w1[live[bad]]
+        out[live[conv]] = w1[live[conv]] + step[conv]
+        out[live[stall]] = w1[live[stall]]
+        ok[live[conv | stall]] = True
+        done[live[bad | conv | stall]] = True
+        go = ~(bad | conv | stall)
+        move = live[go]
+        w0[move], g0[move] = w1[move], g1[move]
+        w1[move] = w1[move] + step[go]
+        prev[move] = size[go]
+        if move.size:
+            g1[move] = f(w1[move])
+    left = ~done
+    out[left] = w1[left]
+    ok[left] = prev[left] <= 1e-10 * np.maximum(np.abs(w1[left]), 1e-3 * scale)
+    return out, ok
+
+
 def damping_scaled(p: np.ndarray, columns: np.ndarray, t: float) -> np.ndarray:
     """The parameter vector with every damping value scaled by t."""
     q = np.array(p, dtype=np.float64)
@@ -311,9 +395,10 @@ class _Problem:
     def add(self, w: complex, multiplicity: int, how: str, converged: bool = True) -> bool:
         """Add a root unless it is one already known, or the zero at the origin (whose
         order is known). A root close to a known one, to its own mirror image (viscous:
-        near the imaginary axis) or said to be multiple is resolved first by
-        :func:`_cluster`: the zeros in a disc around it, each to full accuracy (a
-        defective multiple root, critical damping, as one root of its multiplicity).
+        near the imaginary axis), said to be multiple or of unknown multiplicity (0) is
+        resolved first by :func:`_cluster`: the zeros in a disc around it, each to full
+        accuracy (a defective multiple root, critical damping, as one root of its
+        multiplicity; its count is the multiplicity of a root of unknown multiplicity).
         Returns whether anything new was added."""
         if self.order0 and abs(w) <= 1e-9 * self.unit:
             return False
@@ -321,18 +406,22 @@ class _Problem:
         tiny = max(abs(w), 1e-6 * self.unit)
         near = [r for r in self.roots if abs(r.omega - w) <= 1e-6 * tiny]
         mirrored = self.viscous and 0.0 < w.real <= 1e-6 * tiny
-        if not (near or mirrored or multiplicity > 1):
+        if not (near or mirrored or multiplicity != 1):
             self.roots.append(DampedRoot(w, multiplicity, converged, how))
             return True
         centre = complex(0.0, w.imag) if mirrored else w
         spread = max([abs(r.omega - centre) for r in near] + [abs(w - centre)])
         found = _cluster(self, centre, max(4.0 * spread, 1e-7 * tiny))
+        if found is None and multiplicity == 0:  # unknown: a small square's count says
+            multiplicity = _multiplicity(self, w)
+            if multiplicity == 0:
+                return False
         if found is None:  # the disc could not be resolved: keep what Newton gave
             if near:
                 return False
             self.roots.append(DampedRoot(w, multiplicity, converged, how))
             return True
-        before = {(r.omega, r.multiplicity) for r in near}
+        before = [(r.omega, r.multiplicity) for r in near]
         for r in near:
             self.roots.remove(r)
         added = False
@@ -343,7 +432,8 @@ class _Problem:
             if self.viscous and z.real < 0.0:
                 continue  # the mirror image of a root kept on the right
             self.roots.append(DampedRoot(z, m, converged, how))
-            added |= (z, m) not in before
+            # new unless it is one of those it replaces (moved by round-off only)
+            added |= not any(mb == m and abs(b - z) <= 1e-9 * tiny for b, mb in before)
         return added
 
     def snap(self, w: complex) -> complex:
@@ -418,6 +508,8 @@ def _cluster(problem: _Problem, centre: complex, r0: float) -> list[tuple[comple
     if first is None or first[1] <= 0:
         return None
     m = first[1]
+    if m == 1:  # one simple zero: its place from the first circle (no conditioning to gain)
+        return [(complex(centre + _power_sums(first[0], 1, r0)[0]), 1)]
     if m > 8:
         return None
     radii, rings = [r0], [first[0]]
@@ -506,18 +598,50 @@ def _continue(
     return w, True
 
 
+#: The damping scale of a leap's first step (:func:`_leap`).
+LEAP_T = 1.0 / 64.0
+
+
+def _leap(problem: _Problem, w0s: np.ndarray, pick) -> tuple[np.ndarray, np.ndarray]:
+    """The roots w0s of the undamped structure carried to full damping in one leap: each
+    root at the small damping scale ``LEAP_T`` (Newton from w0: it moves a fraction of
+    what it moves in all), extrapolated linearly to t = 1 and polished there; all at once
+    (:func:`newton_many`). A first-order prediction of each path; refused (not ok) where
+    the polish moves the root more than half as far as the prediction did (the path
+    bends, or Newton went to a neighbour): the continuation in steps then follows it.
+    Returns (roots, ok)."""
+    w0s = np.asarray(w0s, dtype=np.complex128)
+    small = _Function(problem.kernel, pick(LEAP_T))
+    w_t, ok_t = newton_many(small, w0s, scale=problem.unit, tol=1e-10)
+    guess = w0s + (w_t - w0s) / LEAP_T
+    w, ok = newton_many(problem.f, guess, scale=problem.unit)
+    ok &= ok_t & (np.abs(w - guess) <= 0.5 * np.abs(guess - w0s) + 1e-9 * np.abs(w0s))
+    return w, ok
+
+
 def _follow(problem: _Problem, todo: list[tuple[float, int]], pick) -> None:
-    """Continue each undamped root ``(w0, steps)`` of ``todo`` and add where it arrives.
-    Two paths that arrive at one root means one strayed onto its neighbour's (close roots,
-    damping that moves them further than they are apart): both are followed again in
-    eight times finer steps, down to 1/512 of the damping scale (what is still lost then
+    """Carry each undamped root ``(w0, steps)`` of ``todo`` to full damping and add where
+    it arrives: by a leap (``steps = 0``, :func:`_leap`) or a continuation in ``steps``
+    steps. A leap that is refused is continued instead. Two paths that arrive at one root
+    means one strayed onto its neighbour's (close roots, damping that moves them further
+    than they are apart): both are followed again in eight times finer steps (a leap's in
+    ``CONTINUATION_STEPS``), down to 1/512 of the damping scale (what is still lost then
     is left to the count)."""
     start: dict[complex, tuple[float, int]] = {}  # each root continued: its w0 and steps
+    first = [w0 for w0, steps in todo if steps == 0]
+    leaps = dict(zip(first, zip(*_leap(problem, first, pick)))) if first else {}
     while todo:
         w0, steps = todo.pop(0)
-        w, ok = _continue(problem, w0, pick, steps)
-        if not ok:
-            continue
+        if steps == 0:
+            w, ok = leaps[w0]
+            if not ok:
+                todo.append((w0, CONTINUATION_STEPS))
+                continue
+            w = complex(w)
+        else:
+            w, ok = _continue(problem, w0, pick, steps)
+            if not ok:
+                continue
         if problem.add(w, 1, "continuation"):
             start[problem.roots[-1].omega] = (w0, steps)
             continue
@@ -526,11 +650,16 @@ def _follow(problem: _Problem, todo: list[tuple[float, int]], pick) -> None:
             (r for r in problem.roots for v in near if abs(r.omega - v) <= 1e-9 * abs(w)),
             None,
         )
-        if other is None or other.omega not in start or steps >= 64 * CONTINUATION_STEPS:
+        key = next(
+            (v for v in start if other is not None and abs(v - other.omega) <= 1e-9 * abs(w)),
+            None,
+        )
+        if key is None or steps >= 64 * CONTINUATION_STEPS:
             continue
-        w1, steps1 = start.pop(other.omega)
+        w1, steps1 = start.pop(key)
         problem.roots.remove(other)
-        todo += [(w1, max(steps1, steps) * 8), (w0, steps * 8)]
+        finer = max(steps1, steps) * 8 or CONTINUATION_STEPS
+        todo += [(w1, finer), (w0, steps * 8 or CONTINUATION_STEPS)]
 
 
 def _axis_roots(problem: _Problem, sigma_lo: float, sigma_hi: float) -> None:
@@ -603,9 +732,7 @@ def _fill(problem: _Problem, box, count: int, depth: int = 0) -> None:
             for m in dict.fromkeys((1, left)):
                 w, ok = newton(f, start, multiplicity=m, scale=problem.unit)
                 if ok and problem.inside(w, box):
-                    mult = _multiplicity(problem, w)
-                    if mult > 0:
-                        problem.add(w, mult, "search")
+                    problem.add(w, 0, "search")  # its multiplicity from a circle round it
             if problem.known(box) >= count:
                 return
     # split in four (lines a little off the middle: not through a symmetric root)
@@ -678,7 +805,7 @@ def damped_roots(
 
     values, counts = np.unique(elastic, return_counts=True)
     todo = [
-        (float(w0), CONTINUATION_STEPS)
+        (float(w0), 0)
         for w0, c in zip(values, counts)
         if c == 1 and w0 <= 1.5 * w_top  # a multiple root splits: the count finds its pieces
     ]
@@ -686,16 +813,22 @@ def damped_roots(
     scale = min([unit, *values[:1]])
     # the origin (a zero of order order0) this far inside the left and bottom edges
     eps = delta = 1e-3 * scale
+    if viscous:
+        # the zeros are mirror pairs (w, -conj w), the mirrors known: the left edge well
+        # left of the imaginary axis, where the overdamped roots lie (one so close to the
+        # contour would need samples as close), and the bottom as far below the origin's
+        # zero (a passive structure has no zero with sigma < 0)
+        eps = delta = 0.25 * scale
     sigma_top, unproved = _sigma_top(scene, problem.roots, w_top, unit)
     proved = not unproved
     if unproved:
         problem.notes.append(unproved)
     box = (-eps, w_top, -delta, sigma_top)
-    if viscous:
-        _axis_roots(problem, 1e-9 * scale, sigma_top)
     count = _count(problem, box)
     checked = count is not None and proved
     if count is not None:
+        if viscous and problem.known(box) < count:
+            _axis_roots(problem, 1e-9 * scale, sigma_top)
         _fill(problem, box, count)
         found = problem.known(box)
         if found != count:

@@ -24,23 +24,26 @@ sqrt(k_I / (2 m))`` (``Im sqrt(a + i b) <= sqrt(b / 2) + sqrt(max(-a, 0))`` with
 **Point dampers.** ``c`` is a sum over dashpots of ``c_j |relative motion|^2``. A
 dashpot between the beam and the ground gives ``c_j |u(x_j)|^2``; one between the beam
 and a lumped mass (or between two masses) at most ``2 c_j (|u(x_j)|^2 + |q|^2)``, and
-``2 c_j |q_a|^2 <= (2 c_j / m_a) m``. Hence ``c <= Gamma max|u|^2 + R m`` with
-``Gamma`` the beam-side sum and ``R`` the largest ``2 sum(c) / m_a`` of a component.
+``2 c_j |q_a|^2 <= (2 c_j / m_a) m``. Hence ``c <= sum_j Gamma_j |u(x_j)|^2 + R m`` with
+``Gamma_j`` the beam-side damping of damper j (``Gamma`` their sum) and ``R`` the largest
+``2 sum(c) / m_a`` of a component.
 
 **Interpolation.** On an interval ``I`` of length ``l`` free of hinges (where ``u`` is
 in ``H^2``), ``|u(x)|^2 <= 8 ||u||^2 / l + 2 l^3 ||u''||^2`` for ``x`` in ``I`` (split
 ``u`` into its L2 projection ``p`` on linear functions, ``max|p|^2 <= 4 ||p||^2 / l``,
 and the rest ``e``, which is orthogonal to linears, so ``e`` and ``e'`` vanish in
-``I`` and ``|e| <= l^(3/2) ||e''||``). With ``m >= mbar_min ||u||^2`` and
-``EI_min ||u''||^2 <= k_R <= m (sigma X + W^2)``:
+``I`` and ``|e| <= l^(3/2) ||e''||``). Each damper j takes its own interval, of length
+``l_j <= P_j`` (``P_j``: the hinge-free piece that holds it; one at a hinge takes the
+wider piece beside it), and the norms over it are at most those over the beam. With
+``m >= mbar_min ||u||^2`` and ``EI_min ||u''||^2 <= k_R <= m (sigma X + W^2)``:
 
-    X <= R + 8 Gamma / (mbar_min l) + 2 Gamma l^3 (sigma X + W^2) / EI_min
+    X <= R + sum_j 8 Gamma_j / (mbar_min l_j) + sum_j 2 Gamma_j l_j^3 (sigma X + W^2) / EI_min.
 
-for every ``l <= P`` (``P``: the shortest hinge-free piece that holds a damper; one at a
-hinge takes the wider piece beside it). Choosing
-``l = min(P, (EI_min / (4 Gamma sigma))^(1/3))`` and ``sigma >= W``:
+Choosing ``l_j = min(P_j, l)``, ``l = (EI_min / (4 Gamma sigma))^(1/3)`` (so the last sum
+is at most half of ``X`` plus ``W^2 / (2 sigma)``), ``1 / min(P_j, l) <= 1 / P_j + 1 / l``
+and ``sigma >= W``:
 
-    (2)  X <= X0 + B sigma^(1/3),   X0 = 2 R + 16 Gamma / (mbar_min P) + W,
+    (2)  X <= X0 + B sigma^(1/3),   X0 = 2 R + 16 sum_j Gamma_j / (mbar_min P_j) + W,
                                     B = 16 Gamma / mbar_min (4 Gamma / EI_min)^(1/3).
 
 **The bound.** (1) and (2) with ``t = sigma^(1/6)``: every root with ``|w_d| <= W`` and
@@ -69,7 +72,8 @@ class DecayBound:
     sigma: float  # no root with |w_d| <= W has a larger decay rate (1/s)
     gamma: float  # Gamma: beam-side damping (N s/m)
     rate: float  # R: the largest 2 sum(c) / m of a component (1/s)
-    piece: float  # P: the shortest hinge-free piece holding a damper (m)
+    piece: float  # the shortest hinge-free piece holding a damper (m)
+    reach: float  # sum_j Gamma_j / P_j: each damper over its hinge-free piece (N s/m^2)
     eta: float  # the largest loss factor
 
 
@@ -130,7 +134,7 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     breaks = {0.0, float(beam.length)}
     gamma = 0.0
     rate = 0.0
-    where: list[float] = []
+    where: list[tuple[float, float]] = []  # each damper: x and Gamma_j
     for a in scene.attachments:
         if _splits_rotation(a.kind):
             breaks.add(float(a.x))
@@ -148,27 +152,30 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
                 ms += vs
         if not cs:
             continue
-        where.append(float(a.x))
         total = math.fsum(cs)
         if _grounded(a.kind) and not ms:
             gamma += total
+            where.append((float(a.x), total))
             continue
         gamma += 2.0 * total
+        where.append((float(a.x), 2.0 * total))
         if ms:
             if min(ms) <= 0.0:
                 return None
             rate = max(rate, 2.0 * total / min(ms))
     points = sorted(breaks)
     piece = float(beam.length)
-    for x in where:  # the interval around each damper lies in its hinge-free piece
+    reach = 0.0
+    for x, g in where:  # the interval around each damper lies in its hinge-free piece
         i = bisect.bisect_right(points, x)
         lo, hi = points[max(i - 1, 0)], points[min(i, len(points) - 1)]
         if lo == x and i >= 2:  # at a hinge: the wider of the two pieces beside it
             hi = max(hi - x, x - points[i - 2])
             lo = 0.0
         piece = min(piece, hi - lo)
+        reach += g / (hi - lo)
     W = abs(float(w_top))
-    X0 = 2.0 * rate + 16.0 * gamma / (mbar * piece) + W
+    X0 = 2.0 * rate + 16.0 * reach / mbar + W
     B = 16.0 * gamma / mbar * (4.0 * gamma / EI) ** (1.0 / 3.0)
     a = [X0 + W * math.sqrt(eta / 2.0), B, math.sqrt(eta * X0 / 2.0), math.sqrt(eta * B / 2.0)]
     t = _positive_root(a)
@@ -176,4 +183,4 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
         sigma = max(W, t**6)
     except OverflowError:
         sigma = math.inf
-    return DecayBound(sigma, gamma, rate, piece, eta)
+    return DecayBound(sigma, gamma, rate, piece, reach, eta)
