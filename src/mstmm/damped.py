@@ -15,9 +15,11 @@ The search (:func:`damped_roots`):
 1. **Start from the undamped structure.** Its roots (the certified search of the
    undamped twin's real kernel: the same scene without its dampers) are the damped
    roots at damping scale ``t = 0``.
-2. **Continuation** in ``t`` from 0 to 1 (every damping value of the parameter vector
-   scaled by ``t``): each simple undamped root is followed by Newton's method on the
-   logarithmic derivative, in steps that halve when Newton does not settle.
+2. **Leap, or continuation,** in ``t`` from 0 to 1 (every damping value of the parameter
+   vector scaled by ``t``): every simple undamped root at once to a small ``t``, then
+   extrapolated linearly to ``t = 1`` and polished there (:func:`_leap`); where the
+   polish is not trusted, or two roots arrive at one, followed by Newton's method in
+   steps that halve when Newton does not settle (:func:`_continue`).
 3. **Count** the zeros in the rectangle ``[-eps, W] x [-delta, S]`` of the ``w`` plane
    (``w_d`` up to the band's top ``W``, ``sigma`` up to ``S``, the origin inside) by the
    winding number, sampled adaptively until no step of the phase exceeds ``pi/4``; the
