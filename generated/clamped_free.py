@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "2d4b3cbb93f89cd0542a5aca5acb8c5b9a1da64e"
+SIGNATURE = "e3afa3fe042e72612122f73862b2ac0719bc46da"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "0c60ddf6263e1098d6dcf74bc514a44d5453e910"
+NUMERICS = "17758bf79b78f1990e649e0ec46fdc419567f723"
 
 
 @njit(cache=True)

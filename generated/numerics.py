@@ -23,7 +23,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 #: sha1 of the derive/ sources this module was printed from (each kernel checks it).
-DIGEST = "0c60ddf6263e1098d6dcf74bc514a44d5453e910"
+DIGEST = "17758bf79b78f1990e649e0ec46fdc419567f723"
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = 5
 SEGMENT_WIDTH = 4
@@ -51,10 +51,14 @@ def krylov(x):
         K2 = 0.5 + z * (0.001388888888888889 + z * (2.755731922398589e-07 + z * (1.1470745597729725e-11 + z * (1.5619206968586225e-16 + z * (8.896791392450574e-22)))))
         K3 = 0.16666666666666666 + z * (0.0001984126984126984 + z * (2.505210838544172e-08 + z * (7.647163731819816e-13 + z * (8.22063524662433e-18))))
     else:
-        K0 = (0.5)*math.cos(x) + (0.5)*math.cosh(x)
-        K1 = (0.5)*(math.sin(x) + math.sinh(x))/x
-        K2 = (0.5)*(-math.cos(x) + math.cosh(x))/x**2
-        K3 = (0.5)*(-math.sin(x) + math.sinh(x))/x**3
+        t0 = math.cos(x)
+        t1 = math.cosh(x)
+        t2 = math.sin(x)
+        t3 = math.sinh(x)
+        K0 = (0.5)*t0 + (0.5)*t1
+        K1 = (0.5)*(t2 + t3)/x
+        K2 = (0.5)*(-t0 + t1)/x**2
+        K3 = (0.5)*(-t2 + t3)/x**3
     return K0, K1, K2, K3
 
 
@@ -67,10 +71,16 @@ def krylov_scaled(x):
     E = math.exp(-x)
     chs = 0.5 + 0.5 * E * E
     shs = 0.5 - 0.5 * E * E
-    K0 = (0.5)*E*math.cos(x) + (0.5)*chs
-    K1 = (0.5)*E*math.sin(x)/x + (0.5)*shs/x
-    K2 = -0.5*E*math.cos(x)/x**2 + (0.5)*chs/x**2
-    K3 = -0.5*E*math.sin(x)/x**3 + (0.5)*shs/x**3
+    t0 = (0.5)*E
+    t1 = t0*math.cos(x)
+    t2 = 1.0/x
+    t3 = t0*math.sin(x)
+    t4 = x**(-2.0)
+    t5 = x**(-3.0)
+    K0 = (0.5)*chs + t1
+    K1 = (0.5)*shs*t2 + t2*t3
+    K2 = (0.5)*chs*t4 - t1*t4
+    K3 = (0.5)*shs*t5 - t3*t5
     return x, K0, K1, K2, K3
 
 
@@ -90,10 +100,17 @@ def compound_krylov(x):
         E = math.exp(-x)
         chs = 0.5 + 0.5 * E * E
         shs = 0.5 - 0.5 * E * E
-        F1 = (0.5)*chs*math.sin(x)/x + (0.5)*shs*math.cos(x)/x
-        F2 = (0.5)*shs*math.sin(x)/x**2
-        F3 = (0.5)*chs*math.sin(x)/x**3 - 0.5*shs*math.cos(x)/x**3
-        F4 = (0.5)*E/x**4 - 0.5*chs*math.cos(x)/x**4
+        t0 = (0.5)/x
+        t1 = math.sin(x)
+        t2 = chs*t1
+        t3 = math.cos(x)
+        t4 = shs*t3
+        t5 = (0.5)/x**3
+        t6 = (0.5)/x**4
+        F1 = t0*t2 + t0*t4
+        F2 = (0.5)*shs*t1/x**2
+        F3 = t2*t5 - t4*t5
+        F4 = E*t6 - chs*t3*t6
     return shift, E, F1, F2, F3, F4
 
 
@@ -210,16 +227,22 @@ def beam_compound_step(v, beta, rho):
 def krylov_c(x):
     """``krylov`` for a complex argument."""
     if abs(x) < 1.5:
-        z = x**4
+        x2 = x * x  # a complex power would go through exp and log
+        z = x2 * x2
         K0 = 1.0 + z * (0.041666666666666664 + z * (2.48015873015873e-05 + z * (2.08767569878681e-09 + z * (4.779477332387385e-14 + z * (4.110317623312165e-19)))))
         K1 = 1.0 + z * (0.008333333333333333 + z * (2.7557319223985893e-06 + z * (1.6059043836821613e-10 + z * (2.8114572543455206e-15 + z * (1.9572941063391263e-20)))))
         K2 = 0.5 + z * (0.001388888888888889 + z * (2.755731922398589e-07 + z * (1.1470745597729725e-11 + z * (1.5619206968586225e-16 + z * (8.896791392450574e-22)))))
         K3 = 0.16666666666666666 + z * (0.0001984126984126984 + z * (2.505210838544172e-08 + z * (7.647163731819816e-13 + z * (8.22063524662433e-18))))
     else:
-        K0 = (0.5)*cmath.cos(x) + (0.5)*cmath.cosh(x)
-        K1 = (0.5)*(cmath.sin(x) + cmath.sinh(x))/x
-        K2 = (0.5)*(-cmath.cos(x) + cmath.cosh(x))/x**2
-        K3 = (0.5)*(-cmath.sin(x) + cmath.sinh(x))/x**3
+        rx = 1.0 / x
+        t0 = cmath.cos(x)
+        t1 = cmath.cosh(x)
+        t2 = cmath.sin(x)
+        t3 = cmath.sinh(x)
+        K0 = (0.5)*t0 + (0.5)*t1
+        K1 = (0.5)*rx*(t2 + t3)
+        K2 = (0.5)*rx*rx*(-t0 + t1)
+        K3 = (0.5)*rx*rx*rx*(-t2 + t3)
     return K0, K1, K2, K3
 
 
@@ -232,10 +255,16 @@ def krylov_scaled_c(x):
     E = cmath.exp(-x)
     chs = 0.5 + 0.5 * E * E
     shs = 0.5 - 0.5 * E * E
-    K0 = (0.5)*E*cmath.cos(x) + (0.5)*chs
-    K1 = (0.5)*E*cmath.sin(x)/x + (0.5)*shs/x
-    K2 = -0.5*E*cmath.cos(x)/x**2 + (0.5)*chs/x**2
-    K3 = -0.5*E*cmath.sin(x)/x**3 + (0.5)*shs/x**3
+    rx = 1.0 / x
+    t0 = (0.5)*E
+    t1 = t0*cmath.cos(x)
+    t2 = t0*cmath.sin(x)
+    t3 = rx*rx
+    t4 = rx*rx*rx
+    K0 = (0.5)*chs + t1
+    K1 = (0.5)*rx*shs + rx*t2
+    K2 = (0.5)*chs*t3 - t1*t3
+    K3 = (0.5)*shs*t4 - t2*t4
     return x, K0, K1, K2, K3
 
 
@@ -243,7 +272,8 @@ def krylov_scaled_c(x):
 def compound_krylov_c(x):
     """``compound_krylov`` for a complex argument (shift and E complex)."""
     if abs(x) < 1.5:
-        z = x**4
+        x2 = x * x  # a complex power would go through exp and log
+        z = x2 * x2
         shift = 0.0j
         E = 1.0 + 0.0j
         F1 = 1.0 + z * (-0.03333333333333333 + z * (4.409171075837743e-05 + z * (-1.0277788055565833e-08 + z * (7.197330571124533e-13 + z * (-2.0042691648912653e-17 + z * (2.6406708364838804e-22))))))
@@ -255,10 +285,18 @@ def compound_krylov_c(x):
         E = cmath.exp(-x)
         chs = 0.5 + 0.5 * E * E
         shs = 0.5 - 0.5 * E * E
-        F1 = (0.5)*chs*cmath.sin(x)/x + (0.5)*shs*cmath.cos(x)/x
-        F2 = (0.5)*shs*cmath.sin(x)/x**2
-        F3 = (0.5)*chs*cmath.sin(x)/x**3 - 0.5*shs*cmath.cos(x)/x**3
-        F4 = (0.5)*E/x**4 - 0.5*chs*cmath.cos(x)/x**4
+        rx = 1.0 / x
+        t0 = (0.5)*rx
+        t1 = cmath.sin(x)
+        t2 = chs*t1
+        t3 = cmath.cos(x)
+        t4 = shs*t3
+        t5 = (0.5)*rx*rx*rx
+        t6 = (0.5)*rx*rx*rx*rx
+        F1 = t0*t2 + t0*t4
+        F2 = (0.5)*rx*rx*shs*t1
+        F3 = t2*t5 - t4*t5
+        F4 = E*t6 - chs*t3*t6
     return shift, E, F1, F2, F3, F4
 
 
@@ -267,9 +305,9 @@ def beam_transfer_scaled_c(beta, rho, U):
     """``beam_transfer_scaled`` for a complex beta: U (complex) times exp(-shift)."""
     shift, K0, K1, K2, K3 = krylov_scaled_c(beta * rho)
     t0 = K1*rho
-    t1 = K2*rho**2
-    t2 = K3*rho**3
-    t3 = beta**4
+    t1 = K2*rho*rho
+    t2 = K3*rho*rho*rho
+    t3 = beta*beta*beta*beta
     t4 = t2*t3
     t5 = t1*t3
     U[0, 0] = K0
@@ -303,17 +341,17 @@ def beam_compound_step_c(v, beta, rho):
     v3 = v[3]
     v4 = v[4]
     v5 = v[5]
-    t0 = beta**4
-    t1 = rho**4
+    t0 = beta*beta*beta*beta
+    t1 = rho*rho*rho*rho
     t2 = F4*t1
     t3 = t0*t2
     t4 = E - t3
     t5 = F1*rho
     t6 = t5*v1
-    t7 = F2*rho**2
+    t7 = F2*rho*rho
     t8 = t7*v2
     t9 = t7*v3
-    t10 = F3*rho**3
+    t10 = F3*rho*rho*rho
     t11 = t10*v4
     t12 = E - 2.0*t3
     t13 = 2.0*t7
@@ -325,16 +363,17 @@ def beam_compound_step_c(v, beta, rho):
     v[2] = t16 - t3*v3 + t4*v2
     v[3] = t16 - t3*v2 + t4*v3
     v[4] = F1*rho*v5 - t0*t13*v1 + t12*v4 - t14*t5 - t15*v2 - t15*v3
-    v[5] = F4*beta**8*t1*v0 - t0*t11 - t0*t6 - t0*t8 - t0*t9 + t4*v5
+    v[5] = F4*beta*beta*beta*beta*beta*beta*beta*beta*t1*v0 - t0*t11 - t0*t6 - t0*t8 - t0*t9 + t4*v5
     return shift
 
 
 @njit(cache=True, inline="always")
 def renormalise(v):
-    """Divide v by a power of two near its largest entry; return the natural log taken out."""
+    """Divide v by a power of two near its largest entry; return the natural log taken out.
+    (The largest real or imaginary part: for a complex v, abs would cost a hypot each.)"""
     big = 0.0
     for a in range(v.shape[0]):
-        big = max(big, abs(v[a]))
+        big = max(big, abs(v[a].real), abs(v[a].imag))
     if big == 0.0 or not math.isfinite(big):
         return 0.0
     e = math.frexp(big)[1]
@@ -1588,9 +1627,10 @@ COLLAPSED = 1e-9
 
 
 @njit(cache=True)
-def orthonormalise_c(W, z, T, t, n_out, frozen, nf):
+def orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf):
     """W <- Q of W = Q R (complex Gram-Schmidt, twice), z <- z minus its part in span Q;
-    the recorded outputs out = T b + t follow the new coordinates. Returns nf.
+    the recorded outputs out = T b + t follow the new coordinates (a map pushed with
+    ``lazy_push``, applied once at the end). Returns nf.
 
     In a homogeneous march (frozen has rows), a direction whose state vanishes (R11 <=
     COLLAPSED R00: two identical absorbers moving against each other with the beam at
@@ -1618,6 +1658,8 @@ def orthonormalise_c(W, z, T, t, n_out, frozen, nf):
     if frozen.shape[0] > 0 and abs(R[1, 1]) <= COLLAPSED * abs(R[0, 0]):
         # the old coordinates (-R01 / R00, 1) give no state: record that mode's outputs
         f0 = -R[0, 1] / R[0, 0]
+        lazy_apply(G, g, nep, ep, done, T, t)  # T, t in the current coordinates
+        n_out = T.shape[0]
         if nf < frozen.shape[0]:
             for j in range(n_out):
                 frozen[nf, j] = T[j, 0] * f0 + T[j, 1]
@@ -1655,13 +1697,52 @@ def orthonormalise_c(W, z, T, t, n_out, frozen, nf):
     i00 = R[1, 1] / det
     i01 = -R[0, 1] / det
     i11 = R[0, 0] / det
-    for j in range(n_out):
-        u0 = T[j, 0] * i00
-        u1 = T[j, 0] * i01 + T[j, 1] * i11
-        T[j, 0] = u0
-        T[j, 1] = u1
-        t[j] -= u0 * s0 + u1 * s1
+    lazy_push(G, g, nep, ep, done, T, t, i00, i01, 0.0j, i11, -(i00 * s0 + i01 * s1), -i11 * s1)
     return nf
+
+
+@njit(cache=True)
+def lazy_push(G, g, nep, ep, done, T, t, m00, m01, m10, m11, c0, c1):
+    """The coordinates of the march change, a_old = M a_new + c: kept as the map
+    nep[0] of G, g (the recorded outputs out = T a + t are read in the coordinates
+    ep[j] of their recording: ``lazy_apply``), so that a change costs O(1), not O(outputs).
+    A full store is applied first."""
+    if nep[0] == G.shape[0]:
+        lazy_apply(G, g, nep, ep, done, T, t)
+    k = nep[0]
+    G[k, 0, 0] = m00
+    G[k, 0, 1] = m01
+    G[k, 1, 0] = m10
+    G[k, 1, 1] = m11
+    g[k, 0] = c0
+    g[k, 1] = c1
+    nep[0] = k + 1
+
+
+@njit(cache=True)
+def lazy_apply(G, g, nep, ep, done, T, t):
+    """Every recorded output in the current coordinates: the maps from its recording on
+    composed backwards (one pass over the maps, one over the outputs); the store empties."""
+    n = nep[0]
+    P = np.zeros((n + 1, 2, 2), dtype=np.complex128)
+    c = np.zeros((n + 1, 2), dtype=np.complex128)
+    P[n, 0, 0] = 1.0
+    P[n, 1, 1] = 1.0
+    for k in range(n - 1, -1, -1):
+        for a in range(2):
+            for b in range(2):
+                P[k, a, b] = G[k, a, 0] * P[k + 1, 0, b] + G[k, a, 1] * P[k + 1, 1, b]
+            c[k, a] = G[k, a, 0] * c[k + 1, 0] + G[k, a, 1] * c[k + 1, 1] + g[k, a]
+    for j in range(T.shape[0]):
+        if done[j]:
+            e = ep[j]
+            T0 = T[j, 0]
+            T1 = T[j, 1]
+            T[j, 0] = T0 * P[e, 0, 0] + T1 * P[e, 1, 0]
+            T[j, 1] = T0 * P[e, 0, 1] + T1 * P[e, 1, 1]
+            t[j] += T0 * c[e, 0] + T1 * c[e, 1]
+        ep[j] = 0
+    nep[0] = 0
 
 
 @njit(cache=True)
@@ -1817,13 +1898,31 @@ def piece_transfer_c(bs, e, rho, U):
 
 
 @njit(cache=True)
-def frf_record(outputs, j, W, z, T, t):
-    """Record beam output j at the current state: out = T b + t."""
+def frf_record_at(outputs, x, bo, bptr, done, W, z, T, t, ep, nep):
+    """Record the beam outputs at x not yet recorded (bo: the beam outputs by x, from
+    bptr on every one before x is recorded or skipped). Returns the new bptr."""
+    while bptr < bo.shape[0] and (done[bo[bptr]] or outputs[bo[bptr], 1] < x):
+        bptr += 1
+    k = bptr
+    while k < bo.shape[0] and outputs[bo[k], 1] == x:
+        j = bo[k]
+        if not done[j]:
+            frf_record(outputs, j, W, z, T, t, ep, nep)
+            done[j] = True
+        k += 1
+    return bptr
+
+
+@njit(cache=True)
+def frf_record(outputs, j, W, z, T, t, ep, nep):
+    """Record beam output j at the current state: out = T b + t, b the current
+    coordinates (ep[j])."""
     kind = int(outputs[j, 0])
     k = 0 if kind == FRF_FORCE else (1 if kind == FRF_MOMENT else (2 if kind == FRF_M else 3))
     T[j, 0] = W[k, 0]
     T[j, 1] = W[k, 1]
     t[j] = z[k]
+    ep[j] = nep[0]
 
 
 @njit(cache=True)
@@ -1903,6 +2002,30 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     T = np.zeros((n_out, 2), dtype=np.complex128)
     t = np.zeros(n_out, dtype=np.complex128)
     done = np.zeros(n_out, dtype=np.bool_)
+    # the coordinate changes since each output's recording (lazy_push, lazy_apply)
+    ep = np.zeros(n_out, dtype=np.int64)
+    cap = n_out + n_ev + 64
+    G = np.zeros((cap, 2, 2), dtype=np.complex128)
+    g = np.zeros((cap, 2), dtype=np.complex128)
+    nep = np.zeros(1, dtype=np.int64)
+    # the beam outputs by x and the masses' by q index: each found from a pointer
+    n_beam = 0
+    for j in range(n_out):
+        if int(outputs[j, 0]) != FRF_MASS:
+            n_beam += 1
+    bo = np.empty(n_beam, dtype=np.int64)
+    mo = np.empty(n_out - n_beam, dtype=np.int64)
+    kb = 0
+    km = 0
+    for j in range(n_out):
+        if int(outputs[j, 0]) != FRF_MASS:
+            bo[kb] = j
+            kb += 1
+        else:
+            mo[km] = j
+            km += 1
+    bo = bo[np.argsort(outputs[bo, 1], kind="mergesort")]
+    mo = mo[np.argsort(outputs[mo, 2], kind="mergesort")]
     for i_in in range(inputs.shape[0]):
         homogeneous = inputs[i_in, 0] < 0
         frozen = np.zeros((2 if homogeneous else 0, n_out), dtype=np.complex128)
@@ -1922,6 +2045,10 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
             t[j] = 0.0
             T[j, 0] = 0.0
             T[j, 1] = 0.0
+            ep[j] = 0
+        nep[0] = 0
+        bptr = 0
+        mptr = 0
         applied = kind_in == FRF_MASS or kind_in < 0
         pos = 0.0
         seg = 0
@@ -1934,10 +2061,10 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                 stop = target
                 if not applied and pos <= x_in < stop:
                     stop = x_in
-                for j in range(n_out):
-                    xo = outputs[j, 1]
-                    if not done[j] and int(outputs[j, 0]) != FRF_MASS and pos <= xo < stop:
-                        stop = xo
+                while bptr < n_beam and (done[bo[bptr]] or outputs[bo[bptr], 1] < pos):
+                    bptr += 1  # the next beam output not recorded
+                if bptr < n_beam and outputs[bo[bptr], 1] < stop:
+                    stop = outputs[bo[bptr], 1]
                 rho = (stop - pos) / L
                 if rho > 0.0:
                     i = HEAD + SEGMENT_WIDTH * seg
@@ -1955,7 +2082,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                             z[a] = zz[a]
                             for c in range(2):
                                 W[a, c] = S[a, c]
-                        nf = orthonormalise_c(W, z, T, t, n_out, frozen, nf)
+                        nf = orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf)
                     pos = stop
                 if pos < x:  # the load and the outputs between components
                     if not applied and x_in == pos:
@@ -1964,10 +2091,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                         else:
                             z[2] -= load
                         applied = True
-                    for j in range(n_out):
-                        if not done[j] and int(outputs[j, 0]) != FRF_MASS and outputs[j, 1] == pos:
-                            frf_record(outputs, j, W, z, T, t)
-                            done[j] = True
+                    bptr = frf_record_at(outputs, pos, bo, bptr, done, W, z, T, t, ep, nep)
                 if stop < target:
                     continue
                 if after == seg:
@@ -2023,24 +2147,23 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     for c in range(nn):
                         SS[a, c] += B[a, j] * X[2 + j, c]
             if nn > 2:  # degenerate constraints: keep two columns, the rest are frozen modes
+                lazy_apply(G, g, nep, ep, done, T, t)
                 nf = carry_c(SS, nn, X, T, n_out, q0, nq, outputs, frozen, nf)
             for a in range(4):
                 for c in range(2):
                     S[a, c] = SS[a, c]
             # recorded outputs follow (a, q) = xp + X a_new; then this component's masses
-            for j in range(n_out):
-                if done[j]:
-                    u0 = T[j, 0] * X[0, 0] + T[j, 1] * X[1, 0]
-                    u1 = T[j, 0] * X[0, 1] + T[j, 1] * X[1, 1]
-                    t[j] += T[j, 0] * xp[0] + T[j, 1] * xp[1]
-                    T[j, 0] = u0
-                    T[j, 1] = u1
-                elif int(outputs[j, 0]) == FRF_MASS and q0 <= int(outputs[j, 2]) < q0 + nq:
+            lazy_push(G, g, nep, ep, done, T, t, X[0, 0], X[0, 1], X[1, 0], X[1, 1], xp[0], xp[1])
+            while mptr < mo.shape[0] and int(outputs[mo[mptr], 2]) < q0 + nq:
+                j = mo[mptr]
+                if int(outputs[j, 2]) >= q0:
                     k = 2 + int(outputs[j, 2]) - q0
                     T[j, 0] = X[k, 0]
                     T[j, 1] = X[k, 1]
                     t[j] = xp[k]
+                    ep[j] = nep[0]
                     done[j] = True
+                mptr += 1
             if kind_in == FRF_MASS and q0 <= q_in < q0 + nq:
                 # B q is the masses' inertia passed to the beam; a force on one of them
                 # reaches the beam's shear too
@@ -2049,21 +2172,19 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                 z[a] = zz[a]
                 for c in range(2):
                     W[a, c] = S[a, c]
-            nf = orthonormalise_c(W, z, T, t, n_out, frozen, nf)
+            nf = orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf)
             q0 += nq
             if r + 1 == n_ev or p[rows[r + 1] + 1] != x:  # outputs after the last one here
-                for j in range(n_out):
-                    if not done[j] and int(outputs[j, 0]) != FRF_MASS and outputs[j, 1] == x:
-                        frf_record(outputs, j, W, z, T, t)
-                        done[j] = True
+                bptr = frf_record_at(outputs, x, bo, bptr, done, W, z, T, t, ep, nep)
         if failed:
             for j in range(n_out):
                 out[i_in, j] = complex(math.nan, math.nan)
             continue
         for j in range(n_out):  # outputs at x = L
             if not done[j] and int(outputs[j, 0]) != FRF_MASS:
-                frf_record(outputs, j, W, z, T, t)
+                frf_record(outputs, j, W, z, T, t, ep, nep)
                 done[j] = True
+        lazy_apply(G, g, nep, ep, done, T, t)  # T, t in the end's coordinates
         # the right end: its known states vanish, E b = -e
         e00 = W[ends[2], 0]
         e01 = W[ends[2], 1]

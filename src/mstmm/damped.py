@@ -138,14 +138,20 @@ class _Function:
         else:
             self.evaluate(ws, self.p, mant, logs)
         self.calls += ws.size
-        with np.errstate(divide="ignore"):
-            return np.log(np.abs(mant)) + logs.real + 1j * (np.angle(mant) + logs.imag)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            out = np.log(np.abs(mant)) + logs.real + 1j * (np.angle(mant) + logs.imag)
+        # beyond what the scaling holds (an overflow): no value, never a zero
+        out[~(np.isfinite(mant) & np.isfinite(logs))] = complex(math.nan, math.nan)
+        return out
 
     def one(self, w: complex) -> complex:
         m, g = self.delta(complex(w), self.p)
         self.calls += 1
         if m == 0:
             return complex(-math.inf, 0.0)
+        m = complex(m)
+        if not (cmath.isfinite(m) and cmath.isfinite(g)):
+            return complex(math.nan, math.nan)  # beyond what the scaling holds: no value
         return complex(math.log(abs(m)) + g.real, cmath.phase(m) + g.imag)
 
 
@@ -154,8 +160,21 @@ def _wrap(a):
     return np.angle(np.exp(1j * np.asarray(a)))
 
 
+def _growth(s: np.ndarray, c: float) -> np.ndarray:
+    """The basis of the smooth growth of log|f| up a tall edge, at heights ``s`` above its
+    bottom (``c``: the box's width): a beam's exponents grow as sqrt(w), its scalings as
+    powers of w."""
+    s = np.asarray(s, dtype=float)
+    return np.stack([np.ones_like(s), np.sqrt(s + c), np.log(s + c), s / c], axis=-1)
+
+
 def edge_winding(
-    f: _Function, a: complex, b: complex, n0: int = 32, nodes: np.ndarray | None = None
+    f: _Function,
+    a: complex,
+    b: complex,
+    n0: int = 32,
+    nodes: np.ndarray | None = None,
+    tall: float = 0.0,
 ) -> float:
     """The change of arg f along the segment from a to b (radians), sampled adaptively
     until no step of the phase exceeds PHASE_STEP and log f at the midpoint of every step
@@ -164,23 +183,44 @@ def edge_winding(
     every zero does not, and costs no samples);
     ``nodes`` (fractions of the segment) are sampled from the start: one between any two
     roots near the segment, so that no two of them share a step (their phase swings would
-    add to 2 pi and wrap to nothing). Raises :class:`OnContour` when a zero sits on the
-    segment."""
+    add to 2 pi and wrap to nothing). ``tall`` (a vertical edge of a box this wide, far
+    taller): the smooth growth of log|f| with the height (fitted by least squares on the
+    samples well above the bottom, :func:`_growth`) is taken out of log|f| before the
+    bends are measured, so that it costs no samples; the phase is untouched (the count
+    is the same sum of phase steps, only where to sample changes). Raises
+    :class:`OnContour` when a zero sits on the segment."""
     t = np.linspace(0.0, 1.0, n0 + 1)
     if nodes is not None and len(nodes):
         t = np.unique(np.concatenate([t, np.clip(nodes, 0.0, 1.0)]))
     g = f(a + (b - a) * t)
     checked = np.zeros(t.size - 1, dtype=bool)
+    bottom = min(a.imag, b.imag)
+
+    def height(u):
+        return np.abs((a + (b - a) * u).imag - bottom)
+
+    coef = None
+    if tall > 0.0:
+        far = (height(t) >= 4.0 * tall) & np.isfinite(g.real)
+        if np.count_nonzero(far) >= 8:
+            coef = np.linalg.lstsq(_growth(height(t[far]), tall), g.real[far], rcond=None)[0]
+
+    def log_abs(u, gu):
+        """log|f| at the fractions u (values gu) less the fitted growth."""
+        return gu.real if coef is None else gu.real - _growth(height(u), tall) @ coef
+
     while True:
         if not np.all(np.isfinite(g)):
-            raise OnContour(f"f = 0 on the contour near {a + (b - a) * t[~np.isfinite(g)][0]}")
+            near = a + (b - a) * t[~np.isfinite(g)][0]
+            what = "f has no value (overflow)" if np.isnan(g).any() else "f = 0"
+            raise OnContour(f"{what} on the contour near {near}")
         dphi = _wrap(np.diff(g.imag))
         bad = np.abs(dphi) > PHASE_STEP
         if t.size > 2:
             # log|f| over a step against what its neighbours' slopes predict: a zero close
             # to the segment (a double one turns the phase by a whole turn, which wraps
             # to nothing) breaks the trend
-            dlog = np.diff(g.real)
+            dlog = np.diff(log_abs(t, g))
             h = np.diff(t)
             slope = dlog / h
             trend = np.empty_like(slope)
@@ -201,7 +241,8 @@ def edge_winding(
             # zero close by (its swing may have wrapped by a whole turn)
             hidden = np.abs(h1 + h2 - dphi[todo]) > 1.0
             hidden |= (np.abs(h1) > PHASE_STEP) | (np.abs(h2) > PHASE_STEP)
-            hidden |= np.abs(gm.real - 0.5 * (g.real[todo] + g.real[todo + 1])) > BEND
+            lg = log_abs(t, g)
+            hidden |= np.abs(log_abs(mid, gm) - 0.5 * (lg[todo] + lg[todo + 1])) > BEND
             hidden |= np.abs(0.5 * (h1 - h2)) > BEND
             hidden |= ~np.isfinite(gm)
             checked[todo] = True
@@ -248,7 +289,8 @@ def winding(
             nodes = (np.asarray(bottom, dtype=float) - x0) / (x1 - x0)
         elif i in (1, 3):
             nodes = rise if i == 1 else 1.0 - rise
-        total += edge_winding(f, corners[i], corners[(i + 1) % 4], n0, nodes)
+        tall = x1 - x0 if i in (1, 3) and rise.size else 0.0
+        total += edge_winding(f, corners[i], corners[(i + 1) % 4], n0, nodes, tall)
     n = total / (2.0 * math.pi)
     if abs(n - round(n)) > WINDING_SLACK:
         raise OnContour(f"winding number {n:.3f} is not an integer")
@@ -275,6 +317,8 @@ def newton(
     w1, g1 = complex(w), f.one(w)
     prev = math.inf
     for _ in range(maxiter):
+        if math.isnan(g1.real) or math.isnan(g0.real):
+            return w1, False  # f has no value there (overflow): no root found
         if not math.isfinite(g1.real):
             return w1, True  # f = 0 exactly
         if not math.isfinite(g0.real):
@@ -317,8 +361,11 @@ def newton_many(
     done = np.zeros(n, dtype=bool)
     prev = np.full(n, math.inf)
     for _ in range(maxiter):
-        exact1 = ~done & ~np.isfinite(g1.real)  # f = 0 exactly
-        exact0 = ~done & ~exact1 & ~np.isfinite(g0.real)
+        void = ~done & (np.isnan(g1.real) | np.isnan(g0.real))  # no value: no root found
+        out[void] = w1[void]
+        done |= void
+        exact1 = ~done & (g1.real == -math.inf)  # f = 0 exactly
+        exact0 = ~done & ~exact1 & (g0.real == -math.inf)
         out[exact1], out[exact0] = w1[exact1], w0[exact0]
         ok |= exact1 | exact0
         done |= exact1 | exact0
@@ -860,28 +907,34 @@ def damped_roots(
 
 def undamped_twin(scene):
     """The same structure without damping: the kinds that only damp (dashpots) left out,
-    every damping value (``Key.damping``) and loss factor set to 0. Its natural frequencies
-    are the damped roots at damping scale 0, where the continuation starts."""
+    every damping value (``Key.damping``) and loss factor dropped. Its natural frequencies
+    are the damped roots at damping scale 0, where the continuation starts.
+
+    Built from the validated scene without validating again (dropping damping keeps a
+    scene valid: no rule of a scene depends on a damping value) and kept on the scene
+    (a scene is immutable), so a repeated solve does not build it twice."""
     import dataclasses
 
-    from .scene import scene_from_dict, scene_to_dict
-
-    data = scene_to_dict(scene)
-    beam = data["beam"]
-    beam.pop("loss_factor", None)
-    for seg in beam.get("segments", []):
-        seg.pop("loss_factor", None)
+    twin = scene.__dict__.get("_undamped_twin") if hasattr(scene, "__dict__") else None
+    if twin is not None:
+        return twin
+    beam = scene.beam
+    beam = dataclasses.replace(
+        beam,
+        loss_factor=0.0,
+        segments=tuple(dataclasses.replace(s, loss_factor=0.0) for s in beam.segments),
+    )
     atts = []
-    for a in data["attachments"]:
-        if catalog.damping_only(a["type"]):
+    for a in scene.attachments:
+        if catalog.damping_only(a.kind):
             continue
-        for key in catalog.kind(a["type"]).KEYS[1:]:
-            if key.damping:
-                a.pop(key.name, None)
-        atts.append(a)
-    data["attachments"] = atts
-    twin = scene_from_dict(data, source=scene.source)
-    return dataclasses.replace(twin, name=scene.name)
+        damping = {key.name for key in catalog.kind(a.kind).KEYS[1:] if key.damping}
+        values = tuple((k, v) for k, v in a.values if k not in damping)
+        atts.append(dataclasses.replace(a, values=values))
+    twin = dataclasses.replace(scene, beam=beam, attachments=tuple(atts))
+    if hasattr(scene, "__dict__"):
+        object.__setattr__(scene, "_undamped_twin", twin)
+    return twin
 
 
 @dataclass
