@@ -8,8 +8,9 @@
   bracket proves that no root lies outside them (``benchmarks.cases``, "brackets").
 * ``first_run``: a new topology with every kind present, in a fresh process with an
   empty kernel cache: derive (SymPy) + compile + solve, wall time. Twice: with the shared
-  numerics already compiled (numba's cache in ``generated/__pycache__``, as after any
-  earlier run on the machine) and without (the first run after installing).
+  numerics already compiled (numba's caches in ``src/mstmm/numerics/__pycache__`` and
+  ``generated/__pycache__``, as after any earlier run on the machine) and without (the
+  first run after installing).
 * ``paper_example``: the paper example's lowest 5 frequencies, warm (frequencies only),
   for the "does not get slower" check against ``docs/figures.json``'s ``workprecision``.
 
@@ -150,11 +151,18 @@ def first_run(ends: tuple[str, str], cold_numerics: bool, compiled: bool = True)
     forced to compile, ``MSTMM_INTERPRET_BUDGET=0``; else the default settings)."""
     import mstmm.generated as generated
 
-    pycache = Path(generated.__file__).parent / "__pycache__"
-    saved = None
-    if cold_numerics and pycache.exists():
-        saved = Path(tempfile.mkdtemp(prefix="mstmm-pycache-"))
-        shutil.move(str(pycache), saved / "__pycache__")
+    import mstmm.numerics as numerics
+
+    # numba's caches of the shared numerics (mstmm.numerics) and of the printed beam
+    # functions and bundled kernels (generated/), moved aside for a cold run
+    caches = [Path(m.__file__).parent / "__pycache__" for m in (generated, numerics)]
+    saved = []
+    if cold_numerics:
+        for i, pycache in enumerate(caches):
+            if pycache.exists():
+                keep = Path(tempfile.mkdtemp(prefix=f"mstmm-pycache-{i}-"))
+                shutil.move(str(pycache), keep / "__pycache__")
+                saved.append((pycache, keep))
     try:
         with tempfile.TemporaryDirectory(prefix="mstmm-first-") as cache:
             env = dict(os.environ, MSTMM_CACHE=cache)
@@ -169,11 +177,11 @@ def first_run(ends: tuple[str, str], cold_numerics: bool, compiled: bool = True)
         inner, ok = out.stdout.split()
         return {"ends": list(ends), "wall_seconds": wall, "certified": ok == "True"}
     finally:
-        if saved is not None:
+        for pycache, keep in saved:
             if pycache.exists():
                 shutil.rmtree(pycache)
-            shutil.move(str(saved / "__pycache__"), pycache)
-            shutil.rmtree(saved)
+            shutil.move(str(keep / "__pycache__"), pycache)
+            shutil.rmtree(keep)
 
 
 def paper_example(repeats: int) -> dict:

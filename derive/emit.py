@@ -1,10 +1,10 @@
 """Emit the numba kernel module of a topology: fill the template, sign it, write it.
 
-Two templates: ``templates/numerics.py.tmpl``, the numerics every kernel shares (beam
-functions, renormalised steps, the scan with Brent and the count, the paper's tree, the
-mode-shape march), printed once into ``generated/numerics.py``; and
-``templates/kernel.py.tmpl``, a topology's characteristic functions with one branch per
-kind present, printed from each kind's descriptor. A bare beam gets no branch at all.
+Two templates: ``templates/euler_bernoulli.py.tmpl``, the beam functions every kernel and
+the shared numerics use (printed once into ``generated/euler_bernoulli.py``; the numerics
+themselves, the scan, the count, the marches, are ordinary code in ``mstmm.numerics``);
+and ``templates/kernel.py.tmpl``, a topology's characteristic functions with one branch
+per kind present, printed from each kind's descriptor. A bare beam gets no branch at all.
 """
 
 from __future__ import annotations
@@ -23,10 +23,10 @@ from .catalog import KNOWN_ZERO, Topology, unknown
 from .components import beam
 from .compound import pair_index
 from .printer import assignments, code
-from .sign import derive_digest, signature
+from .sign import derive_digest, numerics_digest, signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
-NUMERICS_TEMPLATE = TEMPLATE.with_name("numerics.py.tmpl")
+NUMERICS_TEMPLATE = TEMPLATE.with_name("euler_bernoulli.py.tmpl")
 #: A topology's characteristic functions: real (undamped) or complex (damped).
 FORMULATIONS = {
     False: TEMPLATE.with_name("undamped.py.tmpl"),
@@ -55,8 +55,6 @@ of both.""",
   ``(mantissa, log)`` are complex and mantissa * exp(log) is entire in w. The damped
   search counts its zeros by the argument principle (``mstmm.damped``).""",
 }
-#: Gauss-Legendre points of the mode shapes' mass integrals.
-GAUSS_POINTS = 8
 
 
 def _indent(lines: list[str], n: int) -> str:
@@ -450,20 +448,16 @@ def _parameter_doc(topology: Topology) -> str:
 
 
 def numerics_source() -> str:
-    """The source of the numerics module shared by every kernel (``generated/numerics.py``)."""
-    import numpy as np
-
+    """The source of the printed beam functions every kernel and the shared numerics use
+    (``generated/euler_bernoulli.py``; the numerics themselves are ordinary code in
+    ``mstmm.numerics``)."""
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
-    gx, gw = np.polynomial.legendre.leggauss(GAUSS_POINTS)
     values = dict(
         threshold=repr(special.SERIES_THRESHOLD),
         digest=derive_digest(),
         sympy_version=importlib.metadata.version("sympy"),
-        head=catalog.HEAD,
-        segment_width=catalog.SEGMENT_WIDTH,
-        event_width=catalog.EVENT_WIDTH,
         krylov_series=_indent(_series_lines(special.KRYLOV), 8),
         krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
         compound_series=_indent(_series_lines(special.COMPOUND), 8),
@@ -479,8 +473,6 @@ def numerics_source() -> str:
         beam_transfer_scaled_c=_indent(_matrix_fill(U_nd, "U", complex_=True), 4),
         beam_compound_c=_indent(_compound_step(C_beam, complex_=True), 4),
         node_stiffness=_indent(_node_stiffness_lines(), 4),
-        gauss_x=repr([float(v) for v in 0.5 * (gx + 1.0)]),
-        gauss_w=repr([float(v) for v in 0.5 * gw]),
     )
     return _clean(Template(NUMERICS_TEMPLATE.read_text()).substitute(values))
 
@@ -526,7 +518,7 @@ def kernel_source(topology: Topology) -> str:
         regenerate=regenerate_command(topology),
         sympy_version=importlib.metadata.version("sympy"),
         signature=signature(topology),
-        digest=derive_digest(),
+        digest=numerics_digest(),
         left_unknown=repr(left_unknown),
         right_unknown=repr(right_unknown),
         left_known=repr(KNOWN_ZERO[topology.left]),
@@ -553,9 +545,13 @@ def _write_atomically(source: str, path: Path) -> Path:
     return path
 
 
+#: The printed module of the beam functions, in ``generated/``.
+NUMERICS_MODULE = "euler_bernoulli.py"
+
+
 def write_numerics(directory: Path) -> Path:
-    """Write the shared numerics module (``numerics.py``) into ``directory``."""
-    return _write_atomically(numerics_source(), Path(directory) / "numerics.py")
+    """Write the printed beam functions (``euler_bernoulli.py``) into ``directory``."""
+    return _write_atomically(numerics_source(), Path(directory) / NUMERICS_MODULE)
 
 
 def write_kernel(topology: Topology, directory: Path, name: str | None = None) -> Path:

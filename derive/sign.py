@@ -1,7 +1,9 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
-``SIGNATURE = sha1(topology key | derive/ sources | files of kinds registered from outside
-derive/ | SymPy version | KERNEL_FORMAT)``.
+``SIGNATURE = sha1(topology key | derive/ sources | the shared numerics' sources | files of
+kinds registered from outside derive/ | SymPy version | KERNEL_FORMAT)``. The numerics
+(``mstmm.numerics``) are in it because a kernel's compiled code inlines some of them:
+numba's cache of the kernel file must go when they change.
 A committed kernel is used only when its ``SIGNATURE`` equals this; a cached one
 carries it in its file name, so numba's on-disk cache (keyed on the file) stays
 valid (DESIGN.md, tool-chain facts). The SymPy version is read from the package
@@ -12,6 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib.metadata
+import importlib.util
 from pathlib import Path
 
 from .catalog import Topology, kind_file
@@ -41,8 +44,21 @@ def derive_digest() -> str:
     return _DIGEST
 
 
+def numerics_digest() -> str:
+    """sha1 of the sources of the shared numerics (``mstmm.numerics``), found without
+    importing them."""
+    spec = importlib.util.find_spec("mstmm.numerics")
+    h = hashlib.sha1()
+    for folder in spec.submodule_search_locations or ():
+        for path in sorted(Path(folder).glob("*.py")):
+            h.update(path.name.encode())
+            h.update(path.read_bytes())
+    return h.hexdigest()
+
+
 def signature(topology: Topology) -> str:
-    """sha1 of the topology, the derive/ sources, the SymPy version and the kernel format."""
+    """sha1 of the topology, the derive/ sources, the shared numerics, the SymPy version and
+    the kernel format."""
     derive_digest()
     root = Path(__file__).resolve().parent
     outside = []
@@ -51,6 +67,13 @@ def signature(topology: Topology) -> str:
         if root not in path.parents:  # a kind registered from outside the package
             outside.append(hashlib.sha1(path.read_bytes()).hexdigest())
     text = "|".join(
-        [topology.key, _DIGEST, *outside, importlib.metadata.version("sympy"), str(KERNEL_FORMAT)]
+        [
+            topology.key,
+            _DIGEST,
+            numerics_digest(),
+            *outside,
+            importlib.metadata.version("sympy"),
+            str(KERNEL_FORMAT),
+        ]
     )
     return hashlib.sha1(text.encode()).hexdigest()

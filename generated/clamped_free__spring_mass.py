@@ -24,10 +24,10 @@ Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DI
 Derived by mstmm.derive with SymPy 1.14.0.
 """
 
-from mstmm.generated.numerics import *  # noqa: F403 (the shared numerics)
+from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "094b40ce2c1d90e94aaeda695f943f5e20d8d5f7"
+SIGNATURE = "25e312d024e54fa502c78ab94fc8a65af314cfcb"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -38,8 +38,8 @@ END_PAIR = 5
 RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
-#: The ``DIGEST`` of the shared numerics this kernel was printed with.
-NUMERICS = "17758bf79b78f1990e649e0ec46fdc419567f723"
+#: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
+NUMERICS = "bc4cd1c8a060e9b29fb6d68fd42791e135460e11"
 
 
 @njit(cache=True)

@@ -360,7 +360,7 @@ def derive_all(out_dir: Path) -> list[Path]:
     from mstmm.derive.emit import kernel_source, numerics_source
 
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = [out_dir / "numerics.py"]
+    paths = [out_dir / "euler_bernoulli.py"]
     paths[0].write_text(numerics_source())
     for topology in all_topologies():
         path = out_dir / f"{topology.key}.py"

@@ -36,7 +36,7 @@ def scene(left: str, right: str, n: int = 2, L: float = 1.3, EI: float = 2.5, mb
 
 
 @pytest.mark.parametrize(
-    "topology", [None, *BUNDLED_TOPOLOGIES], ids=lambda t: t.key if t else "numerics"
+    "topology", [None, *BUNDLED_TOPOLOGIES], ids=lambda t: t.key if t else "euler_bernoulli"
 )
 def test_regenerated_kernel_is_identical_to_committed(topology):
     """Text under the SymPy that printed the committed kernel, numbers under any other.
@@ -46,7 +46,7 @@ def test_regenerated_kernel_is_identical_to_committed(topology):
     computes (tests/kernel_equivalence.py: every public function at random
     parameters and frequencies, 1e-13 relative, counts exactly).
     """
-    name = topology.key if topology else "numerics"
+    name = topology.key if topology else "euler_bernoulli"
     committed = (generated_dir() / f"{name}.py").read_text()
     fresh = kernel_source(topology) if topology else numerics_source()
     stale = f"generated/{name}.py is stale: run python -m mstmm.derive --bundled"
@@ -61,7 +61,7 @@ def test_regenerated_kernel_is_identical_to_committed(topology):
 
 def test_numeric_comparison_catches_a_changed_coefficient():
     """The check used under other SymPy versions sees a change in the 13th digit."""
-    committed = (generated_dir() / "numerics.py").read_text()
+    committed = (generated_dir() / "euler_bernoulli.py").read_text()
     target = "(0.5)*t2"
     assert target in committed
     changed = committed.replace(target, "(0.5000000000001)*t2", 1)

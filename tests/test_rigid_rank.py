@@ -2,7 +2,7 @@
 
 Issue 20, item 3: two supports 1e-9 L apart on a free-free beam (or a support and a stiff
 spring) were counted as one constraint by a thresholded SVD; the search then took the
-true lowest root for a rigid-body mode. ``rigid_dimension`` (``generated/numerics.py``)
+true lowest root for a rigid-body mode. ``rigid_dimension`` (``mstmm.numerics.search``)
 decides the rank from the positions by exact comparisons. References: the mpmath global
 assembly of ``tests/reference_model.py`` (frequencies, damped frequencies, and the exact
 rational rank ``rigid_body_mode_count``).

@@ -84,11 +84,20 @@ def worthwhile(modes: int, attachments: int) -> bool:
 def python_copy(module: ModuleType) -> dict:
     """The kernel module's namespace with every numba dispatcher replaced by its Python function.
 
-    The functions are rebound to the copy, so a call stays in Python all the way
-    down; nothing is compiled.
+    The namespace holds the shared numerics' modules too (their private names as well:
+    they were written as one namespace, ``mstmm.numerics``), and every function is
+    rebound to the copy, so a call stays in Python all the way down; nothing is compiled.
     """
-    ns = dict(vars(module))
-    for name, obj in vars(module).items():
+    import sys
+
+    ns: dict = {}
+    for name, mod in list(sys.modules.items()):
+        if mod is not None and (
+            name.startswith("mstmm.numerics.") or name == "mstmm.generated.euler_bernoulli"
+        ):
+            ns.update(vars(mod))
+    ns.update(vars(module))
+    for name, obj in list(ns.items()):
         f = getattr(obj, "py_func", None)
         if isinstance(f, types.FunctionType):
             ns[name] = types.FunctionType(f.__code__, ns, f.__name__, f.__defaults__, f.__closure__)

@@ -103,22 +103,23 @@ _NUMERICS: list[ModuleType] = []
 
 
 def numerics() -> ModuleType:
-    """The numerics every kernel shares (``generated/numerics.py``): the drivers that take a
+    """The numerics every kernel shares (``mstmm.numerics``): the drivers that take a
     kernel's characteristic functions as arguments."""
     if not _NUMERICS:
-        _NUMERICS.append(importlib.import_module("mstmm.generated.numerics"))
+        _NUMERICS.append(importlib.import_module("mstmm.numerics"))
     return _NUMERICS[0]
 
 
 def _check_numerics() -> None:
-    """The shared numerics (``mstmm.generated.numerics``) must be the ones the derive code
-    prints: every kernel is derived against them."""
+    """The printed beam functions (``mstmm.generated.euler_bernoulli``) must be the ones the
+    derive code prints: the numerics and every kernel use them."""
     from mstmm.derive.sign import derive_digest
 
-    if numerics().DIGEST != derive_digest():
+    printed = importlib.import_module("mstmm.generated.euler_bernoulli")
+    if printed.DIGEST != derive_digest():
         raise KernelError(
-            "mstmm/generated/numerics.py is older than the derive code: regenerate it with"
-            " python -m mstmm.derive --bundled"
+            "mstmm/generated/euler_bernoulli.py is older than the derive code: regenerate it"
+            " with python -m mstmm.derive --bundled"
         )
 
 
@@ -239,7 +240,7 @@ class Kernel:
         return at
 
     def _entry(self, name: str):
-        """A shared driver of ``generated/numerics.py`` (``entry_<name>``)."""
+        """A shared driver of ``mstmm.numerics`` (``entry_<name>``)."""
         entry = self._entries.get(name)
         if entry is None:
             interpret.mark_compiled()
@@ -499,7 +500,7 @@ class Kernel:
     ) -> np.ndarray:
         """Responses (complex, SI) at each frequency (rad/s, real or complex) to unit loads:
         ``inputs`` and ``outputs`` rows ``(kind, x, q index, scale)`` (``frf_march`` in
-        ``generated/numerics.py``); returns an array (frequencies, inputs, outputs). The
+        ``mstmm.numerics.frf``); returns an array (frequencies, inputs, outputs). The
         frequencies run in parallel on all cores."""
         ws = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.complex128)
         inputs = np.ascontiguousarray(inputs, dtype=np.float64)

@@ -3,7 +3,7 @@
 ``frf(scene, input="force:x=0.5", output="displacement:x=1.0", omega=...)`` is the
 steady-state response (time dependence ``exp(i w t)``) of ``output`` to a unit harmonic
 ``input``: the inhomogeneous transfer equation marched by the same stable scheme as the
-mode shapes (``frf_march`` in ``generated/numerics.py``: the left end's admitted states
+mode shapes (``frf_march`` in ``mstmm.numerics.frf``: the left end's admitted states
 as an orthonormal basis, the load's particular state beside it, each component's
 unknowns eliminated by pivoting, the right end's conditions at the end), so high
 frequencies stay accurate. Undamped scenes give real receptances (infinite only exactly

@@ -1,6 +1,6 @@
 """The root search's driver: the kernel's certified scan, band edges, and the last checks.
 
-One search finds the roots, the kernel's (``lowest`` in ``generated/numerics.py``,
+One search finds the roots, the kernel's (``lowest`` in ``mstmm.numerics.search``,
 :meth:`mstmm.kernels.Kernel.lowest`), for either formulation, ``modes=`` or ``band=``:
 
 * sign changes of the pole-free characteristic function on a grid uniform in

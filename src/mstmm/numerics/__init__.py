@@ -1,0 +1,23 @@
+"""The numerics every kernel shares, as ordinary code: the drivers take a topology's
+characteristic functions as first-class functions (``delta``, ``count``, ``event``, ...),
+so they compile once per machine and serve every topology. The beam functions they use
+are printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star-imports
+this package.
+
+The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
+table), ``count`` (Wittrick-Williams), ``paper`` (the paper's determinant), ``search``
+(the certified scan), ``shapes`` (mode shapes), ``frf`` (frequency response), ``entries``
+(the drivers called from Python).
+"""
+
+from mstmm.generated.euler_bernoulli import *  # noqa: F403
+
+from . import cache  # noqa: F401  (numba's cache of these modules follows all of them)
+from .count import *  # noqa: F403
+from .entries import *  # noqa: F403
+from .frf import *  # noqa: F403
+from .layout import *  # noqa: F403
+from .paper import *  # noqa: F403
+from .search import *  # noqa: F403
+from .shapes import *  # noqa: F403
+from .walk import *  # noqa: F403

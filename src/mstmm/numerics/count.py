@@ -1,0 +1,96 @@
+"""The Wittrick-Williams count: negative pivots of the dynamic stiffness eliminated node
+by node on the minors of the state subspace (paper's Eq. (4) reduced; docs/components.md)."""
+
+from numba import njit
+
+from mstmm.generated.euler_bernoulli import (
+    beam_compound_step,
+    beam_transfer_scaled,
+)
+
+from .walk import (
+    renormalise,
+)
+
+
+@njit(cache=True, inline="always")
+def neg2(a, c, det):
+    """Number of negative eigenvalues of a symmetric 2x2 matrix with diagonal a, c and
+    determinant det."""
+    if det < 0.0:
+        return 1
+    if a + c < 0.0:
+        return 2 if det > 0.0 else 1
+    return 0
+
+
+@njit(cache=True, inline="always")
+def pair_count(Zc, U, beta, rho):
+    """Carry the node's state subspace across a piece (beta*rho <= RICCATI_STEP); returns
+    the negative pivots of eliminating the near node.
+
+    The subspace of states [Y, theta, M, Q] that everything left of the node admits is
+    held by the 2x2 minors Zc of a basis Z = [Xd; Xf] (Pluecker coordinates, index as
+    ``PAIRS`` of the second compound), carried by the same compound step as the stable
+    chain. Its condensed stiffness S = PI_RIGHT^-1 Xf Xd^-1 is never formed: after a
+    short segment from a pinned end S is huge and near-singular (det Xd ~ rho^3), and
+    neither a Riccati step on S nor an orthonormalised basis Z keeps a digit of det Xd,
+    while Zc(0,1) = det Xd is a coordinate here. The pivot block M = S + k_aa =
+    -(B PI_LEFT)^-1 Xd' Xd^-1, Xd' the d block of U Z, and by Cauchy-Binet
+    W = Xd' adj(Xd) is linear in Zc: W[i, 0] = sum_k U[i, k] Zc(k, 1),
+    W[i, 1] = sum_k U[i, k] Zc(0, k). So det M has the sign of
+    det Xd det Xd' det(B PI_LEFT), and tr M that of -tr(adj(B PI_LEFT) W) / (det Xd
+    det(B PI_LEFT)).
+    """
+    beam_transfer_scaled(beta, rho, U)
+    a = Zc[0]
+    # W = Xd' adj(Xd) from the minors before the step (Zc(2,1) = -Zc[3], Zc(3,1) = -Zc[4])
+    w00 = U[0, 0] * Zc[0] - U[0, 2] * Zc[3] - U[0, 3] * Zc[4]
+    w10 = U[1, 0] * Zc[0] - U[1, 2] * Zc[3] - U[1, 3] * Zc[4]
+    w01 = U[0, 1] * Zc[0] + U[0, 2] * Zc[1] + U[0, 3] * Zc[2]
+    w11 = U[1, 1] * Zc[0] + U[1, 2] * Zc[1] + U[1, 3] * Zc[2]
+    beam_compound_step(Zc, beta, rho)
+    renormalise(Zc)
+    b = Zc[0]
+    # B PI_LEFT = [[U03, -U02], [U13, -U12]]; tr(adj(B PI_LEFT) W):
+    detBP = U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2]
+    tr = -U[1, 2] * w00 + U[0, 2] * w10 - U[1, 3] * w01 + U[0, 3] * w11
+    negative_det = ((a < 0.0) != (b < 0.0)) != (detBP < 0.0)
+    n = 0
+    if negative_det and a != 0.0 and b != 0.0:
+        n = 1
+    elif tr != 0.0 and a != 0.0 and (tr > 0.0) == ((detBP > 0.0) == (a > 0.0)):
+        n = 2
+    return n
+
+
+@njit(cache=True, inline="always")
+def det_symmetric(S):
+    """det of the symmetric part of the 2x2 matrix S."""
+    s01 = 0.5 * (S[0, 1] + S[1, 0])
+    return S[0, 0] * S[1, 1] - s01 * s01
+
+
+@njit(cache=True, inline="always")
+def pair_stiffness(Zc, S):
+    """S = PI_RIGHT^-1 Xf Xd^-1 from the minors of Z = [Xd; Xf] (Cramer's rule); returns
+    det S = (Zc(1,3) Zc(0,2) - Zc(0,3) Zc(1,2)) / Zc(0,1)^2 = Zc(2,3) / Zc(0,1) by the
+    Pluecker relation: no cancellation when S is near-singular (a rigid-body rotation
+    about a pin next to a short segment, its pivot -I omega^2)."""
+    detXd = Zc[0]
+    if detXd == 0.0:
+        detXd = 5e-324  # exactly at a frequency of the node clamped: take one side
+    S[0, 0] = Zc[4] / detXd
+    S[0, 1] = -Zc[2] / detXd
+    S[1, 0] = -Zc[3] / detXd
+    S[1, 1] = Zc[1] / detXd
+    if Zc[0] != 0.0:
+        return Zc[5] / Zc[0]
+    return det_symmetric(S)
+
+
+@njit(cache=True)
+def counts(count, omegas, p, out):
+    """out[i] = count(omegas[i], p)."""
+    for i in range(omegas.shape[0]):
+        out[i] = count(omegas[i], p)

@@ -1,0 +1,229 @@
+"""Entry points called from Python: a topology's functions arrive as addresses of their
+compiled code, turned into first-class function values (one compiled driver serves every
+topology; numba caches it on disk)."""
+
+import numpy as np
+from numba import njit, prange, types
+from numba.core import cgutils
+from numba.core.types import FunctionType
+from numba.extending import intrinsic
+
+from .count import (
+    counts,
+)
+from .frf import (
+    frf_march,
+)
+from .search import (
+    STATE_CERTIFIED,
+    STATE_SIZE,
+    evaluate,
+    lowest,
+    lowest_run,
+    lowest_start,
+    refine,
+)
+from .shapes import (
+    mode_shapes,
+)
+
+# Entry points called from Python. A topology's functions arrive as the addresses of their
+# compiled code (``fa``: pairs (C wrapper, numba entry) in the order of FA_*; see
+# ``mstmm.kernels.Kernel``), turned into first-class function values inside: plain
+# integers cross the Python boundary in microseconds, and one compiled driver serves
+# every topology (numba caches it on disk).
+_f8 = types.float64
+_i8 = types.int64
+_A1 = types.float64[::1]
+_A2 = types.float64[:, ::1]
+DELTA = FunctionType(types.UniTuple(_f8, 2)(_f8, _A1))
+COUNT = FunctionType(_i8(_f8, _A1))
+OSC = FunctionType(_A1(_A1))
+RIGID = FunctionType(_i8(_A1))
+EVENT = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _f8, _A2, _A2, _A2, _A2, _A1))
+INERTIA = FunctionType(_i8(_A1, _i8, _A2))
+_c16 = types.complex128
+_C2 = types.complex128[:, ::1]
+EVENT_C = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _c16, _C2, _C2, _C2, _C2, _A1))
+SIZES = FunctionType(types.UniTuple(_i8, 2)(_A1))
+#: Position of each function's address pair in ``fa``, and its type.
+FA_STABLE = 0
+FA_COUNT = 2
+FA_OSC = 4
+FA_RIGID = 6
+FA_PAPER = 8
+FA_EVENT = 10
+FA_SIZES = 12
+FA_EVENT_C = 14
+FA_INERTIA = 16
+FA_SIZE = 18
+FUNCTION_TYPES = {
+    "delta_stable": (FA_STABLE, DELTA),
+    "count_below": (FA_COUNT, COUNT),
+    "oscillator_frequencies": (FA_OSC, OSC),
+    "rigid_body_modes": (FA_RIGID, RIGID),
+    "delta_paper": (FA_PAPER, DELTA),
+    "shape_event": (FA_EVENT, EVENT),
+    "shape_sizes": (FA_SIZES, SIZES),
+    "shape_event_c": (FA_EVENT_C, EVENT_C),
+    "shape_inertia": (FA_INERTIA, INERTIA),
+}
+
+
+def _function_value(ftype):
+    """An intrinsic that makes a first-class function value of type ``ftype`` from the
+    addresses of its C wrapper and of its numba entry (exceptions propagate through it)."""
+
+    @intrinsic
+    def make(typingctx, c_addr, jit_addr):
+        def codegen(context, builder, signature, args):
+            value = cgutils.create_struct_proxy(ftype)(context, builder)
+            voidptr = context.get_value_type(types.voidptr)
+            value.c_addr = builder.inttoptr(args[0], voidptr)
+            value.py_addr = voidptr(None)
+            value.jit_addr = builder.inttoptr(args[1], voidptr)
+            return value._getvalue()
+
+        return ftype(types.int64, types.int64), codegen
+
+    return make
+
+
+as_delta = _function_value(DELTA)
+as_count = _function_value(COUNT)
+as_osc = _function_value(OSC)
+as_rigid = _function_value(RIGID)
+as_event = _function_value(EVENT)
+as_sizes = _function_value(SIZES)
+as_event_c = _function_value(EVENT_C)
+as_inertia = _function_value(INERTIA)
+
+
+@njit(cache=True)
+def entry_evaluate(fa, at, omegas, p, mant, logs):
+    """``evaluate`` with the characteristic function whose addresses are at fa[at]."""
+    evaluate(as_delta(fa[at], fa[at + 1]), omegas, p, mant, logs)
+
+
+@njit(cache=True)
+def entry_refine(fa, at, a, b, p, rtol, maxiter):
+    """``refine`` with the characteristic function whose addresses are at fa[at]."""
+    return refine(as_delta(fa[at], fa[at + 1]), a, b, p, rtol, maxiter)
+
+
+@njit(cache=True)
+def entry_counts(fa, omegas, p, out):
+    """``counts`` with the kernel's count."""
+    counts(as_count(fa[FA_COUNT], fa[FA_COUNT + 1]), omegas, p, out)
+
+
+@njit(cache=True)
+def entry_lowest(fa, at, p, modes, out, flags, state, certify, rtol):
+    """``lowest`` with the kernel's functions (the characteristic function at fa[at])."""
+    return lowest(
+        as_delta(fa[at], fa[at + 1]),
+        as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
+        as_osc(fa[FA_OSC], fa[FA_OSC + 1]),
+        as_rigid(fa[FA_RIGID], fa[FA_RIGID + 1]),
+        p,
+        modes,
+        out,
+        flags,
+        state,
+        certify,
+        rtol,
+    )
+
+
+@njit(cache=True)
+def entry_lowest_start(fa, p, modes, out, flags, state, certify):
+    """``lowest_start`` with the kernel's functions."""
+    return lowest_start(
+        as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
+        as_rigid(fa[FA_RIGID], fa[FA_RIGID + 1]),
+        p,
+        modes,
+        out,
+        flags,
+        state,
+        certify,
+    )
+
+
+@njit(cache=True)
+def entry_lowest_run(fa, at, p, modes, out, flags, state, k_stop, certify, w_stop, rtol):
+    """``lowest_run`` with the kernel's functions (the characteristic function at fa[at])."""
+    return lowest_run(
+        as_delta(fa[at], fa[at + 1]),
+        as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
+        as_osc(fa[FA_OSC], fa[FA_OSC + 1]),
+        p,
+        modes,
+        out,
+        flags,
+        state,
+        k_stop,
+        certify,
+        w_stop,
+        rtol,
+    )
+
+
+@njit(cache=True, parallel=True)
+def entry_sweep_lowest(fa, P, modes, out, certified):
+    """``lowest`` (stable) for every parameter vector (row of P), in parallel over the
+    rows; a row is certified when the count certifies all its roots and none is flagged."""
+    delta = as_delta(fa[FA_STABLE], fa[FA_STABLE + 1])
+    count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
+    osc = as_osc(fa[FA_OSC], fa[FA_OSC + 1])
+    rigid = as_rigid(fa[FA_RIGID], fa[FA_RIGID + 1])
+    for i in prange(P.shape[0]):
+        flags = np.zeros(modes, dtype=np.int64)
+        state = np.zeros(STATE_SIZE)
+        k = lowest(delta, count, osc, rigid, P[i], modes, out[i], flags, state, True, 0.0)
+        trusted = True
+        for j in range(modes):
+            trusted = trusted and flags[j] == 0
+        certified[i] = k == modes and state[STATE_CERTIFIED] == 1.0 and trusted
+
+
+@njit(cache=True)
+def entry_mode_shapes(fa, ends, omega, p, m, xs, Z_out, q_out, q_x, q_mass, gram, part, ratio):
+    """``mode_shapes`` with the kernel's descriptor functions."""
+    return mode_shapes(
+        as_event(fa[FA_EVENT], fa[FA_EVENT + 1]),
+        as_inertia(fa[FA_INERTIA], fa[FA_INERTIA + 1]),
+        as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1]),
+        ends,
+        omega,
+        p,
+        m,
+        xs,
+        Z_out,
+        q_out,
+        q_x,
+        q_mass,
+        gram,
+        part,
+        ratio,
+    )
+
+
+@njit(cache=True, parallel=True)
+def entry_frf(fa, ends, damped, ws, p, inputs, outputs, out):
+    """``frf_march`` at every frequency ws[k] (complex, rad/s), in parallel over them:
+    out[k, i, j] the response j to the load i."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    for k in prange(ws.shape[0]):
+        singular = np.zeros(inputs.shape[0])
+        frf_march(event, sizes, ends, ws[k], p, damped, inputs, outputs, out[k], singular)
+
+
+@njit(cache=True)
+def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
+    """``frf_march`` without load at the root w: the mode shapes (one per input row,
+    FRF_NULL or FRF_NULL2) sampled as ``outputs`` says."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular)

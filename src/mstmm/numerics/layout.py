@@ -1,0 +1,22 @@
+"""The parameter vector's layout and the numerical constants every kernel shares.
+
+``p = [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x,
+offset) per component sorted by x, data blocks]`` (``mstmm.derive.catalog.layout``)."""
+
+from mstmm.derive import catalog
+
+#: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
+HEAD = catalog.HEAD
+SEGMENT_WIDTH = catalog.SEGMENT_WIDTH
+EVENT_WIDTH = catalog.EVENT_WIDTH
+#: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
+PENALTY = 1e60
+#: A piece shorter than this (units of L) is merged into its node by the count: its
+#: stiffness (~12/rho^3) must stay far below PENALTY.
+MERGE_LENGTH = 1e-15
+#: Longest piece (in lam*l) carried by one step of the count.
+RICCATI_STEP = 1.0
+#: Scan nodes per pi of beta = lam L in ``lowest`` (beam modes are about pi apart).
+NODES_PER_MODE = 8
+#: The scan's nodes beside a component's own frequency w0 are w0 (1 -+ OSC_SIDE).
+OSC_SIDE = 1e-9
