@@ -20,7 +20,7 @@ import sympy as sp
 
 from . import catalog, descriptor
 from . import symbols as S
-from .components import beam
+from .segments import euler_bernoulli as beam
 
 
 @dataclass
@@ -67,7 +67,7 @@ def component_descriptor(kind: str, values: dict) -> descriptor.Descriptor:
     if hasattr(module, "full_descriptor"):
         d = module.full_descriptor(values)
     else:
-        d = module.descriptor(values)
+        d = descriptor.of(module, values)
     sub = {descriptor.b4: S.omega**2, descriptor.w1: S.omega}
     return descriptor.Descriptor(
         d.Cz.subs(sub),
@@ -75,6 +75,7 @@ def component_descriptor(kind: str, values: dict) -> descriptor.Descriptor:
         d.A.subs(sub),
         d.B.subs(sub),
         tuple(sp.sympify(m).subs(sub) for m in d.qmass),
+        tuple(sp.sympify(m).subs(sub) for m in d.qpart),
     )
 
 

@@ -17,6 +17,7 @@ this module only reads its plain-data declarations (``KEYS``, ``SAME_LENGTH``, `
 from __future__ import annotations
 
 import importlib
+import pkgutil
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -58,6 +59,7 @@ UNIT_SCALES: dict[str, tuple[Fraction, Fraction, Fraction]] = {
         "N m/rad": (1, -1, 0),
         "kg m^2": (-3, 0, -1),
         "N s/m": (1, Fraction(-1, 2), Fraction(-1, 2)),
+        "N m s/rad": (-1, Fraction(-1, 2), Fraction(-1, 2)),
     }.items()
 }
 
@@ -102,18 +104,6 @@ class Key:
         return UNIT_SCALES[self.unit]
 
 
-#: The kinds shipped with mstmm, one module each in ``derive/components``.
-BUILTIN_KINDS = (
-    "dashpot",
-    "hinge",
-    "mass",
-    "oscillator_chain",
-    "rotational_spring",
-    "spring",
-    "spring_mass",
-    "support",
-)
-
 _REGISTRY: dict[str, ModuleType] = {}
 
 
@@ -121,6 +111,8 @@ def _check_kind(module: ModuleType) -> None:
     for name in ("KIND", "KEYS", "COUNT", "DOC"):
         if not hasattr(module, name):
             raise ValueError(f"component kind module {module.__name__} has no {name}")
+    if not (hasattr(module, "energy") or hasattr(module, "descriptor")):
+        raise ValueError(f"component kind module {module.__name__} has no energy or descriptor")
     names = [k.name for k in module.KEYS]
     if not names or names[0] != "x" or module.KEYS[0].check not in ("position", "interior"):
         raise ValueError(f"kind {module.KIND!r}: its first key must be the position x")
@@ -142,11 +134,19 @@ def register_kind(module: ModuleType) -> None:
 def kinds() -> dict[str, ModuleType]:
     """Every known kind: name -> its module (built-ins first, then registered ones)."""
     if not _REGISTRY:
-        for name in BUILTIN_KINDS:
+        for name in builtin_kinds():
             module = importlib.import_module(f"{__package__}.components.{name}")
             _check_kind(module)
             _REGISTRY[name] = module
     return _REGISTRY
+
+
+def builtin_kinds() -> tuple[str, ...]:
+    """The kinds shipped with mstmm: every module in ``derive/components`` (found by
+    listing the folder, so that adding a kind is adding its file), sorted by name."""
+    from . import components
+
+    return tuple(sorted(m.name for m in pkgutil.iter_modules(components.__path__)))
 
 
 def kind(name: str) -> ModuleType:

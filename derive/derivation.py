@@ -6,11 +6,12 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from . import catalog, symbols
+from . import catalog, rigid_body, symbols
 from .assemble import OverallTransfer, overall_transfer
-from .components import beam, rigid_body, spring_mass
+from .components import spring_mass
 from .emit import kernel_source
 from .reduce import reduce
+from .segments import euler_bernoulli as beam
 
 __all__ = ["Derivation", "component_matrices", "kernel_source", "symbolic", "symbols"]
 

@@ -16,6 +16,11 @@ From this, once and for every kind:
   ``i_Cz (a ^ b) = (Cz a) b - (Cz b) a``; it equals ``Cq C2(P) v`` where Cq != 0 and
   is the constrained map where Cq = 0: the pole factor is taken out exactly once;
 * the internal frequencies (zeros of ``det Cq`` in ``b4``), extra scan nodes.
+
+A kind that stores or dissipates energy declares only that: its stiffness, damping and
+mass matrices over ``[Y, theta, q...]`` (:class:`Energy`); :func:`from_energy` derives
+its descriptor, so that the masses of the modal and effective masses, the count's
+pivots, the own frequencies and the jumps all come from the one declaration.
 """
 
 from __future__ import annotations
@@ -44,6 +49,11 @@ class Descriptor:
     A: sp.Matrix
     B: sp.Matrix
     qmass: tuple
+    #: The mass of each q that a rigid translation of the beam carries (the q's share of
+    #: the participation in a base translation, and what makes it a hanging mass whose
+    #: displacement a mode shape reports): ``qmass`` itself when not given (every q with
+    #: a mass a translation), 0 for a rotary inertia.
+    qpart: tuple | None = None
 
     @property
     def n_q(self) -> int:
@@ -56,6 +66,97 @@ class Descriptor:
             raise ValueError("descriptor: Cq is n_c x n_q and qmass has n_q entries")
         if self.Cz.rows != self.B.cols:
             raise ValueError("descriptor: as many constraints as unknowns (n_c = n_q)")
+        if self.qpart is None:
+            object.__setattr__(self, "qpart", tuple(self.qmass))
+        if len(self.qpart) != self.B.cols:
+            raise ValueError("descriptor: qpart has n_q entries")
+
+
+#: What carries an unknown q of a kind's energy: a rigid translation of the beam
+#: (``"Y"``: a hanging mass's displacement) or a rigid rotation about the point
+#: (``"theta"``: the rotation of a rotary inertia on a torsion spring).
+MOVES = ("Y", "theta")
+
+
+@dataclass(frozen=True)
+class Energy:
+    """A point kind's physics over ``u = [Y, theta, q...]`` (units L = EI_0 = mbar_0 = 1):
+    stiffness ``K``, damping ``C`` and mass ``M`` (symmetric, (2 + n_q) square), so that
+    its potential energy is ``u^T K u / 2``, its dissipation ``u'^T C u' / 2`` and its
+    kinetic energy ``u'^T M u' / 2``; ``moves[j]`` says which rigid motion of the beam
+    carries ``q[j]`` (:data:`MOVES`). A damping value is 0 in an undamped kernel."""
+
+    K: sp.Matrix
+    C: sp.Matrix
+    M: sp.Matrix
+    moves: tuple = ()
+
+    def __post_init__(self) -> None:
+        n = 2 + len(self.moves)
+        for name in ("K", "C", "M"):
+            X = getattr(self, name)
+            if X.shape != (n, n):
+                raise ValueError(f"energy: {name} is {n} x {n} over [Y, theta, q...]")
+            if (X - X.T).applyfunc(sp.expand) != sp.zeros(n, n):
+                raise ValueError(f"energy: {name} must be symmetric")
+        if any(m not in MOVES for m in self.moves):
+            raise ValueError(f"energy: each q moves with one of {MOVES}")
+        Mq = self.M[2:, 2:]
+        if any(Mq[i, j] != 0 for i in range(n - 2) for j in range(n - 2) if i != j):
+            raise ValueError("energy: the mass of the unknowns must be diagonal")
+
+
+def _rigid(e: Energy, dof: str) -> sp.Matrix:
+    """The rigid motion of the beam carrying ``dof`` (``Y`` or ``theta``) over u."""
+    return sp.Matrix([int(dof == "Y"), int(dof == "theta"), *(int(m == dof) for m in e.moves)])
+
+
+def from_energy(e: Energy) -> Descriptor:
+    """The descriptor of a kind declared by its energy (docs/components.md, section 2).
+
+    With the dynamic stiffness ``D = K + i w1 C - b4 M`` (time dependence exp(i w t)):
+
+    * the unknowns' equations of motion ``D_qb z + D_qq q = 0`` are the constraints
+      (paper Eq. (3)), each row divided by its constant coupling to the beam (its first
+      nonzero entry of ``K_qb``): a spring-mass's reads ``Y - (1 - mu b4/k) Y_m = 0``,
+      free of any pole, and ``-Cq`` is its pivot ``D_qq / k`` in the count;
+    * the force the kind puts on the beam is ``-R^T D u`` summed over the rigid motion R
+      that carries Y (and the moment, over the one that carries theta): a spring's force
+      on the beam and on its mass cancel in it, so the jump of Q is ``+ b4 mu Y_m``
+      (paper Eq. (2)) without the difference ``k (Y_m - Y)`` of two large numbers.
+      ``Q+ = Q + f``, ``M+ = M - m`` (the sign convention of paper Eq. (1)).
+    """
+    n_q = len(e.moves)
+    D = (e.K + sp.I * w1 * e.C - b4 * e.M).applyfunc(sp.expand)
+    f = _rigid(e, "Y").T * D
+    m = _rigid(e, "theta").T * D
+    A = sp.eye(4)
+    B = sp.zeros(4, n_q)
+    for c in range(2):
+        A[3, c] = -f[c]
+        A[2, c] = m[c]
+    for j in range(n_q):
+        B[3, j] = -f[2 + j]
+        B[2, j] = m[2 + j]
+    Cz, Cq = sp.zeros(n_q, 4), sp.zeros(n_q, n_q)
+    for i in range(n_q):
+        coupling = [e.K[2 + i, c] for c in range(2) if e.K[2 + i, c] != 0]
+        scale = coupling[0] if coupling else 1
+        for c in range(2):
+            Cz[i, c] = sp.expand(D[2 + i, c] / scale)
+        for j in range(n_q):
+            Cq[i, j] = sp.expand(D[2 + i, 2 + j] / scale)
+    qmass = tuple(e.M[2 + j, 2 + j] for j in range(n_q))
+    qpart = tuple(sp.expand((_rigid(e, "Y").T * e.M)[2 + j]) for j in range(n_q))
+    return Descriptor(Cz, Cq, A.applyfunc(sp.expand), B.applyfunc(sp.expand), qmass, qpart)
+
+
+def of(module, values: dict) -> Descriptor:
+    """A kind's descriptor: declared (a constraint, or a kind in descriptor form), or
+    derived from its declared energy (:func:`from_energy`)."""
+    if hasattr(module, "energy"):
+        return from_energy(module.energy(values))
+    return module.descriptor(values)
 
 
 def point(A: sp.Matrix) -> Descriptor:

@@ -20,9 +20,9 @@ import sympy as sp
 from . import catalog, descriptor, special
 from . import symbols as S
 from .catalog import KNOWN_ZERO, Topology, unknown
-from .components import beam
 from .compound import pair_index
 from .printer import assignments, code
+from .segments import euler_bernoulli as beam
 from .sign import derive_digest, numerics_digest, signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
@@ -166,7 +166,7 @@ def _value_lines(module, damped: bool = False) -> tuple[list[str], dict]:
 
 def _symbolic_descriptor(module, damped: bool = False) -> tuple[list[str], descriptor.Descriptor]:
     lines, values = _value_lines(module, damped)
-    return lines, module.descriptor(values)
+    return lines, descriptor.of(module, values)
 
 
 def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = False) -> list[str]:
@@ -210,10 +210,12 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
         return values + step
     if hasattr(module, "OWN"):
         return values + step + [f"count += {module.OWN}"]
-    if d.n_q != 1 or any(d.Cz[0, j] != 0 for j in (1, 2, 3)) or d.Cz[0, 0] == 0:
+    coupled = [j for j in range(4) if d.Cz[0, j] != 0] if d.n_q == 1 else []
+    if len(coupled) != 1 or coupled[0] > 1 or not (d.Cz[0, coupled[0]] > 0):
         raise ValueError(
-            f"{module.KIND}: a stiffness kind with unknowns needs n_q = 1 and Cz = c e_Y"
-            " (its row the unknown's equation of motion, c > 0 its coupling to Y)"
+            f"{module.KIND}: a stiffness kind with unknowns needs n_q = 1 and Cz = c e_Y or"
+            " c e_theta (its row the unknown's equation of motion divided by its coupling"
+            " to the beam, c > 0)"
         )
     # the unknown's own dynamic stiffness (k - m w^2 for a spring-mass)
     pivot = [f"pivot = {code(-d.Cq[0, 0])}"]
@@ -228,8 +230,8 @@ def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list[str]:
         targets += [f"Cz[{r}, {c}]" for c in range(4)] + [f"Cq[{r}, {j}]" for j in range(d.n_q)]
         exprs += list(d.Cz[r, :]) + list(d.Cq[r, :])
     for j in range(d.n_q):
-        targets += [f"B[{r}, {j}]" for r in range(4)] + [f"qmass[{j}]"]
-        exprs += list(d.B[:, j]) + [d.qmass[j]]
+        targets += [f"B[{r}, {j}]" for r in range(4)] + [f"qmass[0, {j}]", f"qmass[1, {j}]"]
+        exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j]]
     lines = assignments(targets, [sp.sympify(e) for e in exprs], indent="", complex_=complex_)
     return lines + [f"return {d.Cz.rows}, {d.n_q}"]
 
@@ -249,7 +251,7 @@ def _descriptor_c_lines(damped: bool):
         if hasattr(module, "SHAPE_COMPLEX"):
             return [f"return {module.SHAPE_COMPLEX}"]
         values, symbols = _value_lines(module, damped)
-        d = module.descriptor(symbols)
+        d = descriptor.of(module, symbols)
         return values + ["b4 = w1 * w1"] + _fill_lines(d, complex_=True)
 
     return body
@@ -358,7 +360,8 @@ def dispatch_table(damped: bool) -> tuple:
             "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
             _descriptor_lines,
             "return 0, 0",
-            "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units\n"
+            "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass\n"
+            "    of each q and qmass[1] the share of it a rigid translation carries (units\n"
             "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
         ),
         (

@@ -1,9 +1,13 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
-``SIGNATURE = sha1(topology key | derive/ sources | the shared numerics' sources | files of
-kinds registered from outside derive/ | SymPy version | KERNEL_FORMAT)``. The numerics
-(``mstmm.numerics``) are in it because a kernel's compiled code inlines some of them:
-numba's cache of the kernel file must go when they change.
+``SIGNATURE = sha1(topology key | derive/ sources but the kinds | the files of the
+topology's kinds | the shared numerics' sources | SymPy version | KERNEL_FORMAT)``. Each
+kernel's digest covers only what it is printed from: adding or editing a kind changes the
+signature of the topologies that hold it and of no other, and leaves the shared beam
+functions (``generated/euler_bernoulli.py``, whose ``DIGEST`` is :func:`derive_digest`)
+and numba's caches of everything else valid. The numerics (``mstmm.numerics``) are in
+it because a kernel's compiled code inlines some of them: numba's cache of the kernel
+file must go when they change.
 A committed kernel is used only when its ``SIGNATURE`` equals this; a cached one
 carries it in its file name, so numba's on-disk cache (keyed on the file) stays
 valid (DESIGN.md, tool-chain facts). The SymPy version is read from the package
@@ -26,10 +30,13 @@ _DIGEST: str | None = None
 
 
 def _derive_digest() -> str:
-    """sha1 of every source and template of the derive package."""
+    """sha1 of every source and template of the derive package but the kinds' files."""
     h = hashlib.sha1()
     root = Path(__file__).resolve().parent
+    kinds = root / "components"
     for path in sorted(root.rglob("*")):
+        if path.parent == kinds and path.name != "__init__.py":
+            continue
         if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
             h.update(path.relative_to(root).as_posix().encode())
             h.update(path.read_bytes())
@@ -37,7 +44,8 @@ def _derive_digest() -> str:
 
 
 def derive_digest() -> str:
-    """sha1 of every source and template of the derive package (computed once)."""
+    """sha1 of every source and template of the derive package but the kinds' files
+    (computed once): what the shared beam functions and every kernel are printed by."""
     global _DIGEST
     if _DIGEST is None:
         _DIGEST = _derive_digest()
@@ -57,21 +65,16 @@ def numerics_digest() -> str:
 
 
 def signature(topology: Topology) -> str:
-    """sha1 of the topology, the derive/ sources, the shared numerics, the SymPy version and
-    the kernel format."""
-    derive_digest()
-    root = Path(__file__).resolve().parent
-    outside = []
-    for name in topology.kinds:
-        path = kind_file(name)
-        if root not in path.parents:  # a kind registered from outside the package
-            outside.append(hashlib.sha1(path.read_bytes()).hexdigest())
+    """sha1 of the topology, the derive/ sources but the kinds, the files of the topology's
+    own kinds (built in or registered), the shared numerics, the SymPy version and the
+    kernel format."""
+    kinds = [hashlib.sha1(kind_file(name).read_bytes()).hexdigest() for name in topology.kinds]
     text = "|".join(
         [
             topology.key,
-            _DIGEST,
+            derive_digest(),
             numerics_digest(),
-            *outside,
+            *kinds,
             importlib.metadata.version("sympy"),
             str(KERNEL_FORMAT),
         ]

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "cef492f7dc6c9fd3adb29c131a7ec9cc5015bd61"
+SIGNATURE = "fbc87d22cf49f0095c2196a5393916b9e9907bc6"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)
@@ -39,12 +39,13 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "bc4cd1c8a060e9b29fb6d68fd42791e135460e11"
+NUMERICS = "4a8fbf6a7b36cb08b89f3e65ee4f3599762e4c23"
 
 
 @njit(cache=True)
 def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
-    """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units
+    """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass
+    of each q and qmass[1] the share of it a rigid translation carries (units
     L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns)."""
     return 0, 0
 
@@ -274,7 +275,7 @@ def u_bar_paper(omega, p):
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    qmass = np.zeros(nb)
+    qmass = np.zeros((2, nb))
     pos = 0.0
     seg = 0
     ncols = 2

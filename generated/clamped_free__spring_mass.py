@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "25e312d024e54fa502c78ab94fc8a65af314cfcb"
+SIGNATURE = "2cf04b090f37c3c0a0e7f291c3485e8f78d75861"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,12 +39,13 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "bc4cd1c8a060e9b29fb6d68fd42791e135460e11"
+NUMERICS = "4a8fbf6a7b36cb08b89f3e65ee4f3599762e4c23"
 
 
 @njit(cache=True)
 def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
-    """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, mass of each q (units
+    """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass
+    of each q and qmass[1] the share of it a rigid translation carries (units
     L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns)."""
     if tag == 0:  # spring_mass
         val_k = p[o + 0] * L * L * L / EI
@@ -75,7 +76,8 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         B[1, 0] = 0.0
         B[2, 0] = 0.0
         B[3, 0] = t0
-        qmass[0] = val_m
+        qmass[0, 0] = val_m
+        qmass[1, 0] = val_m
         return 1, 1
     return 0, 0
 
@@ -137,7 +139,8 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         B[1, 0] = 0.0
         B[2, 0] = 0.0
         B[3, 0] = t0
-        qmass[0] = val_m
+        qmass[0, 0] = val_m
+        qmass[1, 0] = val_m
         return 1, 1
     return 0, 0
 
@@ -394,7 +397,7 @@ def u_bar_paper(omega, p):
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    qmass = np.zeros(nb)
+    qmass = np.zeros((2, nb))
     pos = 0.0
     seg = 0
     ncols = 2

@@ -1,6 +1,6 @@
 """The Euler-Bernoulli segment's beam functions (generated, do not edit).
 
-Printed by SymPy from ``derive/components/beam.py`` and ``derive/special.py``: the
+Printed by SymPy from ``derive/segments/euler_bernoulli.py`` and ``derive/special.py``: the
 reduced Krylov functions and the second-compound functions (series below x = 1.5,
 closed forms with their exp(-x) scaling above), the segment transfer matrix (paper units
 and reduced units), the compound step of the minors, their complex twins (damped kernels,
@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "5d2c9879f40a86d46e317bf92042ae54dc49f232"
+DIGEST = "b174104631bacaa3b770f72c5dfdc65d4c4c2c2b"
 
 
 @njit(cache=True, inline="always")

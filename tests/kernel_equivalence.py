@@ -75,12 +75,12 @@ def printed_by(source: str) -> str | None:
 def all_topologies() -> list:
     """Every end pair, bare and with spring-masses (32 topologies), and two with every kind
     of an undamped scene (a dashpot makes a scene damped: its kernel is complex)."""
-    from mstmm.derive.catalog import BUILTIN_KINDS, damping_only
+    from mstmm.derive.catalog import builtin_kinds, damping_only
 
     from mstmm.scene import BOUNDARY_KINDS
     from mstmm.topology import Topology
 
-    every = tuple(sorted(k for k in BUILTIN_KINDS if not damping_only(k)))
+    every = tuple(sorted(k for k in builtin_kinds() if not damping_only(k)))
     return [
         Topology(left, right, kinds)
         for left in BOUNDARY_KINDS

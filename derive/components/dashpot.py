@@ -24,12 +24,10 @@ RIGID = ()
 DAMPS = ("Y",)
 
 
-def descriptor(v: dict):
-    """``Q+ = Q - i w1 gamma Y``."""
+def energy(v: dict):
+    """Dissipation ``gamma Y'^2 / 2``: ``Q+ = Q - i w1 gamma Y``."""
     import sympy as sp
 
-    from ..descriptor import point, w1
+    from ..descriptor import Energy
 
-    A = sp.eye(4)
-    A[3, 0] = -sp.I * w1 * v.get("c", 0)
-    return point(A)
+    return Energy(K=sp.zeros(2, 2), C=sp.diag(v.get("c", 0), 0), M=sp.zeros(2, 2))

@@ -27,13 +27,11 @@ COUNT = "stiffness"
 RIGID = ()
 
 
-def descriptor(v: dict):
-    """``Q+ = Q + mu b4 Y``, ``M+ = M - j b4 theta``."""
+def energy(v: dict):
+    """Kinetic energy ``(mu Y'^2 + j theta'^2) / 2``: ``Q+ = Q + mu b4 Y``,
+    ``M+ = M - j b4 theta`` (paper Eq. (1), lumped mass)."""
     import sympy as sp
 
-    from ..descriptor import b4, point
+    from ..descriptor import Energy
 
-    A = sp.eye(4)
-    A[3, 0] = v["m"] * b4
-    A[2, 1] = -v["J"] * b4
-    return point(A)
+    return Energy(K=sp.zeros(2, 2), C=sp.zeros(2, 2), M=sp.diag(v["m"], v["J"]))

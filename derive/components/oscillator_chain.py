@@ -196,7 +196,8 @@ def oscillator_chain_shape(p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
             Cq[i, i + 1] = k_out
         Cq[i, i] = mu * b4 - kappa - k_out
         B[3, i] = mu * b4
-        qmass[i] = mu
+        qmass[0, i] = mu
+        qmass[1, i] = mu
     return n, n
 
 
@@ -270,6 +271,7 @@ def oscillator_chain_shape_c(p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
             Cq[i, i + 1] = k_out
         Cq[i, i] = mu * b4 - kappa - k_out
         B[3, i] = mu * b4
-        qmass[i] = mu
+        qmass[0, i] = mu
+        qmass[1, i] = mu
     return n, n
 '''

@@ -19,12 +19,10 @@ COUNT = "stiffness"
 RIGID = ("theta",)
 
 
-def descriptor(v: dict):
-    """``M+ = M + kappa theta``."""
+def energy(v: dict):
+    """Potential energy ``kappa theta^2 / 2``: ``M+ = M + kappa theta``."""
     import sympy as sp
 
-    from ..descriptor import point
+    from ..descriptor import Energy
 
-    A = sp.eye(4)
-    A[2, 1] = v["k"]
-    return point(A)
+    return Energy(K=sp.diag(0, v["k"]), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

@@ -20,12 +20,10 @@ COUNT = "stiffness"
 RIGID = ("Y",)
 
 
-def descriptor(v: dict):
-    """``Q+ = Q - kappa Y``."""
+def energy(v: dict):
+    """Potential energy ``kappa Y^2 / 2``: ``Q+ = Q - kappa Y``."""
     import sympy as sp
 
-    from ..descriptor import point
+    from ..descriptor import Energy
 
-    A = sp.eye(4)
-    A[3, 0] = -v["k"]
-    return point(A)
+    return Energy(K=sp.diag(v["k"], 0), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

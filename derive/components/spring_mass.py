@@ -2,11 +2,10 @@
 
 Paper Eq. (1) spring and lumped mass on ``[Y, Q]``; the branch hangs from a massless
 rigid body on the beam; its tip (the free side of the mass) is ``Z = [Y_m, 0]``.
-As a descriptor (docs/components.md): ``q = [Y_m]``, ``Cz = e_Y``,
-``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``. An optional dashpot ``c``
-parallel to the spring makes its force ``(k + i w c)(Y_m - Y)`` (time dependence
-exp(i w t)): ``kappa -> kappa + i w1 gamma``, and the constraint is multiplied by that
-kappa, which vanishes at ``w1 = i kappa / gamma`` (a damped kernel only).
+Declared by its energy (docs/components.md); its descriptor is derived:
+``q = [Y_m]``, ``Cz = e_Y``, ``Cq = -(1 - mu b4 / kappa)``, ``A = I``, ``B = mu b4 e_Q``.
+An optional dashpot ``c`` parallel to the spring makes its force ``(k + i w c)(Y_m - Y)``
+(time dependence exp(i w t)).
 SymPy is imported inside the functions: the catalog reads this file's keys without it.
 """
 
@@ -37,26 +36,20 @@ UNKNOWNS = "Y_tip"
 RIGID = ()
 
 
-def descriptor(v: dict):
-    """``Y - (1 - mu b4/kappa) Y_m = 0`` (paper Eq. (3)), ``Q+ = Q + mu b4 Y_m`` (Eq. (2)).
-
-    With a dashpot the constraint is taken times kappa, ``kappa Y - (kappa - mu b4) Y_m =
-    0`` (the mass's equation of motion): free of the pole at kappa + i w1 gamma = 0 that
-    the argument principle would count. Without one the constraint stays as printed: a
-    real kappa has no pole, and multiplying by it would scale the paper formulation's
-    determinant by the product of every stiffness (e^1800 for 100 stiff mounts) and
-    spoil its pivoting."""
+def energy(v: dict):
+    """Over ``[Y, theta, Y_m]``: the spring ``kappa (Y_m - Y)^2 / 2``, its parallel dashpot
+    ``gamma (Y_m' - Y')^2 / 2`` and the mass ``mu Y_m'^2 / 2``; a rigid translation carries
+    the mass. Derived (``descriptor.from_energy``): ``Y - (1 - mu b4/kappa) Y_m = 0``
+    (paper Eq. (3)) and ``Q+ = Q + mu b4 Y_m`` (Eq. (2)); with a dashpot the constraint is
+    ``(1 + i w1 gamma/kappa)(Y - Y_m) + mu b4/kappa Y_m = 0``, free of poles."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, b4, unit, w1
+    from ..descriptor import Energy
 
-    c, mu = v.get("c", 0), v["m"]
-    if c == 0:
-        Cz, Cq = unit(0).T, sp.Matrix([[-(1 - mu * b4 / v["k"])]])
-    else:
-        kappa = v["k"] + sp.I * w1 * c
-        Cz, Cq = kappa * unit(0).T, sp.Matrix([[-(kappa - mu * b4)]])
-    return Descriptor(Cz=Cz, Cq=Cq, A=sp.eye(4), B=mu * b4 * unit(3), qmass=(mu,))
+    spring = sp.Matrix([[1, 0, -1], [0, 0, 0], [-1, 0, 1]])
+    return Energy(
+        K=v["k"] * spring, C=v.get("c", 0) * spring, M=sp.diag(0, 0, v["m"]), moves=("Y",)
+    )
 
 
 def spring(k):
@@ -96,8 +89,8 @@ def condensed_compound(k, m, omega):
     """
     import sympy as sp
 
+    from .. import rigid_body
     from ..compound import second_compound
-    from . import rigid_body
 
     col = tip_column(k, m, omega)
     B00, B10 = col[0], col[1]

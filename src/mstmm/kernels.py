@@ -463,8 +463,9 @@ class Kernel:
 
         Returns ``(Z, q, q_x, q_mass, gram, part, ratio)`` in units ``L = EI_0 = mbar_0 =
         1``: the states ``[Y, theta, M, Q]`` at ``xs`` (m, len(xs), 4), every point
-        component's unknowns (m, n_q) with the x (m) of their component and the mass
-        moving with each (0 for a reaction or a rotation), the mass Gram matrix, the
+        component's unknowns (m, n_q) with the x (m) of their component and (2, n_q)
+        the mass (or rotary inertia) moving with each and the share of it a rigid
+        translation carries (0 for a reaction), the mass Gram matrix, the
         mass-weighted integrals of Y, and each shape's singular value over the end
         matrix's largest (see :mod:`mstmm.modes`).
         """
@@ -482,7 +483,7 @@ class Kernel:
         Z = np.zeros((m, xs.shape[0], 4))
         q = np.zeros((m, nq))
         q_x = np.zeros(nq)
-        q_mass = np.zeros(nq)
+        q_mass = np.zeros((2, nq))
         gram = np.zeros((m, m))
         part = np.zeros(m)
         ratio = np.zeros(m)
@@ -513,18 +514,19 @@ class Kernel:
 
     def unknowns(self, p: np.ndarray) -> list[tuple[float, float]]:
         """``(x, mass)`` of every component unknown in order (the q index of ``frf``): a
-        hanging mass's (mass > 0, units mbar_0 L), a reaction's or a rotation's (0)."""
+        hanging mass's (the mass a rigid translation carries, > 0, units mbar_0 L), a
+        reaction's or a rotation's (0)."""
         p = _params(p)
         m = self.module
         total, most = (int(v) for v in self._compiled("shape_sizes")(p))
         nb = max(1, most)
         Cz, Cq = np.zeros((nb, 4), complex), np.zeros((nb, nb), complex)
-        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros(nb)
+        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros((2, nb))
         out = []
         event = self._compiled("shape_event_c")
         for row in m.event_order(p):
             nc, nq = event(p, int(row), 1.0 + 0.0j, Cz, Cq, A, B, qmass)
-            out += [(float(p[row + 1]), float(qmass[j])) for j in range(nq)]
+            out += [(float(p[row + 1]), float(qmass[1, j])) for j in range(nq)]
         return out
 
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:

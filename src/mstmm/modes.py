@@ -164,7 +164,7 @@ def _cluster_shapes(kernel, p, omegas, xs) -> list[ModeShape]:
     # how singular the end matrix is on the whole space (the worst of its m directions)
     worst = float(np.max(ratio))
     units = np.array([L, 1.0, EI / L, EI / L**2])
-    carried = q_mass > 0.0  # the unknowns that are displacements of carried masses
+    carried = q_mass[1] > 0.0  # the unknowns that are displacements of carried masses
     mass_x = q_x[carried]
     out = []
     for j in range(m):

@@ -40,11 +40,11 @@ DELTA = FunctionType(types.UniTuple(_f8, 2)(_f8, _A1))
 COUNT = FunctionType(_i8(_f8, _A1))
 OSC = FunctionType(_A1(_A1))
 RIGID = FunctionType(_i8(_A1))
-EVENT = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _f8, _A2, _A2, _A2, _A2, _A1))
+EVENT = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _f8, _A2, _A2, _A2, _A2, _A2))
 INERTIA = FunctionType(_i8(_A1, _i8, _A2))
 _c16 = types.complex128
 _C2 = types.complex128[:, ::1]
-EVENT_C = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _c16, _C2, _C2, _C2, _C2, _A1))
+EVENT_C = FunctionType(types.UniTuple(_i8, 2)(_A1, _i8, _c16, _C2, _C2, _C2, _C2, _A2))
 SIZES = FunctionType(types.UniTuple(_i8, 2)(_A1))
 #: Position of each function's address pair in ``fa``, and its type.
 FA_STABLE = 0

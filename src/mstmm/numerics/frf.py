@@ -411,7 +411,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     Cq = np.zeros((nb, nb), dtype=np.complex128)
     Ad = np.zeros((4, 4), dtype=np.complex128)
     B = np.zeros((4, nb), dtype=np.complex128)
-    ev_mass = np.zeros(nb)
+    ev_mass = np.zeros((2, nb))
     C = np.zeros((nb, nb + 2), dtype=np.complex128)
     rhs = np.zeros(nb, dtype=np.complex128)
     row_scale = np.ones(nb)

@@ -273,12 +273,14 @@ def mode_shapes(
 
     Z_out (m, len(xs), 4): state [Y, theta, M, Q] at the sample points xs (SI, ascending,
     right limits at a point component); q_out (m, n_q): the unknowns of every point
-    component, q_x (n_q) the x (SI) of the component each belongs to and q_mass (n_q) the
-    mass moving with it (units mbar_0 L; 0 for a reaction or a rotation); gram (m, m) and
-    part (m): the mass inner products int mbar Y_i Y_j + sum mu q_i q_j + sum z_i^T M z_j
-    and int mbar Y_i + sum mu q_i + sum (M z_i)_Y (for the participation factor in a base
-    translation), z = [Y, theta] at a component holding the point mass matrix M on the
-    beam (a lumped mass and its rotary inertia); ratio (m): singular value of each shape
+    component, q_x (n_q) the x (SI) of the component each belongs to and q_mass (2, n_q) the
+    mass (or rotary inertia) moving with it and the share of that a rigid translation
+    carries (units mbar_0 L for a displacement, mbar_0 L^3 for a rotation; 0 for a
+    reaction); gram (m, m) and part (m): the mass inner products int mbar Y_i Y_j + sum
+    q_mass[0] q_i q_j + sum z_i^T M z_j and int mbar Y_i + sum q_mass[1] q_i + sum
+    (M z_i)_Y (for the participation factor in a base translation), z = [Y, theta] at
+    a component holding the point mass matrix M on the beam (a lumped mass and its
+    rotary inertia); ratio (m): singular value of each shape
     over the largest of the end matrix. Shapes are the right singular vectors of the end
     matrix for its m smallest singular values, walked back to the left end. ``event(p,
     row, b4, Cz, Cq, A, B, qmass)`` fills a component's descriptor, ``inertia(p, row, M)``
@@ -319,7 +321,7 @@ def mode_shapes(
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    ev_mass = np.zeros(nb)
+    ev_mass = np.zeros((2, nb))
     Mp = np.zeros((2, 2))
     Mbuf = np.zeros((n_steps, 2, 2))
     G = np.zeros((width, width))
@@ -370,7 +372,8 @@ def mode_shapes(
         qofs[s] = nq_total
         fofs[s] = nf_total
         for j in range(nq):
-            q_mass[nq_total + j] = ev_mass[j]
+            q_mass[0, nq_total + j] = ev_mass[0, j]
+            q_mass[1, nq_total + j] = ev_mass[1, j]
             q_x[nq_total + j] = x
         nq_total += nq
         nf_total += nf
@@ -483,7 +486,7 @@ def mode_shapes(
         j += 1
     for i in range(nq_total):
         for k in range(m):
-            part[k] += q_mass[i] * q_out[k, i]
+            part[k] += q_mass[1, i] * q_out[k, i]
             for l in range(m):
-                gram[k, l] += q_mass[i] * q_out[k, i] * q_out[l, i]
+                gram[k, l] += q_mass[0, i] * q_out[k, i] * q_out[l, i]
     return nq_total
