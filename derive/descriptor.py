@@ -153,9 +153,11 @@ def from_energy(e: Energy) -> Descriptor:
 
 def of(module, values: dict) -> Descriptor:
     """A kind's descriptor: declared (a constraint, or a kind in descriptor form), or
-    derived from its declared energy (:func:`from_energy`)."""
+    derived from its declared energy (:func:`from_energy`; evaluated even inside the
+    unevaluated derivation of ``show``: its matrices are small)."""
     if hasattr(module, "energy"):
-        return from_energy(module.energy(values))
+        with sp.evaluate(True):
+            return from_energy(module.energy(values))
     return module.descriptor(values)
 
 

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "2cf04b090f37c3c0a0e7f291c3485e8f78d75861"
+SIGNATURE = "ee0b7c83d1cacb73429df264c3c115fe457210af"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)

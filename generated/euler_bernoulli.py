@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "b174104631bacaa3b770f72c5dfdc65d4c4c2c2b"
+DIGEST = "d8315e6a0d8083537869182ee8d292ae3a8d4522"
 
 
 @njit(cache=True, inline="always")

@@ -127,7 +127,7 @@ def test_compound_step_is_the_pole_free_compound_of_the_point_matrix(name):
     values = {k.name: sp.Symbol(f"val_{k.name}", positive=True) for k in module.KEYS[1:]}
     for extra in getattr(module, "PRELUDE_NAMES", ()):
         values[extra] = sp.Symbol(extra, positive=True)
-    d = module.descriptor(values)
+    d = descriptor.of(module, values)
     v = sp.Matrix(sp.symbols("v0:6"))
     step = descriptor.compound_step(d, v)
     P, pole = descriptor.point_matrix(d)

@@ -570,6 +570,14 @@ def test_first_error_in_file_order_names_the_file_index(tmp_path):
 # A kind registered after import is accepted (read from the registry when validating)
 
 
+def _toy_energy(v):
+    """Its physics: a spring to the ground (a kind declares its energy or descriptor)."""
+    import sympy as sp
+    from mstmm.derive.descriptor import Energy
+
+    return Energy(K=sp.diag(v["stiffness"], 0), C=sp.zeros(2, 2), M=sp.zeros(2, 2))
+
+
 @pytest.fixture
 def toy_kind():
     module = types.ModuleType("toy_grounded_spring")
@@ -581,6 +589,7 @@ def toy_kind():
     )
     module.COUNT = "stiffness"
     module.RIGID = ("Y",)
+    module.energy = _toy_energy
     catalog.register_kind(module)
     try:
         yield module
