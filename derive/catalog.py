@@ -164,6 +164,12 @@ def damping_only(name: str) -> bool:
     return bool(keys) and all(k.damping for k in keys)
 
 
+def splits_rotation(name: str) -> bool:
+    """Whether a kind lets the rotation jump where it sits (a hinge: ``COUNT = "split"``,
+    the node gets a second rotation): a couple or a rotation there is ambiguous."""
+    return kind(name).COUNT == "split"
+
+
 def kind_file(name: str) -> Path:
     """The source file of a kind (hashed into a kernel's signature)."""
     return Path(kind(name).__file__).resolve()

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "c3519e68d678622fe084144ed025c3246cc71472"
+SIGNATURE = "3d1e200408de6255c04eb3e622295609d4cc4882"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "ee0b7c83d1cacb73429df264c3c115fe457210af"
+SIGNATURE = "67f8b7e61d4ed436a86a28e2acb18a8dc962409b"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)

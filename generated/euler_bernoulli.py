@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "d8315e6a0d8083537869182ee8d292ae3a8d4522"
+DIGEST = "ed649326837835e4f1b1cbaf08b2451fee0a6dfc"
 
 
 @njit(cache=True, inline="always")

@@ -325,3 +325,22 @@ def test_veering_legend_covers_neither_curves_nor_the_hz_axis(scene):
     ax = fig.axes[0]
     right = max(c.get_tightbbox().x1 for c in ax.child_axes)  # the Hz ticks and label
     assert legend.get_window_extent().x0 >= right
+
+
+def test_veering_draws_the_own_frequencies_of_any_kind():
+    """A two-stage chain's own frequencies (beam point held): the eigenvalues of
+    [[k1 + k2, -k2], [-k2, k2]] u = w^2 diag(m1, m2) u, at every value of k[1]."""
+    beam = {"length": 2.0, "EI": 1.0e4, "mass_per_length": 10.0, "left": "clamped"}
+    chain = {"type": "oscillator_chain", "x": 1.5, "k": [2.0e4, 1.0e4], "m": [1.0, 2.0]}
+    sc = mstmm.scene_from_dict({"beam": {**beam, "right": "free"}, "attachments": [chain]})
+    k2s = np.linspace(5.0e3, 4.0e4, 6)
+    fig = plot.veering(sc, "attachments[0].k[1]", k2s, modes=3)
+    unc = lines(fig, "uncoupled")
+    assert len(unc) == 2
+    for i, k2 in enumerate(k2s):
+        K = np.array([[2.0e4 + k2, -k2], [-k2, k2]])
+        want = np.sqrt(
+            np.linalg.eigvalsh(np.diag([1.0, 0.5]) ** 0.5 @ K @ np.diag([1.0, 0.5]) ** 0.5)
+        )
+        got = [line.get_ydata()[i] for line in unc]
+        np.testing.assert_allclose(got, want, rtol=1e-12)

@@ -18,6 +18,8 @@ KEYS = (
     Key("c", "N s/m", doc="damping coefficient", damping=True),
 )
 COUNT = "stiffness"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("*", "C8")
 #: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``);
 #: the damped count at w = 0 treats it as a constraint on Y (``DAMPS``).
 RIGID = ()

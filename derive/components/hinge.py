@@ -18,6 +18,8 @@ KEYS = (
     Key("k", "N m/rad", check="nonnegative", default=0.0, doc="stiffness across the hinge"),
 )
 COUNT = "split"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("o", "C1")
 #: Name of its unknown in Z_all (the jump of the slope).
 UNKNOWNS = "phi"
 #: A free hinge (k = 0) lets a rigid-body motion kink there.

@@ -24,6 +24,8 @@ KEYS = (
     ),
 )
 COUNT = "stiffness"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("s", "C2")
 RIGID = ()
 
 

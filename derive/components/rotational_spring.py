@@ -15,6 +15,8 @@ KEYS = (
     Key("k", "N m/rad", doc="stiffness"),
 )
 COUNT = "stiffness"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("P", "C6")
 #: A rigid-body motion does no work on it only where theta = 0.
 RIGID = ("theta",)
 

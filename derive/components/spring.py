@@ -16,6 +16,8 @@ KEYS = (
     Key("k", "N/m", doc="stiffness"),
 )
 COUNT = "stiffness"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("d", "C5")
 #: A rigid-body motion does no work on it only where Y = 0.
 RIGID = ("Y",)
 

@@ -15,6 +15,8 @@ KIND = "support"
 DOC = "rigid point support at x: Y = 0, slope and moment continuous"
 KEYS = (Key("x", "m", check="position", doc="position from the left end"),)
 COUNT = "constraint"
+#: Its marker and colour in plots (matplotlib).
+MARKER = ("^", "k")
 #: Name of its unknown in Z_all (the reaction).
 UNKNOWNS = "R"
 RIGID = ("Y",)

@@ -77,11 +77,6 @@ class DecayBound:
     eta: float  # the largest loss factor
 
 
-def _splits_rotation(kind: str) -> bool:
-    """Whether a kind lets the rotation jump where it sits (a hinge)."""
-    return any(str(r).startswith("kink") for r in getattr(catalog.kind(kind), "RIGID", ()))
-
-
 def _grounded(kind: str) -> bool:
     """Whether a kind's damping acts between the beam and the ground (a dashpot)."""
     return "Y" in getattr(catalog.kind(kind), "DAMPS", ())
@@ -136,7 +131,7 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     rate = 0.0
     where: list[tuple[float, float]] = []  # each damper: x and Gamma_j
     for a in scene.attachments:
-        if _splits_rotation(a.kind):
+        if catalog.splits_rotation(a.kind):
             breaks.add(float(a.x))
         given = dict(a.values)
         cs: list[float] = []

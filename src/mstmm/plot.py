@@ -17,8 +17,9 @@ Artists carry a ``gid`` so that a figure can be inspected: ``"delta"`` (the curv
 ``"root-line"`` (one vertical line per distinct root), ``"mode"`` (a mode-shape or
 veering curve), ``"mass"`` / ``"spring"`` (hanging masses of one mode and their
 springs), ``"attachment"`` (attachment points on the beam axis: one line per kind,
-its marker from :data:`ATTACHMENT_MARKERS`, labelled ``"spring-mass (3)"``), ``"axis"``
-(the beam axis), ``"uncoupled"`` (``sqrt(k/m)`` of a varied attachment), ``"frf"`` /
+its marker the one its kind declares (``MARKER``), labelled ``"spring-mass (3)"``),
+``"axis"`` (the beam axis), ``"uncoupled"`` (the own frequencies of a varied attachment,
+``sqrt(k/m)`` for a spring-mass), ``"frf"`` /
 ``"phase"`` (an frf's magnitude and unwrapped phase). Every axis is labelled with its
 unit; legends sit beside the axes, where they cover no curve.
 """
@@ -35,6 +36,8 @@ from pathlib import Path
 
 import matplotlib
 import numpy as np
+
+from mstmm.derive import catalog
 
 from .kernels import load_kernel
 from .scene import Scene, SceneError
@@ -74,7 +77,8 @@ DPI = 150
 MARGIN = 1.08
 
 _TWO_PI = 2.0 * math.pi
-_ATTACHMENT_FIELD = re.compile(r"attachments\[(\d+)\]\.(k|m)$")
+#: A field of one attachment other than its position (its own frequencies may depend on it).
+_ATTACHMENT_FIELD = re.compile(r"attachments\[(\d+)\]\.(?!x$)\w+(\[\d+\])?$")
 
 
 def _to_hz(w):
@@ -147,25 +151,15 @@ def _legend(ax: Axes) -> None:
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8)
 
 
-#: Attachment markers: matplotlib marker and colour per kind, keyed by the kind's name
-#: (kept here, not in the kinds' files under derive/, which plotting must not reach into).
-#: A kind not listed (a kind added later) gets a marker from :data:`_SPARE_MARKERS`.
-ATTACHMENT_MARKERS: dict[str, tuple[str, str]] = {
-    "support": ("^", "k"),
-    "hinge": ("o", "C1"),
-    "mass": ("s", "C2"),
-    "spring_mass": ("v", "C4"),
-    "spring": ("d", "C5"),
-    "rotational_spring": ("P", "C6"),
-    "oscillator_chain": ("X", "C7"),
-    "dashpot": ("*", "C8"),
-}
+#: Markers for a kind that declares none (``MARKER`` in its file), one per such kind.
 _SPARE_MARKERS = ("h", "p", "<", ">", "8", "H")
 
 
 def _marker(kind: str, spare: list[str]) -> tuple[str, str]:
-    if kind in ATTACHMENT_MARKERS:
-        return ATTACHMENT_MARKERS[kind]
+    """The marker and colour a kind declares, or a spare marker in grey."""
+    declared = getattr(catalog.kind(kind), "MARKER", None)
+    if declared is not None:
+        return tuple(declared)
     if kind not in spare:
         spare.append(kind)
     return _SPARE_MARKERS[(spare.index(kind)) % len(_SPARE_MARKERS)], "0.3"
@@ -462,6 +456,31 @@ def _field_unit(scene: Scene, path_name: str) -> str:
     return _BEAM_UNITS.get(name, "-")
 
 
+def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
+    """The own frequencies (rad/s) of ``attachments[i]`` at each value of ``path_name``,
+    one column each (NaN where it has fewer), or None when it has none (or the scene is
+    damped): the zeros of its unknowns' block with the beam held (a spring-mass's
+    ``sqrt(k/m)``), as the kernel prints them from the kind's declaration
+    (``event_internal``)."""
+    from .study import column, parameter_matrix
+
+    topology = topology_of(scene)
+    internal = getattr(load_kernel(topology).module, "event_internal", None)
+    if internal is None or topology.damped:
+        return None
+    P = parameter_matrix(scene, {path_name: values})
+    row = column(scene, f"attachments[{i}].x") - 1
+    found = []
+    for p in P:
+        out = np.empty(p.shape[0])
+        n = internal(int(p[row]), p, int(p[row + 2]), p[0], p[1], p[2], out, 0)
+        found.append(np.sort(out[:n]))
+    width = max(len(f) for f in found)
+    if width == 0:
+        return None
+    return np.array([np.pad(f, (0, width - len(f)), constant_values=np.nan) for f in found])
+
+
 def veering(
     scene: Scene,
     path_name: str,
@@ -479,9 +498,10 @@ def veering(
     counts them, rigid-body zeros included) are drawn, one line per mode index
     (the zeros left out; a point the sweep cannot certify is a gap).
     The x axis is logarithmic when the values span more than two decades, the
-    y axis when the frequencies do. When ``path_name`` is an attachment's ``k``
-    or ``m`` and ``uncoupled``, that oscillator's ``sqrt(k/m)`` is drawn dashed:
-    the curves veer where it crosses them.
+    y axis when the frequencies do. When ``path_name`` is a value of an attachment
+    (not its x) and ``uncoupled``, that attachment's own frequencies (a spring-mass's
+    ``sqrt(k/m)``, a chain's, any kind's with unknowns) are drawn dashed: the curves
+    veer where they cross them.
     """
     from .study import sweep
 
@@ -499,19 +519,18 @@ def veering(
     top = float(finite.max()) if finite.size else 1.0
     bottom = float(finite.min()) if finite.size else 0.0
     match = _ATTACHMENT_FIELD.match(path_name)
-    a = scene.attachments[int(match.group(1))] if match else None
-    if uncoupled and a is not None and a.kind == "spring_mass":
-        k = v if match.group(2) == "k" else np.full_like(v, a.k)
-        m = v if match.group(2) == "m" else np.full_like(v, a.m)
-        ax.plot(
-            v,
-            np.sqrt(k / m),
-            color="k",
-            lw=0.9,
-            ls="--",
-            gid="uncoupled",
-            label=f"sqrt(k/m) of attachments[{match.group(1)}]",
-        )
+    own = _own_frequencies(scene, int(match.group(1)), path_name, v) if match else None
+    if uncoupled and own is not None:
+        for j in range(own.shape[1]):
+            ax.plot(
+                v,
+                own[:, j],
+                color="k",
+                lw=0.9,
+                ls="--",
+                gid="uncoupled",
+                label=f"own frequencies of attachments[{match.group(1)}]" if j == 0 else None,
+            )
     if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
         ax.set_xscale("log")
     if bottom > 0 and top / bottom > 100.0:

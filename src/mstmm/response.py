@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mstmm.derive import catalog
+
 from .kernels import Kernel, load_kernel
 from .scene import Scene, SceneError, check_band
 from .topology import parameter_vector, topology_of
@@ -104,7 +106,9 @@ def _row(point: Point, role: str, scene: Scene, masses: list[int], source: str) 
     if not 0.0 <= x <= L:
         raise SceneError(source, role, f"x must lie on the beam, in [0, {L:g}] m", x)
     kind = _INPUTS[point.quantity] if role == "input" else _OUTPUTS[point.quantity]
-    if kind == _MOMENT and any(a.kind == "hinge" and a.x == x for a in scene.attachments):
+    if kind == _MOMENT and any(
+        a.x == x and catalog.splits_rotation(a.kind) for a in scene.attachments
+    ):
         raise SceneError(
             source, role, "a couple or a rotation at a hinge is ambiguous (which side?)", x
         )

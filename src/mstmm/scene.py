@@ -246,10 +246,6 @@ def SpringMass(x: float, k: float, m: float) -> Attachment:  # noqa: N802 (the o
     """Point mass ``m`` (kg) hung from the beam at ``x`` (m) by a linear spring ``k`` (N/m)."""
     return Attachment("spring_mass", x, (("k", k), ("m", m)))
 
-    @property
-    def values(self) -> dict[str, float]:
-        return {"k": self.k, "m": self.m}
-
 
 @dataclass(frozen=True)
 class Scene:
