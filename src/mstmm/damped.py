@@ -49,6 +49,7 @@ from mstmm.derive import catalog
 
 from .decay_bound import sigma_max
 from .kernels import Kernel
+from .undamped import solve_undamped
 
 #: Largest phase step (radians) between neighbouring samples of the contour.
 PHASE_STEP = math.pi / 4
@@ -1034,19 +1035,17 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
     p = parameter_vector(scene)
     timings["load"] = time.perf_counter() - t0
     t1 = time.perf_counter()
-    from .solve import solve
-
     need = (modes if modes is not None else 10) + 4
     while True:
         if band is not None:
-            und = solve(twin, band=(0.0, 1.5 * band[1]), shapes=False, kernel=twin_kernel)
+            und = solve_undamped(twin, band=(0.0, 1.5 * band[1]), shapes=False, kernel=twin_kernel)
             if und.omega.size < need:
-                und = solve(
+                und = solve_undamped(
                     twin, modes=max(need, und.omega.size + 4), shapes=False, kernel=twin_kernel
                 )
             w_top = band[1] * (1.0 + 1e-6)
         else:
-            und = solve(twin, modes=need + 3, shapes=False, kernel=twin_kernel)
+            und = solve_undamped(twin, modes=need + 3, shapes=False, kernel=twin_kernel)
             elastic = und.omega[und.omega > 0]
             w_top = 0.5 * (elastic[-2] + elastic[-1]) if elastic.size >= 2 else None
             if w_top is None:
