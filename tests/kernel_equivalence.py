@@ -321,7 +321,7 @@ def _compare_at(ref: dict, new: dict, p: np.ndarray, rng: np.random.Generator, i
         shapes = []
         for k in (ref, new):
             Z, q = np.zeros((1, len(xs), 4)), np.zeros((1, nq))
-            q_x, q_mass = np.zeros(nq), np.zeros(nq)
+            q_x, q_mass = np.zeros(nq), np.zeros((2, nq))
             gram, part, ratio = np.zeros((1, 1)), np.zeros(1), np.zeros(1)
             k["mode_shapes"](
                 k["shape_event"],
