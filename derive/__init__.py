@@ -2,19 +2,20 @@
 
 Stages, each a module, input -> output:
 
-1. ``components/`` -- component kinds -> symbolic transfer matrices
-   (beam segment Eq. (1), spring, lumped mass, massless rigid body, and the
-   compound forms of the stable formulation); ``special`` the reduced beam
-   functions that keep them exact at small arguments.
+1. ``descriptor`` -- a kind's declared energy (``mstmm/kinds/<kind>.py``) -> its
+   descriptor, point matrix and pole-free compound step; ``segments/`` the beam
+   segment kinds (Eq. (1) and its compound forms), ``rigid_body`` the massless rigid
+   body; ``special`` the reduced beam functions that keep them exact at small
+   arguments.
 2. ``assemble`` -- a chain of components -> the overall transfer equation
    ``U_all Z_all = 0`` (paper Eqs. (2)-(4)).
 3. ``reduce`` -- end conditions -> the square ``U_bar`` (paper, after Eq. (4)).
 4. ``printer`` + ``emit`` -- a topology -> the numba kernel source (template
    ``templates/kernel.py.tmpl``), signed with a content hash.
 
-SymPy-free parts, imported by the runtime: ``catalog`` (end conditions, kinds,
-topologies) and ``sign`` (a kernel's SIGNATURE). Nothing here imports the runtime
-package ``mstmm``.
+It reads the runtime's SymPy-free ground floor (``mstmm.catalog``: end conditions,
+kinds, topologies, layout; ``mstmm.sign``: a kernel's SIGNATURE) and nothing else of
+the runtime: stages run one way, model -> derive -> printed source.
 
 Public entry points (imported lazily, SymPy with them): :func:`symbolic`
 (inspect a scene's ``U_all``, ``U_bar`` and, when small, its determinant),

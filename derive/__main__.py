@@ -10,8 +10,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from mstmm.catalog import Topology
+
 from .bundled import BUNDLED_TOPOLOGIES, generated_dir
-from .catalog import Topology
 from .emit import write_kernel, write_numerics
 
 

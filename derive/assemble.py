@@ -18,7 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from . import catalog, descriptor
+from mstmm import catalog
+
+from . import descriptor
 from . import symbols as S
 from .segments import euler_bernoulli as beam
 

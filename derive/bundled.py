@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .catalog import Topology
+from mstmm.catalog import Topology
 
 #: Topologies of the scenes shipped in ``mstmm/scenes`` (wu_chou_1998, bare_cantilever).
 BUNDLED_TOPOLOGIES = (

@@ -6,9 +6,11 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from . import catalog, rigid_body, symbols
+from mstmm import catalog
+from mstmm.kinds import spring_mass
+
+from . import rigid_body, symbols
 from .assemble import OverallTransfer, overall_transfer
-from .components import spring_mass
 from .emit import kernel_source
 from .reduce import reduce
 from .segments import euler_bernoulli as beam
@@ -159,7 +161,9 @@ def _kind_matrices() -> list[tuple[str, sp.Matrix]]:
     pole factor multiplied out; a constraint's is its constrained map), from its
     descriptor in SI with generic values ``k``, ``m``, ``J``; a chain's depends on its
     length (``symbolic`` shows it with every mass)."""
-    from . import catalog, descriptor
+    from mstmm import catalog
+
+    from . import descriptor
     from .assemble import component_descriptor
 
     out = []

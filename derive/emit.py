@@ -17,13 +17,15 @@ from string import Template
 
 import sympy as sp
 
-from . import catalog, descriptor, special
+from mstmm import catalog
+from mstmm.catalog import KNOWN_ZERO, Topology, unknown
+from mstmm.sign import derive_digest, numerics_digest, signature
+
+from . import descriptor, special
 from . import symbols as S
-from .catalog import KNOWN_ZERO, Topology, unknown
 from .compound import pair_index
 from .printer import assignments, code
 from .segments import euler_bernoulli as beam
-from .sign import derive_digest, numerics_digest, signature
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 NUMERICS_TEMPLATE = TEMPLATE.with_name("euler_bernoulli.py.tmpl")

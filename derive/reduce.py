@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .catalog import KNOWN_ZERO
+from mstmm.catalog import KNOWN_ZERO
 
 
 def zero_columns(left: str, right: str, n_all: int) -> list[int]:

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "67f8b7e61d4ed436a86a28e2acb18a8dc962409b"
+SIGNATURE = "9e6a1e558a841e4e04a4cdcdf6abe465d11cbcb6"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "4a8fbf6a7b36cb08b89f3e65ee4f3599762e4c23"
+NUMERICS = "b387578397f823a8d0dd76127fe865cac0cfb6d5"
 
 
 @njit(cache=True)

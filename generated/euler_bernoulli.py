@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "ed649326837835e4f1b1cbaf08b2451fee0a6dfc"
+DIGEST = "ae9d3c6e8e64ba0630c45031f95bd2354cbd4d9f"
 
 
 @njit(cache=True, inline="always")

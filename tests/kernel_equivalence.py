@@ -75,8 +75,7 @@ def printed_by(source: str) -> str | None:
 def all_topologies() -> list:
     """Every end pair, bare and with spring-masses (32 topologies), and two with every kind
     of an undamped scene (a dashpot makes a scene damped: its kernel is complex)."""
-    from mstmm.derive.catalog import builtin_kinds, damping_only
-
+    from mstmm.catalog import builtin_kinds, damping_only
     from mstmm.scene import BOUNDARY_KINDS
     from mstmm.topology import Topology
 
@@ -126,7 +125,7 @@ def _constants(ns: dict) -> dict:
 def random_parameters(rng: np.random.Generator, kinds: tuple, left: str, right: str) -> np.ndarray:
     """A parameter vector over several decades: 1..3 segments, 1..5 components of each
     kind (attachments at the ends and two at one x included), as ``catalog.layout``."""
-    from mstmm.derive.catalog import Component, Topology, layout
+    from mstmm.catalog import Component, Topology, layout
 
     L = 10 ** rng.uniform(-1, 1)
     EI = 10 ** rng.uniform(0, 6)
@@ -168,7 +167,7 @@ def random_parameters(rng: np.random.Generator, kinds: tuple, left: str, right: 
 
 
 def _topology(ns: dict) -> tuple:
-    from mstmm.derive.catalog import Topology
+    from mstmm.catalog import Topology
 
     return Topology.from_key(ns["TOPOLOGY"])
     """The kernel's topology."""

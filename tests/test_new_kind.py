@@ -1,5 +1,5 @@
 """A kind is one file (issue 21, item 3): the torsional absorber of docs/components.md,
-dropped into ``derive/components/`` of a copy of the package and nothing else touched,
+dropped into ``src/mstmm/kinds/`` of a copy of the package and nothing else touched,
 solves, counts, gives mode shapes with modal and effective masses, damped roots and the
 frequency response, each against an independent finite-element model that gives the
 absorber its own degree of freedom (Hermite beam elements, consistent mass, Richardson
@@ -55,7 +55,7 @@ SCRIPT = textwrap.dedent(
     import numpy as np
     import mstmm
     from mstmm import kernels
-    from mstmm.derive import catalog
+    from mstmm import catalog
 
     L, XA, KA, JA, CA, MODES = {args}
     beam = dict(length=L, EI={EI}, mass_per_length={MBAR}, left="clamped", right="free")
@@ -92,7 +92,7 @@ SCRIPT = textwrap.dedent(
 @pytest.fixture(scope="module")
 def got(tmp_path_factory) -> dict:
     root = package_copy(tmp_path_factory.mktemp("pkg"))
-    shutil.copy(KIND_FILE, root / "mstmm" / "derive" / "components" / KIND_FILE.name)
+    shutil.copy(KIND_FILE, root / "mstmm" / "kinds" / KIND_FILE.name)
     env = dict(os.environ, PYTHONPATH=str(root), MSTMM_CACHE=str(root / "cache"))
     script = SCRIPT.format(args=(L, XA, KA, JA, CA, MODES), EI=EI, MBAR=MBAR)
     run = subprocess.run(

@@ -8,11 +8,11 @@ import hashlib
 from pathlib import Path
 
 import numpy as np
-from mstmm.derive.sign import numerics_digest
 
 import mstmm
 from mstmm import numerics
 from mstmm.numerics import cache
+from mstmm.sign import numerics_digest
 
 
 def _sources_digest(files) -> str:

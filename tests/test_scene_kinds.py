@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
-from mstmm.derive import catalog
 from test_scene import run_cli_solve
 
 import mstmm
+from mstmm import catalog
 from mstmm import scene as scene_module
 from mstmm.scene import (
     ATTACHMENT_TYPES,

@@ -9,10 +9,10 @@ import pytest
 import sympy as sp
 from mstmm.derive import special, symbolic
 from mstmm.derive import symbols as S
-from mstmm.derive.components import spring_mass
 from mstmm.derive.compound import second_compound
 from mstmm.derive.segments import euler_bernoulli as beam
 
+from mstmm.kinds import spring_mass
 from mstmm.scene import scene_from_dict
 
 b = sp.Symbol("b", positive=True)

@@ -7,7 +7,7 @@ Nothing else in mstmm is edited for it: this file is the whole kind.
 
 from __future__ import annotations
 
-from mstmm.derive.catalog import Key
+from mstmm.catalog import Key
 
 KIND = "ground_spring"
 DOC = "translational spring from the beam at x to the ground (test kind)"

@@ -6,8 +6,7 @@ State ``Z = [Y, theta, M, Q]``; ``Z_O = U Z_I`` with ``lam = (mbar w^2 / EI)^(1/
 from __future__ import annotations
 
 import sympy as sp
-
-from ..compound import second_compound, split_krylov_products
+from mstmm.derive.compound import second_compound, split_krylov_products
 
 
 def transfer_matrix(lam: sp.Expr, l: sp.Expr, EI: sp.Expr) -> sp.Matrix:

@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 from .decay_bound import sigma_max
 from .kernels import Kernel

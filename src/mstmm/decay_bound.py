@@ -62,7 +62,7 @@ import bisect
 import math
 from dataclasses import dataclass
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 __all__ = ["Block", "Events", "read_events", "sort_events"]
 

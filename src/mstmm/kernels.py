@@ -31,8 +31,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mstmm.derive.catalog import EVENT_WIDTH, event_rows
-from mstmm.derive.sign import signature
+from mstmm.catalog import EVENT_WIDTH, event_rows
+from mstmm.sign import signature
 
 from . import interpret, progress
 from .topology import Topology
@@ -113,7 +113,7 @@ def numerics() -> ModuleType:
 def _check_numerics() -> None:
     """The printed beam functions (``mstmm.generated.euler_bernoulli``) must be the ones the
     derive code prints: the numerics and every kernel use them."""
-    from mstmm.derive.sign import derive_digest
+    from mstmm.sign import derive_digest
 
     printed = importlib.import_module("mstmm.generated.euler_bernoulli")
     if printed.DIGEST != derive_digest():

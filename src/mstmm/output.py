@@ -250,7 +250,7 @@ def _shapes(sol: Solution) -> list:
 def total_mass(sol: Solution) -> float:
     """Mass of the beam (every segment) plus every mass the components carry (kg): the
     values of their keys in kg (a chain's every stage)."""
-    from mstmm.derive.catalog import kind
+    from mstmm.catalog import kind
 
     beam = sol.scene.beam
     segments = beam.segments or (beam,)

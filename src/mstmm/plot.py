@@ -37,7 +37,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 from .kernels import load_kernel
 from .scene import Scene, SceneError
@@ -444,7 +444,7 @@ _BEAM_UNITS = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_fa
 
 def _field_unit(scene: Scene, path_name: str) -> str:
     """The unit of a sweep field: the beam's, or the key's as its kind declares it."""
-    from mstmm.derive.catalog import kind
+    from mstmm.catalog import kind
 
     name = re.sub(r"\[\d+\]$", "", path_name).rsplit(".", 1)[-1]
     match = re.match(r"attachments\[(\d+)\]\.", path_name)

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 from .kernels import Kernel, load_kernel
 from .scene import Scene, SceneError, check_band

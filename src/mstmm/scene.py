@@ -11,9 +11,9 @@ A scene is a TOML file (SI units), read as data and never evaluated::
     mass_per_length = 15.3875      # [[beam.segments]] from the left end, each with
                                    # length, EI and mass_per_length (then none of the three here)
     [[attachments]]                # zero or more components
-    type = "spring_mass"           # any kind of mstmm.derive.catalog.kinds()
+    type = "spring_mass"           # any kind of mstmm.catalog.kinds()
     x = 0.1                        # m from the left end
-    k = 190428.3750081235          # the kind's keys (derive/components/<kind>.py, KEYS)
+    k = 190428.3750081235          # the kind's keys (src/mstmm/kinds/<kind>.py, KEYS)
     m = 3.0775
 
 Every kind is read from its declared keys (``KEYS``: name, unit, check, default,
@@ -51,7 +51,7 @@ from typing import Any
 
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 from .events import read_events
 from .topology import parameter_vector, topology_of

@@ -18,7 +18,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 from .events import read_events, sort_events
 from .kernels import Kernel, load_kernel

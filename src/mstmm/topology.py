@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mstmm.derive.catalog import (
+from mstmm.catalog import (
     BEAM_PARAMETERS,
     KNOWN_ZERO,
     STATE,
@@ -63,7 +63,7 @@ def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
 def parameter_vector(scene) -> np.ndarray:
     """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
     (x_end, EI, mbar, eta), event rows (tag, x, offset) sorted by x, data...]``
-    (:func:`mstmm.derive.catalog.layout`)."""
+    (:func:`mstmm.catalog.layout`)."""
     return _layout(scene)[0]
 
 

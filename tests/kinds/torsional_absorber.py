@@ -2,14 +2,14 @@
 end turns with the beam at x.
 
 The worked example of docs/components.md: a contributor adds it by dropping this one file
-into ``derive/components/`` (tests/test_new_kind.py does exactly that in a copy of the
+into ``src/mstmm/kinds/`` (tests/test_new_kind.py does exactly that in a copy of the
 package and checks it against a finite-element model with its own degree of freedom).
 Its physics is its energy over ``[Y, theta, theta_a]``; everything else is derived.
 """
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "torsional_absorber"
 DOC = "rotary inertia J on a torsion spring k (dashpot c) turning with the beam at x"
@@ -33,8 +33,7 @@ def energy(v: dict):
     """The spring ``k (theta_a - theta)^2 / 2``, the dashpot ``c (theta_a' - theta')^2 / 2``
     and the inertia ``J theta_a'^2 / 2``; a rigid rotation of the beam carries theta_a."""
     import sympy as sp
-
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     spring = sp.Matrix([[0, 0, 0], [0, 1, -1], [0, -1, 1]])
     return Energy(

@@ -1,9 +1,9 @@
 """The parameter vector's layout and the numerical constants every kernel shares.
 
 ``p = [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x,
-offset) per component sorted by x, data blocks]`` (``mstmm.derive.catalog.layout``)."""
+offset) per component sorted by x, data blocks]`` (``mstmm.catalog.layout``)."""
 
-from mstmm.derive import catalog
+from mstmm import catalog
 
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = catalog.HEAD

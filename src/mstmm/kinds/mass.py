@@ -8,7 +8,7 @@ minus left; issue 13's sign conventions). As a descriptor: no unknowns,
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "mass"
 DOC = "point mass m fixed to the beam at x, rotary inertia J"
@@ -34,6 +34,6 @@ def energy(v: dict):
     ``M+ = M - j b4 theta`` (paper Eq. (1), lumped mass)."""
     import sympy as sp
 
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     return Energy(K=sp.zeros(2, 2), C=sp.zeros(2, 2), M=sp.diag(v["m"], v["J"]))

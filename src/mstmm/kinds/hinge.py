@@ -9,7 +9,7 @@ The count splits the node: its rotation left of the hinge is eliminated with the
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "hinge"
 DOC = "internal hinge at x (0 < x < L) with a rotational spring k across it (0: free)"
@@ -30,6 +30,6 @@ def descriptor(v: dict):
     """``M - kappa phi = 0``, ``theta+ = theta + phi``."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, unit
+    from mstmm.derive.descriptor import Descriptor, unit
 
     return Descriptor(Cz=unit(2).T, Cq=sp.Matrix([[-v["k"]]]), A=sp.eye(4), B=unit(1), qmass=(0,))

@@ -11,7 +11,7 @@ SymPy is imported inside the functions: the catalog reads this file's keys witho
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "spring_mass"
 DOC = "point mass m hung from the beam at x by a linear spring k"
@@ -46,7 +46,7 @@ def energy(v: dict):
     ``(1 + i w1 gamma/kappa)(Y - Y_m) + mu b4/kappa Y_m = 0``, free of poles."""
     import sympy as sp
 
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     spring = sp.Matrix([[1, 0, -1], [0, 0, 0], [-1, 0, 1]])
     return Energy(
@@ -91,8 +91,8 @@ def condensed_compound(k, m, omega):
     """
     import sympy as sp
 
-    from .. import rigid_body
-    from ..compound import second_compound
+    from mstmm.derive import rigid_body
+    from mstmm.derive.compound import second_compound
 
     col = tip_column(k, m, omega)
     B00, B10 = col[0], col[1]

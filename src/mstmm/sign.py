@@ -1,6 +1,6 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
-``SIGNATURE = sha1(topology key | derive/ sources but the kinds | the files of the
+``SIGNATURE = sha1(topology key | derive/ sources and the catalog | the files of the
 topology's kinds | the shared numerics' sources | SymPy version | KERNEL_FORMAT)``. Each
 kernel's digest covers only what it is printed from: adding or editing a kind changes the
 signature of the topologies that hold it and of no other, and leaves the shared beam
@@ -30,22 +30,24 @@ _DIGEST: str | None = None
 
 
 def _derive_digest() -> str:
-    """sha1 of every source and template of the derive package but the kinds' files."""
+    """sha1 of every source and template of the derive package (found without importing
+    it: no SymPy) and of the catalog (units and layout, which the printed code reads)."""
     h = hashlib.sha1()
-    root = Path(__file__).resolve().parent
-    kinds = root / "components"
-    for path in sorted(root.rglob("*")):
-        if path.parent == kinds and path.name != "__init__.py":
-            continue
-        if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
-            h.update(path.relative_to(root).as_posix().encode())
-            h.update(path.read_bytes())
+    spec = importlib.util.find_spec("mstmm.derive")
+    for folder in spec.submodule_search_locations or ():
+        root = Path(folder).resolve()
+        for path in sorted(root.rglob("*")):
+            if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
+                h.update(path.relative_to(root).as_posix().encode())
+                h.update(path.read_bytes())
+    h.update((Path(__file__).resolve().parent / "catalog.py").read_bytes())
     return h.hexdigest()
 
 
 def derive_digest() -> str:
-    """sha1 of every source and template of the derive package but the kinds' files
-    (computed once): what the shared beam functions and every kernel are printed by."""
+    """sha1 of every source and template of the derive package and of the catalog
+    (computed once): what the shared beam functions and every kernel are printed by;
+    the kinds (``mstmm/kinds``) are not in it."""
     global _DIGEST
     if _DIGEST is None:
         _DIGEST = _derive_digest()
@@ -65,7 +67,7 @@ def numerics_digest() -> str:
 
 
 def signature(topology: Topology) -> str:
-    """sha1 of the topology, the derive/ sources but the kinds, the files of the topology's
+    """sha1 of the topology, the derive/ sources and the catalog, the files of the topology's
     own kinds (built in or registered), the shared numerics, the SymPy version and the
     kernel format."""
     kinds = [hashlib.sha1(kind_file(name).read_bytes()).hexdigest() for name in topology.kinds]

@@ -7,7 +7,7 @@ restrained end is a free end with a spring (and a rotational spring) at x = 0 or
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "spring"
 DOC = "translational spring k from the beam at x to the ground"
@@ -26,6 +26,6 @@ def energy(v: dict):
     """Potential energy ``kappa Y^2 / 2``: ``Q+ = Q - kappa Y``."""
     import sympy as sp
 
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     return Energy(K=sp.diag(v["k"], 0), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

@@ -1,16 +1,17 @@
 """The catalog of what decides a kernel's code: end conditions, component kinds, topologies,
 and the parameter layout.
 
-SymPy-free (imported by the runtime to name, validate and look up kernels); the
-derivation stages (``emit``, ``descriptor``) read the same definitions, so nothing in
-``mstmm.derive`` imports the runtime package ``mstmm``. Two scenes share a kernel
+SymPy-free: the ground floor of the runtime (which names, validates and looks up kernels
+with it) and of the derivation stages (``mstmm.derive`` reads the same definitions;
+stages run one way: the runtime never imports ``mstmm.derive`` but to print a kernel for
+a new topology). Two scenes share a kernel
 when they have the same end conditions and the same *kinds* of components:
 positions, values, segments and the number of components are run-time parameters,
 because the kernel loops over an event table instead of unrolling it (DESIGN.md,
 "Scale of the symbolic step"; docs/components.md).
 
-A kind is one module (``derive/components/<kind>.py``, or any module given to
-:func:`register_kind`) that declares ``KIND``, ``KEYS``, ``COUNT`` and its descriptor;
+A kind is one module (``src/mstmm/kinds/<kind>.py``, or any module given to
+:func:`register_kind`) that declares ``KIND``, ``KEYS``, ``COUNT`` and its energy (or descriptor);
 this module only reads its plain-data declarations (``KEYS``, ``SAME_LENGTH``, ``DOC``).
 """
 
@@ -135,18 +136,18 @@ def kinds() -> dict[str, ModuleType]:
     """Every known kind: name -> its module (built-ins first, then registered ones)."""
     if not _REGISTRY:
         for name in builtin_kinds():
-            module = importlib.import_module(f"{__package__}.components.{name}")
+            module = importlib.import_module(f"{__package__}.kinds.{name}")
             _check_kind(module)
             _REGISTRY[name] = module
     return _REGISTRY
 
 
 def builtin_kinds() -> tuple[str, ...]:
-    """The kinds shipped with mstmm: every module in ``derive/components`` (found by
+    """The kinds shipped with mstmm: every module in ``mstmm/kinds`` (found by
     listing the folder, so that adding a kind is adding its file), sorted by name."""
-    from . import components
+    from . import kinds as package
 
-    return tuple(sorted(m.name for m in pkgutil.iter_modules(components.__path__)))
+    return tuple(sorted(m.name for m in pkgutil.iter_modules(package.__path__)))
 
 
 def kind(name: str) -> ModuleType:

@@ -9,7 +9,7 @@ PENALTY on Y).
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "support"
 DOC = "rigid point support at x: Y = 0, slope and moment continuous"
@@ -26,6 +26,6 @@ def descriptor(v: dict):
     """``Y = 0``, ``Q+ = Q + R``."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, unit
+    from mstmm.derive.descriptor import Descriptor, unit
 
     return Descriptor(Cz=unit(0).T, Cq=sp.Matrix([[0]]), A=sp.eye(4), B=unit(3), qmass=(0,))

@@ -13,7 +13,7 @@ shapes the full descriptor keeps every mass displacement (n unknowns, n equation
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "oscillator_chain"
 DOC = "masses m[i] in series hanging from the beam at x by springs k[i] (beam -> m1 -> m2 ...)"
@@ -60,7 +60,7 @@ def descriptor(v: dict):
     """The reduced descriptor: ``Y - b00 y_n = 0``, ``Q+ = Q + b10 y_n``."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, unit
+    from mstmm.derive.descriptor import Descriptor, unit
 
     return Descriptor(
         Cz=unit(0).T, Cq=sp.Matrix([[-v["b00"]]]), A=sp.eye(4), B=v["b10"] * unit(3), qmass=(0,)
@@ -74,7 +74,7 @@ def full_descriptor(v: dict):
     with dashpots ``k_i -> k_i + i w1 c_i``."""
     import sympy as sp
 
-    from ..descriptor import Descriptor, b4, unit, w1
+    from mstmm.derive.descriptor import Descriptor, b4, unit, w1
 
     cs = list(v.get("c") or [0] * len(v["k"]))
     ks = [k + sp.I * w1 * c for k, c in zip(v["k"], cs, strict=True)]

@@ -9,7 +9,7 @@ complex, and the kind is left out of its undamped twin.
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "dashpot"
 DOC = "viscous dashpot c from the beam at x to the ground"
@@ -30,6 +30,6 @@ def energy(v: dict):
     """Dissipation ``gamma Y'^2 / 2``: ``Q+ = Q - i w1 gamma Y``."""
     import sympy as sp
 
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     return Energy(K=sp.zeros(2, 2), C=sp.diag(v.get("c", 0), 0), M=sp.zeros(2, 2))

@@ -6,7 +6,7 @@ At its node ``EI [W''] = k W'``. As a descriptor: no unknowns,
 
 from __future__ import annotations
 
-from ..catalog import Key
+from mstmm.catalog import Key
 
 KIND = "rotational_spring"
 DOC = "rotational spring k from the beam at x to the ground"
@@ -25,6 +25,6 @@ def energy(v: dict):
     """Potential energy ``kappa theta^2 / 2``: ``M+ = M + kappa theta``."""
     import sympy as sp
 
-    from ..descriptor import Energy
+    from mstmm.derive.descriptor import Energy
 
     return Energy(K=sp.diag(0, v["k"]), C=sp.zeros(2, 2), M=sp.zeros(2, 2))
