@@ -16,12 +16,13 @@ import numpy as np
 import pytest
 import sympy as sp
 import toy_kind
+from mstmm.derive import descriptor
 from mstmm.derive.compound import second_compound
 from mstmm.derive.emit import kernel_source
 from reference_model import frequencies
 
 import mstmm
-from mstmm import catalog, descriptor
+from mstmm import catalog
 
 
 def _beam(left="clamped", right="free"):
