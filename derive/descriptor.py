@@ -151,6 +151,37 @@ def from_energy(e: Energy) -> Descriptor:
     return Descriptor(Cz, Cq, A.applyfunc(sp.expand), B.applyfunc(sp.expand), qmass, qpart)
 
 
+def rigid_constraint(e: Energy) -> tuple:
+    """The kinematic constraint a kind declared by its energy puts on the beam's rigid
+    motions (``RIGID``): the static stiffness it adds on ``[Y, theta]`` with its unknowns
+    free, ``Kc = K_bb - K_bq K_qq^-1 K_qb`` (a rigid motion stores no energy only where
+    that vanishes): ``("Y",)`` for a grounded spring, ``("theta",)`` for a grounded
+    rotational spring, ``()`` for a mass, a spring-mass or a torsional absorber (its
+    unknowns follow the beam)."""
+    Kb = e.K[:2, :2]
+    if e.moves:
+        Kqq = e.K[2:, 2:]
+        if sp.simplify(Kqq.det()) == 0:
+            raise ValueError("energy: an unknown with no stiffness (a free mass) at omega = 0")
+        Kb = Kb - e.K[:2, 2:] * Kqq.inv() * e.K[2:, :2]
+    Kc = Kb.applyfunc(sp.simplify)
+    if Kc[0, 1] != 0:
+        raise ValueError("energy: a static stiffness coupling Y and theta has no RIGID flag")
+    held = tuple(name for i, name in enumerate(("Y", "theta")) if Kc[i, i] != 0)
+    if len(held) > 1:
+        raise ValueError("energy: a static stiffness on both Y and theta has no RIGID flag")
+    return held
+
+
+def rigid_of(module, values: dict) -> tuple:
+    """A kind's constraint on rigid motions: declared (``RIGID``), or derived from its
+    energy (:func:`rigid_constraint`)."""
+    if hasattr(module, "RIGID") or not hasattr(module, "energy"):
+        return tuple(getattr(module, "RIGID", ()))
+    with sp.evaluate(True):
+        return rigid_constraint(module.energy(values))
+
+
 def of(module, values: dict) -> Descriptor:
     """A kind's descriptor: declared (a constraint, or a kind in descriptor form), or
     derived from its declared energy (:func:`from_energy`; evaluated even inside the

@@ -297,7 +297,7 @@ RIGID_FLAGS = {"Y": 1, "theta": 2, "kink_if_free": 3}
 
 
 def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
-    rigid = tuple(getattr(module, "RIGID", ()))
+    rigid = descriptor.rigid_of(module, _value_lines(module)[1])
     if not rigid:
         return ["return 0"]
     if len(rigid) != 1 or rigid[0] not in RIGID_FLAGS:

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "bdd04abb3ca0869f6555693c1d7f837190cd735f"
+SIGNATURE = "e99a1fd8a84ba4ce39dd91086bdf5c043c2d89d3"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)

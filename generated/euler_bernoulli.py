@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "ae9d3c6e8e64ba0630c45031f95bd2354cbd4d9f"
+DIGEST = "9582d49f7b145bdfe7f8989c4ffe0f7b81dcca99"
 
 
 @njit(cache=True, inline="always")

@@ -144,3 +144,18 @@ def test_compound_step_is_the_pole_free_compound_of_the_point_matrix(name):
         assert (step + limit).applyfunc(sp.simplify) == sp.zeros(6, 1) or (step - limit).applyfunc(
             sp.simplify
         ) == sp.zeros(6, 1)
+
+
+@pytest.mark.parametrize(
+    ("name", "held"),
+    [("spring", ("Y",)), ("rotational_spring", ("theta",)), ("mass", ()), ("dashpot", ())]
+    + [("spring_mass", ())],
+)
+def test_constraint_on_rigid_motions_is_derived_from_the_energy(name, held):
+    """A rigid motion stores no energy only where the static stiffness a kind adds on
+    [Y, theta] (its unknowns free) vanishes: a grounded spring holds Y, a grounded
+    rotational spring theta; a spring-mass's mass follows the beam."""
+    module = catalog.kind(name)
+    assert not hasattr(module, "RIGID")
+    values = {k.name: sp.Symbol(k.name, positive=True) for k in module.KEYS[1:]}
+    assert descriptor.rigid_of(module, values) == held

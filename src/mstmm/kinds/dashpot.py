@@ -20,9 +20,9 @@ KEYS = (
 COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("*", "C8")
-#: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``);
-#: the damped count at w = 0 treats it as a constraint on Y (``DAMPS``).
-RIGID = ()
+#: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``,
+#: its constraint on rigid motions derived from its energy: none); the damped count at
+#: w = 0 treats it as a constraint on Y (``DAMPS``).
 DAMPS = ("Y",)
 
 

@@ -26,7 +26,6 @@ KEYS = (
 COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("s", "C2")
-RIGID = ()
 
 
 def energy(v: dict):

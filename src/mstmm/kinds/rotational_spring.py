@@ -17,8 +17,6 @@ KEYS = (
 COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("P", "C6")
-#: A rigid-body motion does no work on it only where theta = 0.
-RIGID = ("theta",)
 
 
 def energy(v: dict):

@@ -18,8 +18,6 @@ KEYS = (
 COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("d", "C5")
-#: A rigid-body motion does no work on it only where Y = 0.
-RIGID = ("Y",)
 
 
 def energy(v: dict):

@@ -34,8 +34,6 @@ COUNT = "stiffness"
 MARKER = ("v", "C4")
 #: Name of its unknown in Z_all (the hanging mass's displacement, the branch tip).
 UNKNOWNS = "Y_tip"
-#: The branch moves with a rigid beam without force: no kinematic constraint.
-RIGID = ()
 
 
 def energy(v: dict):
