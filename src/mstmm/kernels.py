@@ -357,7 +357,8 @@ class Kernel:
 
     def _found(self, out: np.ndarray, flags: np.ndarray, state: np.ndarray, k: int) -> Found:
         m = self.module
-        k = max(k, 0)
+        if k < 0:  # the search gave up: the roots written before it did still stand
+            k = int(state[m.STATE_K])
         certified = bool(state[m.STATE_CERTIFIED] == 1.0) and k == out.size
         failed = 0.0
         if not certified:
