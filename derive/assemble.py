@@ -78,6 +78,7 @@ def component_descriptor(kind: str, values: dict) -> descriptor.Descriptor:
         d.B.subs(sub),
         tuple(sp.sympify(m).subs(sub) for m in d.qmass),
         tuple(sp.sympify(m).subs(sub) for m in d.qpart),
+        tuple(sp.sympify(m).subs(sub) for m in d.qforce),
     )
 
 

@@ -54,6 +54,11 @@ class Descriptor:
     #: displacement a mode shape reports): ``qmass`` itself when not given (every q with
     #: a mass a translation), 0 for a rotary inertia.
     qpart: tuple | None = None
+    #: What a unit force on each q adds to minus its row (the row is ``-f`` times the
+    #: q's equation of motion ``D_q u = F``): 1 when the rows are minus the equations of
+    #: motion (not given), ``1/kappa`` for a spring-mass's row divided by its coupling.
+    #: The frequency response puts a force on a hanging mass through it.
+    qforce: tuple | None = None
 
     @property
     def n_q(self) -> int:
@@ -70,6 +75,10 @@ class Descriptor:
             object.__setattr__(self, "qpart", tuple(self.qmass))
         if len(self.qpart) != self.B.cols:
             raise ValueError("descriptor: qpart has n_q entries")
+        if self.qforce is None:
+            object.__setattr__(self, "qforce", (1,) * self.B.cols)
+        if len(self.qforce) != self.B.cols:
+            raise ValueError("descriptor: qforce has n_q entries")
 
 
 #: What carries an unknown q of a kind's energy: a rigid translation of the beam
@@ -139,6 +148,7 @@ def from_energy(e: Energy) -> Descriptor:
         B[3, j] = -f[2 + j]
         B[2, j] = m[2 + j]
     Cz, Cq = sp.zeros(n_q, 4), sp.zeros(n_q, n_q)
+    qforce = []
     for i in range(n_q):
         coupling = [e.K[2 + i, c] for c in range(2) if e.K[2 + i, c] != 0]
         scale = coupling[0] if coupling else 1
@@ -146,9 +156,11 @@ def from_energy(e: Energy) -> Descriptor:
             Cz[i, c] = sp.expand(D[2 + i, c] / scale)
         for j in range(n_q):
             Cq[i, j] = sp.expand(D[2 + i, 2 + j] / scale)
+        qforce.append(-1 / scale)  # row = (D_q u) / scale = -(-1/scale) D_q u
     qmass = tuple(e.M[2 + j, 2 + j] for j in range(n_q))
     qpart = tuple(sp.expand((_rigid(e, "Y").T * e.M)[2 + j]) for j in range(n_q))
-    return Descriptor(Cz, Cq, A.applyfunc(sp.expand), B.applyfunc(sp.expand), qmass, qpart)
+    A, B = A.applyfunc(sp.expand), B.applyfunc(sp.expand)
+    return Descriptor(Cz, Cq, A, B, qmass, qpart, tuple(qforce))
 
 
 def rigid_constraint(e: Energy) -> tuple:

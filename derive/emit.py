@@ -232,8 +232,9 @@ def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list[str]:
         targets += [f"Cz[{r}, {c}]" for c in range(4)] + [f"Cq[{r}, {j}]" for j in range(d.n_q)]
         exprs += list(d.Cz[r, :]) + list(d.Cq[r, :])
     for j in range(d.n_q):
-        targets += [f"B[{r}, {j}]" for r in range(4)] + [f"qmass[0, {j}]", f"qmass[1, {j}]"]
-        exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j]]
+        targets += [f"B[{r}, {j}]" for r in range(4)]
+        targets += [f"qmass[0, {j}]", f"qmass[1, {j}]", f"qmass[2, {j}]"]
+        exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j], d.qforce[j]]
     lines = assignments(targets, [sp.sympify(e) for e in exprs], indent="", complex_=complex_)
     return lines + [f"return {d.Cz.rows}, {d.n_q}"]
 
@@ -363,8 +364,9 @@ def dispatch_table(damped: bool) -> tuple:
             _descriptor_lines,
             "return 0, 0",
             "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass\n"
-            "    of each q and qmass[1] the share of it a rigid translation carries (units\n"
-            "    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns).",
+            "    of each q, qmass[1] the share of it a rigid translation carries, qmass[2] what\n"
+            "    a unit force on it adds to minus its row (units L = EI = mbar = 1; paper\n"
+            "    Eqs. (2)-(3)); returns (constraints, unknowns).",
         ),
         (
             "inertia",

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "e99a1fd8a84ba4ce39dd91086bdf5c043c2d89d3"
+SIGNATURE = "0df5d655d061cd367667f218c1b2fe0ce9be9e7b"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)
@@ -39,14 +39,15 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "b387578397f823a8d0dd76127fe865cac0cfb6d5"
+NUMERICS = "550bdaff8e9ff4e7092789f6521862499c875837"
 
 
 @njit(cache=True)
 def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
     """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass
-    of each q and qmass[1] the share of it a rigid translation carries (units
-    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns)."""
+    of each q, qmass[1] the share of it a rigid translation carries, qmass[2] what
+    a unit force on it adds to minus its row (units L = EI = mbar = 1; paper
+    Eqs. (2)-(3)); returns (constraints, unknowns)."""
     return 0, 0
 
 
@@ -275,7 +276,7 @@ def u_bar_paper(omega, p):
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    qmass = np.zeros((2, nb))
+    qmass = np.zeros((3, nb))
     pos = 0.0
     seg = 0
     ncols = 2

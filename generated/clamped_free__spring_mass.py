@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "84ff9302e99595b78f97e21e4945686a1261b08b"
+SIGNATURE = "5a05c6ccd84f2e4adeb71a5870500c4f960ddf62"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,18 +39,20 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "b387578397f823a8d0dd76127fe865cac0cfb6d5"
+NUMERICS = "550bdaff8e9ff4e7092789f6521862499c875837"
 
 
 @njit(cache=True)
 def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
     """The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass
-    of each q and qmass[1] the share of it a rigid translation carries (units
-    L = EI = mbar = 1; paper Eqs. (2)-(3)); returns (constraints, unknowns)."""
+    of each q, qmass[1] the share of it a rigid translation carries, qmass[2] what
+    a unit force on it adds to minus its row (units L = EI = mbar = 1; paper
+    Eqs. (2)-(3)); returns (constraints, unknowns)."""
     if tag == 0:  # spring_mass
         val_k = p[o + 0] * L * L * L / EI
         val_m = p[o + 1] / (L * mbar)
-        t0 = b4*val_m
+        t0 = 1.0/val_k
+        t1 = b4*val_m
         A[0, 0] = 1.0
         A[0, 1] = 0.0
         A[0, 2] = 0.0
@@ -71,13 +73,14 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         Cz[0, 1] = 0.0
         Cz[0, 2] = 0.0
         Cz[0, 3] = 0.0
-        Cq[0, 0] = t0/val_k - 1.0
+        Cq[0, 0] = t0*t1 - 1.0
         B[0, 0] = 0.0
         B[1, 0] = 0.0
         B[2, 0] = 0.0
-        B[3, 0] = t0
+        B[3, 0] = t1
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
+        qmass[2, 0] = t0
         return 1, 1
     return 0, 0
 
@@ -113,7 +116,8 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         val_k = p[o + 0] * L * L * L / EI
         val_m = p[o + 1] / (L * mbar)
         b4 = w1 * w1
-        t0 = b4*val_m
+        t0 = 1.0/val_k
+        t1 = b4*val_m
         A[0, 0] = 1.0
         A[0, 1] = 0.0
         A[0, 2] = 0.0
@@ -134,13 +138,14 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         Cz[0, 1] = 0.0
         Cz[0, 2] = 0.0
         Cz[0, 3] = 0.0
-        Cq[0, 0] = t0/val_k - 1.0
+        Cq[0, 0] = t0*t1 - 1.0
         B[0, 0] = 0.0
         B[1, 0] = 0.0
         B[2, 0] = 0.0
-        B[3, 0] = t0
+        B[3, 0] = t1
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
+        qmass[2, 0] = t0
         return 1, 1
     return 0, 0
 
@@ -397,7 +402,7 @@ def u_bar_paper(omega, p):
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    qmass = np.zeros((2, nb))
+    qmass = np.zeros((3, nb))
     pos = 0.0
     seg = 0
     ncols = 2

@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "9582d49f7b145bdfe7f8989c4ffe0f7b81dcca99"
+DIGEST = "28410bdd6e498fffb4ba845ae03d8a4922367e2e"
 
 
 @njit(cache=True, inline="always")

@@ -303,3 +303,32 @@ def test_cli_plot_frf(tmp_path):
     )
     assert res.returncode == 0, res.stderr
     assert out.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    "attachment",
+    [
+        {"type": "spring_mass", "x": 0.7, "k": 50.0, "m": 0.3},
+        {"type": "spring_mass", "x": 0.7, "k": 50.0, "m": 0.3, "c": 3.0},
+        {"type": "oscillator_chain", "x": 0.6, "k": [40.0, 30.0], "m": [0.2, 0.1]},
+        {"type": "oscillator_chain", "x": 0.6, "k": [40.0, 30.0], "m": [0.2, 0.1]}
+        | {"c": [1.0, 0.5]},
+    ],
+    ids=["spring_mass", "spring_mass_damped", "chain", "chain_damped"],
+)
+def test_force_on_a_hanging_mass_against_the_reference(attachment):
+    """A force on a hanging mass enters its equation of motion whatever the scale of the
+    row its kind's descriptor uses (a spring-mass's row is divided by k): against the
+    mpmath reference's (k + i w c - m w^2) u - (k + i w c) W = F, and reciprocal to a force
+    on the beam read at the mass. The undamped spring-mass was off by its stiffness."""
+    sc = {"beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0}, "attachments": [attachment]}
+    sc["beam"] |= {"left": "clamped", "right": "free"}
+    scene = mstmm.scene_from_dict(sc)
+    w = [2.0, 9.0, 20.0]
+    masses = len(attachment["m"]) if isinstance(attachment["m"], list) else 1
+    for j in range(masses):
+        got = frf(scene, f"force:mass={j}", "displacement:x=0.4", w)
+        exact = ref.frf(sc, ("force", "mass", j), ("displacement", "x", 0.4), w, dps=25)
+        assert rel(got, np.array([complex(h) for h in exact])).max() <= 1e-12
+        dual = frf(scene, "force:x=0.4", f"displacement:mass={j}", w)
+        assert rel(got, dual).max() <= 1e-12

@@ -522,7 +522,7 @@ class Kernel:
         total, most = (int(v) for v in self._compiled("shape_sizes")(p))
         nb = max(1, most)
         Cz, Cq = np.zeros((nb, 4), complex), np.zeros((nb, nb), complex)
-        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros((2, nb))
+        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros((3, nb))
         out = []
         event = self._compiled("shape_event_c")
         for row in m.event_order(p):

@@ -200,6 +200,7 @@ def oscillator_chain_shape(p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         B[3, i] = mu * b4
         qmass[0, i] = mu
         qmass[1, i] = mu
+        qmass[2, i] = 1.0
     return n, n
 
 
@@ -275,5 +276,6 @@ def oscillator_chain_shape_c(p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         B[3, i] = mu * b4
         qmass[0, i] = mu
         qmass[1, i] = mu
+        qmass[2, i] = 1.0
     return n, n
 '''

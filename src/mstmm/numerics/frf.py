@@ -411,7 +411,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     Cq = np.zeros((nb, nb), dtype=np.complex128)
     Ad = np.zeros((4, 4), dtype=np.complex128)
     B = np.zeros((4, nb), dtype=np.complex128)
-    ev_mass = np.zeros((2, nb))
+    ev_mass = np.zeros((3, nb))
     C = np.zeros((nb, nb + 2), dtype=np.complex128)
     rhs = np.zeros(nb, dtype=np.complex128)
     row_scale = np.ones(nb)
@@ -541,7 +541,8 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
             for a in range(nc):
                 rhs[a] = -(Cz[a, 0] * z[0] + Cz[a, 1] * z[1] + Cz[a, 2] * z[2] + Cz[a, 3] * z[3])
                 if kind_in == FRF_MASS and q_in == q0 + a:
-                    rhs[a] -= load  # the rows are the masses' equations of motion
+                    # the rows are the masses' equations of motion, times -ev_mass[2]
+                    rhs[a] -= load * ev_mass[2, a]
                 for c in range(2):
                     C[a, c] = (
                         Cz[a, 0] * W[0, c]

@@ -321,7 +321,7 @@ def mode_shapes(
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    ev_mass = np.zeros((2, nb))
+    ev_mass = np.zeros((3, nb))
     Mp = np.zeros((2, 2))
     Mbuf = np.zeros((n_steps, 2, 2))
     G = np.zeros((width, width))
