@@ -27,6 +27,9 @@ import scipy.linalg
 
 import mstmm
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from benchmarks import fem  # noqa: E402
+
 HERE = Path(__file__).resolve().parent
 KIND_FILE = HERE / "kinds" / "torsional_absorber.py"
 
@@ -105,40 +108,22 @@ def got(tmp_path_factory) -> dict:
 
 
 def fe_matrices(n: int, c: float = 0.0):
-    """K, C, M of the clamped-free beam in n Hermite elements, the absorber's rotation the
-    last degree of freedom; dofs (w, w') of nodes 1..n."""
-    h = L / n
-    ke = (EI / h**3) * np.array(
-        [
-            [12, 6 * h, -12, 6 * h],
-            [6 * h, 4 * h * h, -6 * h, 2 * h * h],
-            [-12, -6 * h, 12, -6 * h],
-            [6 * h, 2 * h * h, -6 * h, 4 * h * h],
-        ]
-    )
-    me = (MBAR * h / 420) * np.array(
-        [
-            [156, 22 * h, 54, -13 * h],
-            [22 * h, 4 * h * h, 13 * h, -3 * h * h],
-            [54, 13 * h, 156, -22 * h],
-            [-13 * h, -3 * h * h, -22 * h, 4 * h * h],
-        ]
-    )
-    size = 2 * (n + 1) + 1
+    """K, C, M of the clamped-free beam in n Hermite elements (the project's FE model,
+    ``benchmarks/fem.py``), the absorber's rotation added as the last degree of freedom;
+    dofs (w, w') of nodes 1..n."""
+    beam = {"length": L, "EI": EI, "mass_per_length": MBAR, "left": "clamped", "right": "free"}
+    K0, M0 = (X.toarray() for X in fem.assemble({"beam": beam, "attachments": []}, n))
+    size = K0.shape[0] + 1
     K, M, C = np.zeros((size, size)), np.zeros((size, size)), np.zeros((size, size))
-    for e in range(n):
-        idx = np.arange(2 * e, 2 * e + 4)
-        K[np.ix_(idx, idx)] += ke
-        M[np.ix_(idx, idx)] += me
-    node = round(XA / h)
-    assert abs(node * h - XA) < 1e-12
-    pair = [2 * node + 1, size - 1]
+    K[:-1, :-1], M[:-1, :-1] = K0, M0
+    node = round(XA / (L / n))
+    assert abs(node * L / n - XA) < 1e-12
+    pair = [2 * node - 1, size - 1]  # w' of the absorber's node (node 0's dofs removed)
     spring = np.array([[1.0, -1.0], [-1.0, 1.0]])
     K[np.ix_(pair, pair)] += KA * spring
     C[np.ix_(pair, pair)] += c * spring
     M[size - 1, size - 1] += JA
-    keep = np.arange(2, size)  # clamped: w = w' = 0 at node 0
-    return (X[np.ix_(keep, keep)] for X in (K, C, M))
+    return K, C, M
 
 
 def tip(n: int) -> int:
