@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 
-from .damped import solve_damped
 from .kernels import Kernel
 from .scene import Scene, SceneError, check_band
 from .topology import topology_of
@@ -108,6 +107,8 @@ def solve(
                 "a damped scene has one formulation, the complex stable chain: the paper's"
                 " det U_bar is real-valued (undamped scenes only)"
             )
+        from .damped import solve_damped  # here: an undamped solve never pays its import
+
         # the damped search meets inf and nan where a bound or a box overflows (a dashpot
         # of 1e200 N s/m): values its argument-principle check reports (count_checked
         # False, a warning), never numpy's "overflow encountered" for the user to decode
