@@ -66,10 +66,7 @@ def value_symbol(name: str, i: int, j: int | None = None) -> sp.Symbol:
 def component_descriptor(kind: str, values: dict) -> descriptor.Descriptor:
     """A component's descriptor in SI (its kind's, with b4 -> omega^2 and w1 -> omega)."""
     module = catalog.kind(kind)
-    if hasattr(module, "full_descriptor"):
-        d = module.full_descriptor(values)
-    else:
-        d = descriptor.of(module, values)
+    d = descriptor.of(module, values)
     sub = {descriptor.b4: S.omega**2, descriptor.w1: S.omega}
     return descriptor.Descriptor(
         d.Cz.subs(sub),

@@ -188,6 +188,9 @@ def rigid_constraint(e: Energy) -> tuple:
 def rigid_of(module, values: dict) -> tuple:
     """A kind's constraint on rigid motions: declared (``RIGID``), or derived from its
     energy (:func:`rigid_constraint`)."""
+    if hasattr(module, "stage"):
+        with sp.evaluate(True):
+            return rigid_constraint(module.stage(values))
     if hasattr(module, "RIGID") or not hasattr(module, "energy"):
         return tuple(getattr(module, "RIGID", ()))
     with sp.evaluate(True):
@@ -196,12 +199,71 @@ def rigid_of(module, values: dict) -> tuple:
 
 def of(module, values: dict) -> Descriptor:
     """A kind's descriptor: declared (a constraint, or a kind in descriptor form), or
-    derived from its declared energy (:func:`from_energy`; evaluated even inside the
+    derived from its declared energy (:func:`from_energy`; a kind of stages from the
+    energy of its stages in series, :func:`chain_energy`; evaluated even inside the
     unevaluated derivation of ``show``: its matrices are small)."""
     if hasattr(module, "energy"):
         with sp.evaluate(True):
             return from_energy(module.energy(values))
+    if hasattr(module, "stage"):
+        with sp.evaluate(True):
+            return from_energy(chain_energy(module, values))
     return module.descriptor(values)
+
+
+#: The chain condensed on the beam point by its elimination from the tip
+#: (``mstmm.numerics.chain.chain_tip``): ``Y = u0 y``, ``Q+ = Q + g y``.
+u0, g_tip = sp.symbols("chain_u0 chain_g")
+
+
+def chain_reduced() -> Descriptor:
+    """The descriptor of a kind of stages as its kernel's stable step and count use it:
+    one unknown, the tip's ``y`` (``Cz = e_Y``, ``Cq = -u0``, ``B = g e_Q``), ``u0`` and
+    ``g`` computed at run time from the stages (their number is data)."""
+    return Descriptor(
+        Cz=unit(0).T, Cq=sp.Matrix([[-u0]]), A=sp.eye(4), B=g_tip * unit(3), qmass=(0,)
+    )
+
+
+def stage_parts(e: Energy) -> tuple:
+    """``(a, b, c, s1, m)`` of a stage declared over ``[u_(j-1), theta, u_j]``: its dynamic
+    stiffness ``D = K + i w1 C - b4 M`` on ``[u_(j-1), u_j]`` is ``[[a, b], [b, c]]``,
+    ``s1`` its column sum for ``u_j`` (the force a common translation of both nodes
+    leaves: the inertia ``-b4 m``, without the difference of two stiffnesses) and ``m`` the
+    node's mass. A stage must not touch theta, hold mass at ``u_(j-1)`` or ground it."""
+    if len(e.moves) != 1 or e.moves[0] != "Y":
+        raise ValueError("stage: one unknown u_j, carried by a translation")
+    for X in (e.K, e.C, e.M):
+        if any(X[1, c] != 0 for c in range(3)):
+            raise ValueError("stage: its energy must not involve theta")
+    if e.M[0, 0] != 0 or e.M[0, 2] != 0:
+        raise ValueError("stage: its mass sits at its own node u_j")
+    D = (e.K + sp.I * w1 * e.C - b4 * e.M).applyfunc(sp.expand)
+    if sp.expand(D[0, 0] + D[2, 0]) != 0:
+        raise ValueError("stage: a common translation of its nodes must not load u_(j-1)")
+    s1 = sp.expand(D[0, 2] + D[2, 2])
+    return D[0, 0], D[0, 2], D[2, 2], s1, e.M[2, 2]
+
+
+def stage_values(module, values: dict, j: int) -> dict:
+    """The values of stage j: the j-th entry of each of the kind's lists."""
+    return {key: (v[j] if isinstance(v, (list, tuple)) else v) for key, v in values.items()}
+
+
+def chain_energy(module, values: dict) -> Energy:
+    """The energy of a kind of stages with its lists given (``show``, ``symbolic``): the
+    stages' energies in series over ``[Y, theta, u_1 .. u_n]``."""
+    n = len(values[module.SAME_LENGTH[0]])
+    size = 2 + n
+    K, C, M = sp.zeros(size, size), sp.zeros(size, size), sp.zeros(size, size)
+    for j in range(n):
+        e = module.stage(stage_values(module, values, j))
+        at = (0 if j == 0 else 1 + j, 2 + j)  # u_(j-1), u_j
+        for X, Y in ((K, e.K), (C, e.C), (M, e.M)):
+            for r, R in ((0, at[0]), (2, at[1])):
+                for c, Cc in ((0, at[0]), (2, at[1])):
+                    X[R, Cc] += Y[r, c]
+    return Energy(K, C, M, moves=("Y",) * n)
 
 
 def point(A: sp.Matrix) -> Descriptor:

@@ -147,23 +147,49 @@ def _unit_factor(scale) -> str:
 def _value_lines(module, damped: bool = False) -> tuple[list[str], dict]:
     """Lines loading a kind's scalar values from its data block (at ``o``) in units
     L = EI = mbar = 1 (exponents from each key's unit), and their symbols. Damping values
-    (``Key.damping``) only in a damped kernel."""
+    (``Key.damping``) only in a damped kernel. For a kind of stages, the values of stage
+    ``j`` (the j-th entry of each list; a list is stored after its length ``n``)."""
     lines = []
     values = {}
+    staged = _staged(module)
+    if staged:
+        lines.append("n = int(p[o])")
     for j, key in enumerate(module.KEYS[1:]):
-        if key.shape == "list":
+        if (key.shape == "list") != staged:
+            if staged:
+                raise ValueError(f"{module.KIND}: a kind of stages has only list keys")
             break
         if key.damping and not damped:
             continue
         name = f"val_{key.name}"
-        lines.append(f"{name} = p[o + {j}]{_unit_factor(key.scale)}")
+        at = f"o + {j} * (n + 1) + 1 + j" if staged else f"o + {j}"
+        lines.append(f"{name} = p[{at}]{_unit_factor(key.scale)}")
         values[key.name] = sp.Symbol(name, real=True)
-    prelude = getattr(module, "PRELUDE_DAMPED" if damped else "PRELUDE", None)
-    for name in getattr(module, "PRELUDE_NAMES", ()):
-        values[name] = sp.Symbol(name, real=not damped)
-    if prelude:
-        lines.append(prelude)
     return lines, values
+
+
+def _staged(module) -> bool:
+    """Whether a kind is made of stages in series (it declares ``stage``)."""
+    return hasattr(module, "stage")
+
+
+def _chain_lines(what: str, complex_: bool = False) -> list[str]:
+    """The stages of a kind of stages into ``st`` (the kernel's ``event_stages``, at the
+    frequency, or at 0 for its own frequencies), then ``mstmm.numerics.chain``'s
+    ``what``: the tip condensation, the full descriptor or the own frequencies."""
+    w, suffix, dtype = ("w1", "_c", "np.complex128") if complex_ else ("b4", "", "np.float64")
+    if what == "internal":
+        w = "0.0"
+    lines = [
+        f"st = np.empty((5, int(p[o])), dtype={dtype})",
+        f"event_stages{suffix}(tag, p, o, {w}, L, EI, mbar, st)",
+    ]
+    call = {
+        "tip": "chain_u0, chain_g, chain_log, own = chain_tip(st)",
+        "descriptor": "return chain_descriptor(st, Cz, Cq, A, B, qmass)",
+        "internal": "return chain_internal(st, L, EI, mbar, out, n)",
+    }[what]
+    return lines + [call]
 
 
 def _symbolic_descriptor(module, damped: bool = False) -> tuple[list[str], descriptor.Descriptor]:
@@ -180,16 +206,24 @@ def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = Fals
     return lines
 
 
+def _tip_lines(complex_: bool = False) -> list[str]:
+    """A kind of stages condensed from its tip (``descriptor.chain_reduced``)."""
+    return _chain_lines("tip", complex_)
+
+
 def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
     """v <- the component's pole-free compound step (docs/components.md)."""
+    if _staged(module):
+        return _tip_lines() + _step_lines(d)
     return _value_lines(module)[0] + _step_lines(d)
 
 
 def _damped_lines(module, d: descriptor.Descriptor) -> list[str]:
-    """The same in a damped kernel: complex, with the damping values (and the log of a
-    factor a kind's prelude took out, ``LOG_DAMPED``)."""
-    log = [f"log += {module.LOG_DAMPED}"] if hasattr(module, "LOG_DAMPED") else []
-    return _value_lines(module, damped=True)[0] + _step_lines(d, complex_=True) + log
+    """The same in a damped kernel: complex, with the damping values (a kind of stages
+    adds the log of the factor its condensation took out)."""
+    if _staged(module):
+        return _tip_lines(True) + _step_lines(d, complex_=True) + ["log += chain_log"]
+    return _value_lines(module, damped=True)[0] + _step_lines(d, complex_=True)
 
 
 def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
@@ -210,8 +244,8 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
     if d.n_q == 0:
         descriptor.node_stiffness(d)  # checks that it is one
         return values + step
-    if hasattr(module, "OWN"):
-        return values + step + [f"count += {module.OWN}"]
+    if _staged(module):  # the negative pivots of its nodes' dynamic stiffness
+        return _tip_lines() + step + ["count += own"]
     coupled = [j for j in range(4) if d.Cz[0, j] != 0] if d.n_q == 1 else []
     if len(coupled) != 1 or coupled[0] > 1 or not (d.Cz[0, coupled[0]] > 0):
         raise ValueError(
@@ -241,8 +275,8 @@ def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list[str]:
 
 def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
     """Fill Cz, Cq, A, B, qmass (units L = EI = mbar = 1); return (constraints, unknowns)."""
-    if hasattr(module, "SHAPE"):
-        return [f"return {module.SHAPE}"]
+    if _staged(module):
+        return _chain_lines("descriptor")
     return _value_lines(module)[0] + _fill_lines(d)
 
 
@@ -251,8 +285,8 @@ def _descriptor_c_lines(damped: bool):
     values in a damped kernel (the frequency response and damped shapes of any kernel)."""
 
     def body(module, d: descriptor.Descriptor) -> list[str]:
-        if hasattr(module, "SHAPE_COMPLEX"):
-            return [f"return {module.SHAPE_COMPLEX}"]
+        if _staged(module):
+            return _chain_lines("descriptor", complex_=True)
         values, symbols = _value_lines(module, damped)
         d = descriptor.of(module, symbols)
         return values + ["b4 = w1 * w1"] + _fill_lines(d, complex_=True)
@@ -262,8 +296,8 @@ def _descriptor_c_lines(damped: bool):
 
 def _internal_lines(module, d: descriptor.Descriptor) -> list[str]:
     """Append the component's own frequencies (rad/s) to out[n:]; return n."""
-    if hasattr(module, "INTERNAL"):
-        return [f"return {module.INTERNAL}"]
+    if _staged(module):
+        return _chain_lines("internal")
     roots = descriptor.internal_b4(d)
     if not roots:
         return ["return n"]
@@ -279,14 +313,14 @@ def _internal_lines(module, d: descriptor.Descriptor) -> list[str]:
 
 
 def _nq_lines(module, d: descriptor.Descriptor) -> list[str]:
-    return [f"return {getattr(module, 'N_Q', d.n_q)}"]
+    return ["return int(p[o])" if _staged(module) else f"return {d.n_q}"]
 
 
 def _inertia_lines(module, d: descriptor.Descriptor) -> list[str]:
     """Fill Mp (2 x 2) with the mass matrix the component holds on [Y, theta]
     (``descriptor.point_inertia``); return 1, or 0 where it holds none."""
     M = descriptor.point_inertia(d)
-    if M == sp.zeros(2, 2):
+    if M == sp.zeros(2, 2) or _staged(module):
         return ["return 0"]
     targets = [f"Mp[{r}, {c}]" for r in range(2) for c in range(2)]
     lines = assignments(targets, list(M), indent="")
@@ -389,21 +423,77 @@ def dispatch_table(damped: bool) -> tuple:
 
 def _parsed(kinds: tuple[str, ...], damped: bool = False) -> list:
     """``(kind, module, descriptor)`` of each kind present, in tag order (a damped
-    kernel's descriptors carry the damping values)."""
+    kernel's descriptors carry the damping values; a kind of stages is condensed from
+    its tip at run time, ``descriptor.chain_reduced``)."""
     out = []
     for k in kinds:
         module = catalog.kind(k)
-        out.append((k, module, _symbolic_descriptor(module, damped)[1]))
+        if _staged(module):
+            out.append((k, module, descriptor.chain_reduced()))
+        else:
+            out.append((k, module, _symbolic_descriptor(module, damped)[1]))
     return out
+
+
+def _stage_lines(damped: bool, complex_: bool):
+    """The body of ``event_stages``: each stage j of a kind of stages into ``st[:, j]`` as
+    ``(a, b, c, s1, m)`` (``descriptor.stage_parts`` of its declared ``stage``)."""
+
+    def body(module, d: descriptor.Descriptor) -> list[str] | None:
+        if not _staged(module):
+            return None
+        values, symbols = _value_lines(module, damped)
+        with sp.evaluate(True):
+            parts = descriptor.stage_parts(module.stage(symbols))
+        targets = [f"st[{r}, j]" for r in range(5)]
+        inner = values[1:] + assignments(
+            targets, [sp.sympify(e) for e in parts], indent="", complex_=complex_
+        )
+        head = values[:1] + (["b4 = w1 * w1"] if complex_ else [])
+        return head + ["for j in range(n):"] + ["    " + line for line in inner]
+
+    return body
+
+
+_STAGES_DOC = (
+    "Fill st[:, j] with stage j of a kind of stages: its dynamic stiffness\n"
+    "    [[a, b], [b, c]] over [u_(j-1), u_j], the inertia force s1 a common translation\n"
+    "    leaves, its mass m (units L = EI = mbar = 1; ``mstmm.numerics.chain``)."
+)
+
+
+def _stage_dispatch(parsed: list, damped: bool) -> str:
+    """``event_stages`` (real; not in a damped kernel) and ``event_stages_c`` (complex):
+    the stages of the kinds of stages present, what the chain numerics take; nothing for
+    a topology without such a kind."""
+    if not any(_staged(module) for _, module, _ in parsed):
+        return ""
+    out = []
+    for complex_ in (False, True) if not damped else (True,):
+        suffix, w = ("_c", "w1") if complex_ else ("", "b4")
+        lines = [
+            "",
+            "",
+            "@njit(cache=True)",
+            f"def event_stages{suffix}(tag, p, o, {w}, L, EI, mbar, st):",
+            f'    """{_STAGES_DOC}"""',
+        ]
+        body = _stage_lines(damped, complex_)
+        lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
+        out.append("\n".join(lines) + "\n")
+    return "".join(out)
 
 
 def _branch_lines(parsed: list, body) -> list[str]:
     """``if tag == 0: ... elif tag == 1: ...``: one branch per kind present, its body
-    printed from the kind's descriptor by ``body``."""
-    lines = []
+    printed from the kind's descriptor by ``body`` (none where ``body`` gives None)."""
+    lines: list[str] = []
     for t, (k, module, d) in enumerate(parsed):
-        lines.append(f"{'if' if t == 0 else 'elif'} tag == {t}:  # {k}")
-        lines += ["    " + line if line else "" for line in body(module, d) or ["pass"]]
+        body_lines = body(module, d)
+        if body_lines is None:
+            continue
+        lines.append(f"{'elif' if lines else 'if'} tag == {t}:  # {k}")
+        lines += ["    " + line if line else "" for line in body_lines or ["pass"]]
     return lines
 
 
@@ -416,7 +506,7 @@ def _dispatch(parsed: list, damped: bool = False) -> str:
         lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
         lines.append(f"    {tail}")
         out.append("\n".join(lines) + "\n")
-    return "".join(out) + "".join(getattr(module, "FUNCTIONS", "") for _, module, _ in parsed)
+    return _stage_dispatch(parsed, damped) + "".join(out)
 
 
 def _branches(parsed: list, body) -> str:

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "5a05c6ccd84f2e4adeb71a5870500c4f960ddf62"
+SIGNATURE = "3ad6a4b618ed61262774bd07da17c221527eca6e"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "550bdaff8e9ff4e7092789f6521862499c875837"
+NUMERICS = "5854fe597e7b44980bae3cf631b0d038a4768c93"
 
 
 @njit(cache=True)

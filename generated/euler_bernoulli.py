@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "28410bdd6e498fffb4ba845ae03d8a4922367e2e"
+DIGEST = "7087b60209efe412bfc9f1bcc4a51c1c003ee71e"
 
 
 @njit(cache=True, inline="always")

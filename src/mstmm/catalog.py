@@ -112,8 +112,10 @@ def _check_kind(module: ModuleType) -> None:
     for name in ("KIND", "KEYS", "COUNT", "DOC"):
         if not hasattr(module, name):
             raise ValueError(f"component kind module {module.__name__} has no {name}")
-    if not (hasattr(module, "energy") or hasattr(module, "descriptor")):
-        raise ValueError(f"component kind module {module.__name__} has no energy or descriptor")
+    if not any(hasattr(module, name) for name in ("energy", "stage", "descriptor")):
+        raise ValueError(
+            f"component kind module {module.__name__} has no energy, stage or descriptor"
+        )
     names = [k.name for k in module.KEYS]
     if not names or names[0] != "x" or module.KEYS[0].check not in ("position", "interior"):
         raise ValueError(f"kind {module.KIND!r}: its first key must be the position x")

@@ -5,14 +5,15 @@ are printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star
 this package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
-table), ``count`` (Wittrick-Williams), ``paper`` (the paper's determinant), ``search``
-(the certified scan), ``shapes`` (mode shapes), ``frf`` (frequency response), ``entries``
-(the drivers called from Python).
+table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``paper``
+(the paper's determinant), ``search`` (the certified scan), ``shapes`` (mode shapes),
+``frf`` (frequency response), ``entries`` (the drivers called from Python).
 """
 
 from mstmm.generated.euler_bernoulli import *  # noqa: F403
 
 from . import cache  # noqa: F401  (numba's cache of these modules follows all of them)
+from .chain import *  # noqa: F403
 from .count import *  # noqa: F403
 from .entries import *  # noqa: F403
 from .frf import *  # noqa: F403

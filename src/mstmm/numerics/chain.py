@@ -1,0 +1,135 @@
+"""A kind made of stages in series (``stage`` declared, docs/components.md): node ``j``
+(``u_j``, ``u_0 = Y`` the beam point) hangs from node ``j - 1`` by stage ``j``, whose
+dynamic stiffness over ``[u_(j-1), u_j]`` is ``[[a, b], [b, c]]`` (``D = K + i w C - b4 M``
+of the stage's declared energy). The kernel's printed ``event_stages`` fills ``st`` (5 x n:
+rows ``a, b, c, s1, m``; ``s1`` the column sum for ``u_j``, the inertia force a common
+translation leaves, ``m`` the node's mass) at one frequency. The unknowns' dynamic
+stiffness ``D_qq`` is tridiagonal; these functions eliminate it from the tip, so that the
+number of stages is data, not code. Generic in the dtype: the same code serves the real
+kernels and the complex ones.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def chain_tip(st):
+    """The chain condensed on the beam point, free of its poles: eliminating ``u_n .. u_1``
+    from the tip gives ``Y = u0 y`` and the force on the beam ``Q+ = Q + g y`` for a tip
+    unknown ``y`` (each stage's elimination multiplied by minus its coupling ``-b``, so
+    ``u0`` is ``det D_qq`` times a positive factor for springs), renormalised by powers of
+    two whose log is returned; and the number of negative pivots of ``D_qq`` (its own
+    frequencies below omega with the beam point held, a Sturm count; real kernels only).
+    Returns ``(u0, g, log, own)``."""
+    n = st.shape[1]
+    u = st[2, 0] * 0.0 + 1.0
+    t = u * 0.0
+    g = u * 0.0
+    d = u
+    own = 0
+    log = 0.0
+    for j in range(n - 1, -1, -1):
+        a = st[0, j]
+        b = st[1, j]
+        c = st[2, j]
+        if j == n - 1:
+            d = c
+        else:
+            d = c + st[0, j + 1] - st[1, j + 1] * st[1, j + 1] / d
+        if d.real == 0.0:
+            d = d * 0.0 - 5e-324
+        if d.real < 0.0:
+            own += 1
+        g -= st[3, j] * u
+        v = c * u + t
+        t = a * v - b * b * u
+        u = v
+        g *= -b
+        big = max(abs(u), abs(g), abs(t))
+        if big > 0.0 and math.isfinite(big):
+            e = math.frexp(big)[1]
+            s = math.ldexp(1.0, -e)
+            u *= s
+            t *= s
+            g *= s
+            log += e * 0.6931471805599453
+    return u, g, log, own
+
+
+@njit(cache=True)
+def chain_own(st0, b4, st):
+    """The chain's own frequencies below b4 (beam point held), from its stages at b4 = 0
+    (``st0``, an undamped kernel's: ``D = K - b4 M``, the mass at each stage's node)."""
+    for j in range(st0.shape[1]):
+        st[0, j] = st0[0, j]
+        st[1, j] = st0[1, j]
+        st[2, j] = st0[2, j] - b4 * st0[4, j]
+        st[3, j] = -b4 * st0[4, j]
+        st[4, j] = st0[4, j]
+    return chain_tip(st)[3]
+
+
+@njit(cache=True)
+def chain_internal(st0, L, EI, mbar, out, n):
+    """Append the chain's own frequencies (beam point held; rad/s) to ``out[n:]``, by
+    bisection on its Sturm count (``chain_own``) below a Gershgorin bound; ``st0`` its
+    stages at b4 = 0. Returns the new ``n``."""
+    stages = st0.shape[1]
+    st = np.empty_like(st0)
+    top = 0.0
+    for j in range(stages):
+        row = abs(st0[2, j]) + abs(st0[1, j])
+        if j + 1 < stages:
+            row += abs(st0[0, j + 1]) + abs(st0[1, j + 1])
+        if st0[4, j] > 0.0:
+            top = max(top, row / st0[4, j])
+    top = 1.01 * top + 1e-300
+    for k in range(stages):
+        lo = 0.0
+        hi = top
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            if chain_own(st0, mid, st) > k:
+                hi = mid
+            else:
+                lo = mid
+        out[n] = math.sqrt(0.5 * (lo + hi) * EI / mbar) / (L * L)
+        n += 1
+    return n
+
+
+@njit(cache=True)
+def chain_descriptor(st, Cz, Cq, A, B, qmass):
+    """Every node kept (mode shapes, the paper's determinant, the frequency response):
+    ``q = [u_1 .. u_n]``, row ``j`` minus node j's equation of motion
+    ``-(b_j u_(j-1) + (c_j + a_(j+1)) u_j + b_(j+1) u_(j+1)) = 0`` (paper Eq. (3)), and
+    the force on the beam ``Q+ = Q - sum s1_j u_j`` (Eq. (2)). Returns (constraints,
+    unknowns)."""
+    n = st.shape[1]
+    for r in range(4):
+        for k in range(4):
+            A[r, k] = 1.0 if r == k else 0.0
+    for i in range(n):
+        for k in range(4):
+            Cz[i, k] = 0.0
+            B[k, i] = 0.0
+        for k in range(n):
+            Cq[i, k] = 0.0
+    for j in range(n):
+        Cq[j, j] -= st[2, j]
+        if j == 0:
+            Cz[0, 0] = -st[1, j]
+        else:
+            Cq[j, j - 1] = -st[1, j]
+            Cq[j - 1, j] = -st[1, j]
+            Cq[j - 1, j - 1] -= st[0, j]
+        B[3, j] = -st[3, j]
+        qmass[0, j] = st[4, j].real
+        qmass[1, j] = st[4, j].real
+        qmass[2, j] = 1.0
+    return n, n
