@@ -185,9 +185,37 @@ def rigid_constraint(e: Energy) -> tuple:
     return held
 
 
+def constraint(dofs: tuple) -> Descriptor:
+    """A kind that holds freedoms of the beam (``CONSTRAINS``): one reaction per freedom,
+    ``Y = 0`` with ``Q+ = Q + R`` (a support), ``theta = 0`` with ``M+ = M - R`` (the sign
+    convention of paper Eq. (1), as :func:`from_energy`); ``Cq = 0``: its compound step is
+    the constrained map."""
+    index = {"Y": (0, 3, 1), "theta": (1, 2, -1)}
+    n = len(dofs)
+    Cz, B = sp.zeros(n, 4), sp.zeros(4, n)
+    for j, dof in enumerate(dofs):
+        at, reaction, sign = index[dof]
+        Cz[j, at] = 1
+        B[reaction, j] = sign
+    return Descriptor(Cz=Cz, Cq=sp.zeros(n, n), A=sp.eye(4), B=B, qmass=(0,) * n)
+
+
+def release(kappa) -> Descriptor:
+    """A kind that lets the rotation jump by ``phi`` with a rotational spring ``kappa``
+    across the jump (``RELEASES``, a hinge): ``M - kappa phi = 0`` (the moment on both
+    sides is the spring's), ``theta+ = theta + phi``; ``kappa = 0`` a free hinge (its
+    compound step is then the constrained map ``M = 0``)."""
+    return Descriptor(Cz=unit(2).T, Cq=sp.Matrix([[-kappa]]), A=sp.eye(4), B=unit(1), qmass=(0,))
+
+
 def rigid_of(module, values: dict) -> tuple:
     """A kind's constraint on rigid motions: declared (``RIGID``), or derived from its
-    energy (:func:`rigid_constraint`)."""
+    physics: its energy (:func:`rigid_constraint`), the freedoms it holds, or a kink
+    where a released rotation has no spring (``kink_if_free``)."""
+    if hasattr(module, "CONSTRAINS"):
+        return tuple(module.CONSTRAINS)
+    if hasattr(module, "RELEASES"):
+        return ("kink_if_free",)
     if hasattr(module, "stage"):
         with sp.evaluate(True):
             return rigid_constraint(module.stage(values))
@@ -208,6 +236,10 @@ def of(module, values: dict) -> Descriptor:
     if hasattr(module, "stage"):
         with sp.evaluate(True):
             return from_energy(chain_energy(module, values))
+    if hasattr(module, "CONSTRAINS"):
+        return constraint(tuple(module.CONSTRAINS))
+    if hasattr(module, "RELEASES"):
+        return release(values[module.RELEASES[1]])
     return module.descriptor(values)
 
 

@@ -230,12 +230,13 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
     """The negative pivots a component adds to the count (``count += ...``), and the
     minors Zc of the node's state subspace carried across it."""
     values = _value_lines(module)[0]
-    if module.COUNT == "constraint":
+    rule = catalog.count_rule(module)
+    if rule == "constraint":
         # the constrained freedoms as a stiffness PENALTY: exact for the inertia count
         A = sp.eye(4) - sp.Symbol("PENALTY") * d.B * d.Cz
         return _step_lines(descriptor.point(A), "Zc")
     step = _step_lines(d, "Zc")
-    if module.COUNT == "split":
+    if rule == "split":
         # a hinge: the rotation left of it is eliminated first, pivot S_theta + kappa
         if d.Cz != descriptor.unit(2).T or d.B != descriptor.unit(1):
             raise ValueError(f"{module.KIND}: COUNT 'split' needs Cz = e_M and B = e_theta")
@@ -337,8 +338,10 @@ def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
         return ["return 0"]
     if len(rigid) != 1 or rigid[0] not in RIGID_FLAGS:
         raise ValueError(f"{module.KIND}: RIGID must be one of {tuple(RIGID_FLAGS)} or empty")
-    if rigid[0] == "kink_if_free":
-        return ["return 3 if p[o] == 0.0 else 0"]
+    if rigid[0] == "kink_if_free":  # the spring across the released rotation
+        key = getattr(module, "RELEASES", ("theta", module.KEYS[1].name))[1]
+        at = [k.name for k in module.KEYS[1:]].index(key)
+        return [f"return 3 if p[{f'o + {at}' if at else 'o'}] == 0.0 else 0"]
     return [f"return {RIGID_FLAGS[rigid[0]]}"]
 
 

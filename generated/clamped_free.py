@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "3ef049f9980f8f994b518af9cf7f9860acf1aeb3"
+SIGNATURE = "407b8095e3b65ea8fab244b0ff58e5c9ae28353f"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "3ad6a4b618ed61262774bd07da17c221527eca6e"
+SIGNATURE = "fbce8be45b33dcc8b3997b3c5969ec28f7d854a1"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 LEFT_UNKNOWN = (2, 3)

@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "7087b60209efe412bfc9f1bcc4a51c1c003ee71e"
+DIGEST = "c1ea4911e54b66fe29098cf378bedb349e2d377e"
 
 
 @njit(cache=True, inline="always")

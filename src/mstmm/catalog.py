@@ -11,7 +11,9 @@ because the kernel loops over an event table instead of unrolling it (DESIGN.md,
 "Scale of the symbolic step"; docs/components.md).
 
 A kind is one module (``src/mstmm/kinds/<kind>.py``, or any module given to
-:func:`register_kind`) that declares ``KIND``, ``KEYS``, ``COUNT`` and its energy (or descriptor);
+:func:`register_kind`) that declares ``KIND``, ``KEYS`` and its physics (:data:`PHYSICS`:
+its energy, the energy of one stage, the freedom it constrains or the one it releases;
+or, for an advanced kind, its descriptor and ``COUNT``);
 this module only reads its plain-data declarations (``KEYS``, ``SAME_LENGTH``, ``DOC``).
 """
 
@@ -107,22 +109,59 @@ class Key:
 
 _REGISTRY: dict[str, ModuleType] = {}
 
+#: What a kind declares of its physics, exactly one of: its energy over ``[Y, theta,
+#: q...]``; the energy of one stage of a chain (``stage``); the freedoms of the beam it
+#: holds (``CONSTRAINS``: a support); the freedom it lets jump and the key of the spring
+#: across the jump (``RELEASES``: a hinge); or, for an advanced kind, its descriptor.
+PHYSICS = ("energy", "stage", "CONSTRAINS", "RELEASES", "descriptor")
+
+
+def count_rule(module: ModuleType) -> str:
+    """How the Wittrick-Williams count sees a kind, from what it declares: a constraint
+    (``CONSTRAINS``: its freedoms as a stiffness penalty), a split node (``RELEASES``: the
+    rotation left of it eliminated first), else a stiffness (a node stiffness and the
+    negative pivots of its unknowns); a kind in descriptor form says it (``COUNT``)."""
+    if hasattr(module, "CONSTRAINS"):
+        return "constraint"
+    if hasattr(module, "RELEASES"):
+        return "split"
+    if hasattr(module, "descriptor"):
+        return module.COUNT
+    return "stiffness"
+
 
 def _check_kind(module: ModuleType) -> None:
-    for name in ("KIND", "KEYS", "COUNT", "DOC"):
+    for name in ("KIND", "KEYS", "DOC"):
         if not hasattr(module, name):
             raise ValueError(f"component kind module {module.__name__} has no {name}")
-    if not any(hasattr(module, name) for name in ("energy", "stage", "descriptor")):
+    physics = [name for name in PHYSICS if hasattr(module, name)]
+    if len(physics) != 1:
         raise ValueError(
-            f"component kind module {module.__name__} has no energy, stage or descriptor"
+            f"component kind module {module.__name__} declares one of {', '.join(PHYSICS)}"
+            f" (it has {', '.join(physics) or 'none'})"
         )
+    if physics == ["descriptor"] and not hasattr(module, "COUNT"):
+        raise ValueError(f"kind {module.KIND!r}: a kind in descriptor form declares COUNT")
+    if getattr(module, "CONSTRAINS", ("Y",)) not in (("Y",), ("theta",)):
+        raise ValueError(f"kind {module.KIND!r}: CONSTRAINS is ('Y',) or ('theta',)")
+    released = getattr(module, "RELEASES", ("theta", "x"))
+    if len(released) != 2 or released[0] != "theta":
+        raise ValueError(f"kind {module.KIND!r}: RELEASES is ('theta', <key of its spring>)")
     names = [k.name for k in module.KEYS]
     if not names or names[0] != "x" or module.KEYS[0].check not in ("position", "interior"):
         raise ValueError(f"kind {module.KIND!r}: its first key must be the position x")
     if len(set(names)) != len(names) or "type" in names:
         raise ValueError(f"kind {module.KIND!r}: key names must be unique and not 'type'")
-    if module.COUNT not in ("stiffness", "constraint", "split"):
+    if hasattr(module, "RELEASES") and released[1] not in names[1:]:
+        raise ValueError(f"kind {module.KIND!r}: RELEASES names the key of its spring")
+    rule = count_rule(module)
+    if rule not in ("stiffness", "constraint", "split"):
         raise ValueError(f"kind {module.KIND!r}: COUNT must be stiffness|constraint|split")
+    if getattr(module, "COUNT", rule) != rule:
+        raise ValueError(
+            f"kind {module.KIND!r}: its physics makes COUNT {rule!r}, not"
+            f" {module.COUNT!r} (leave COUNT out)"
+        )
     if not module.KIND.isidentifier() or "__" in module.KIND or module.KIND.startswith("_"):
         raise ValueError(f"kind name {module.KIND!r} must be an identifier without '__'")
 
@@ -167,10 +206,18 @@ def damping_only(name: str) -> bool:
     return bool(keys) and all(k.damping for k in keys)
 
 
+def constrained(module: ModuleType) -> tuple[str, ...]:
+    """The freedoms of the beam a kind holds (``CONSTRAINS``; ``("Y",)`` for a constraint
+    in descriptor form), ``()`` for any other kind."""
+    if hasattr(module, "CONSTRAINS"):
+        return tuple(module.CONSTRAINS)
+    return ("Y",) if count_rule(module) == "constraint" else ()
+
+
 def splits_rotation(name: str) -> bool:
-    """Whether a kind lets the rotation jump where it sits (a hinge: ``COUNT = "split"``,
-    the node gets a second rotation): a couple or a rotation there is ambiguous."""
-    return kind(name).COUNT == "split"
+    """Whether a kind lets the rotation jump where it sits (a hinge: ``RELEASES``, the node
+    gets a second rotation): a couple or a rotation there is ambiguous."""
+    return count_rule(kind(name)) == "split"
 
 
 def kind_file(name: str) -> Path:

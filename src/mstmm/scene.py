@@ -20,11 +20,12 @@ Every kind is read from its declared keys (``KEYS``: name, unit, check, default,
 shape): there is no per-kind code here. A key of another kind is an unknown key; a
 key without a default is required; a list key (an oscillator chain's ``k`` and ``m``)
 is a non-empty list of numbers, and the keys a kind names in ``SAME_LENGTH`` have equal
-lengths. Placement rules that hold for any kind of a given ``COUNT``: a constraint
-(a support) may not sit where an end or another constraint already fixes Y (one message,
-"a redundant constraint"), nor two hinges at one x; a component
+lengths. Placement rules that hold for any kind that declares the same physics: a
+constraint of Y (``CONSTRAINS``, a support) may not sit where an end or another
+constraint already fixes Y (one message, "a redundant constraint"), nor two hinges at
+one x; a component
 that acts on the rotation (a key in N m/rad or kg m^2 with a value > 0) may not sit
-at exactly the x of a hinge (``COUNT = "split"``), whose two sides rotate apart.
+at exactly the x of a hinge (``RELEASES``), whose two sides rotate apart.
 
 Every problem found in a scene raises :class:`SceneError`, whose message is a
 single line ``{source}: {field}: {problem} (got {value!r})``, where ``field`` is
@@ -428,11 +429,11 @@ def check_placement(
     """Reject components placed where the transfer chain is degenerate or ambiguous.
 
     ``P`` holds parameter vectors of ``scene`` (one per row). Read from the kinds'
-    declarations, for any kind: a constraint (``COUNT = "constraint"``, which fixes Y)
+    declarations, for any kind: a constraint (``CONSTRAINS``, which fixes Y)
     at an end whose condition already fixes Y, or two constraints at one x, fix
     nothing more and leave the chain singular; a component acting on the rotation
     (a key in N m/rad or kg m^2 with a value > 0) at exactly the x of a hinge
-    (``COUNT = "split"``) is ambiguous, since the two sides of the hinge rotate apart.
+    (``RELEASES``) is ambiguous, since the two sides of the hinge rotate apart.
     Raises :class:`SceneError` on ``attachments[i].x``; ``P``, ``point`` and ``labels``
     as for :func:`check_representable`.
     """
@@ -445,7 +446,7 @@ def check_placement(
     modules = [catalog.kind(b.kind) for b in events.blocks]
     x = events.positions
 
-    constraints = [c for c, m in enumerate(modules) if m.COUNT == "constraint"]
+    constraints = [c for c, m in enumerate(modules) if "Y" in catalog.constrained(m)]
     for c in constraints:
         for end, at_end, fixes in (
             (scene.beam.left, x[:, c] == 0.0, _fixes_y(scene.beam.left)),
@@ -473,7 +474,7 @@ def check_placement(
             source,
             where,
         )
-    hinges = [c for c, m in enumerate(modules) if m.COUNT == "split"]
+    hinges = [c for c, m in enumerate(modules) if catalog.count_rule(m) == "split"]
     if len(hinges) > 1:
         _no_coincidence(
             x[:, hinges],
@@ -491,7 +492,7 @@ def check_placement(
     turning = [
         c
         for c, m in enumerate(modules)
-        if m.COUNT != "split" and any(_acts_on_rotation(k) for k in m.KEYS)
+        if catalog.count_rule(m) != "split" and any(_acts_on_rotation(k) for k in m.KEYS)
     ]
     if hinges and turning:
         active = np.zeros((len(P), len(turning)), bool)

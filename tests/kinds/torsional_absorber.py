@@ -26,7 +26,6 @@ KEYS = (
         damping=True,
     ),
 )
-COUNT = "stiffness"
 
 
 def energy(v: dict):

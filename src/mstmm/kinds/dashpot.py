@@ -17,7 +17,6 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("c", "N s/m", doc="damping coefficient", damping=True),
 )
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("*", "C8")
 #: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``,

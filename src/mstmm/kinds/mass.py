@@ -23,7 +23,6 @@ KEYS = (
         doc="rotary inertia about the beam axis normal",
     ),
 )
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("s", "C2")
 

@@ -31,7 +31,6 @@ KEYS = (
     ),
 )
 SAME_LENGTH = ("k", "m", "c")
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("X", "C7")
 #: Name of its unknowns in Z_all (the displacement of each mass).

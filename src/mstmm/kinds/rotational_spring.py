@@ -14,7 +14,6 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("k", "N m/rad", doc="stiffness"),
 )
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("P", "C6")
 

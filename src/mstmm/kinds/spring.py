@@ -15,7 +15,6 @@ KEYS = (
     Key("x", "m", check="position", doc="position from the left end"),
     Key("k", "N/m", doc="stiffness"),
 )
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("d", "C5")
 

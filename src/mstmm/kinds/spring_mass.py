@@ -28,8 +28,6 @@ KEYS = (
         damping=True,
     ),
 )
-#: The count adds the branch's stiffness at the node and one pivot below its own frequency.
-COUNT = "stiffness"
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("v", "C4")
 #: Name of its unknown in Z_all (the hanging mass's displacement, the branch tip).

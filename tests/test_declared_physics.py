@@ -1,0 +1,120 @@
+"""A kind declares its physics and only that (issue 21): a constraint by the freedom it
+holds (``CONSTRAINS``), a hinge by the freedom it releases (``RELEASES``), and
+``mstmm.derive`` derives its descriptor, its count rule, its constraint on rigid motions.
+
+Checked against a closed form, through the default path (mode shapes on): a rotation
+held at the middle of a pinned-pinned beam of length 2 (a kind registered from this file,
+``tests/kinds/rotation_clamp.py``, touching nothing else). Its symmetric modes are those of the free beam (zero slope at the
+middle already), ``beta = n pi / 2`` for odd n; its antisymmetric ones have Y = 0 and
+theta = 0 at the middle, so each half is a pinned-clamped beam of length 1,
+``tan(beta) = tanh(beta)``. And the declaration errors a contributor meets.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import types
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+
+import mstmm
+from mstmm import catalog
+
+
+KIND_FILE = Path(__file__).parent / "kinds" / "rotation_clamp.py"
+
+
+def _rotation_clamp() -> types.ModuleType:
+    """A fresh module of ``tests/kinds/rotation_clamp.py`` (a kind's file is hashed into
+    its kernel's signature)."""
+    spec = importlib.util.spec_from_file_location("rotation_clamp", KIND_FILE)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture
+def rotation_clamp():
+    module = _rotation_clamp()
+    catalog.register_kind(module)
+    try:
+        yield module
+    finally:
+        del catalog.kinds()[module.KIND]
+
+
+def _closed_form(n: int) -> list[float]:
+    """The lowest n values of beta (units of the half length 1): odd multiples of pi/2 and
+    the roots of tan(b) = tanh(b) (mpmath, 30 digits)."""
+    mpmath.mp.dps = 30
+    betas = [(2 * k + 1) * math.pi / 2 for k in range(n)]
+    for k in range(1, n + 1):
+        guess = (k + 0.25) * mpmath.pi
+        betas.append(float(mpmath.findroot(lambda b: mpmath.tan(b) - mpmath.tanh(b), guess)))
+    return sorted(betas)[:n]
+
+
+def test_a_held_rotation_against_the_closed_form(rotation_clamp):
+    EI, mbar = 7.0, 3.0
+    scene = mstmm.scene_from_dict(
+        {
+            "beam": {
+                "length": 2.0,
+                "EI": EI,
+                "mass_per_length": mbar,
+                "left": "pinned",
+                "right": "pinned",
+            },
+            "attachments": [{"type": "rotation_clamp", "x": 1.0}],
+        }
+    )
+    sol = mstmm.solve(scene, modes=8)
+    want = np.array([b**2 * math.sqrt(EI / mbar) for b in _closed_form(8)])
+    assert sol.count_checked and all(sol.converged)
+    np.testing.assert_allclose(sol.omega, want, rtol=1e-10)
+    for shape in sol.shapes:  # the rotation held at the middle, in every mode shape
+        i = int(np.argmin(abs(shape.x - 1.0)))
+        assert abs(shape.x[i] - 1.0) < 1e-12
+        assert abs(shape.theta[i]) <= 1e-8 * np.max(abs(shape.theta))
+
+
+def test_the_count_rule_and_rigid_motions_follow_the_declaration():
+    from mstmm.derive import descriptor
+
+    support, hinge = catalog.kind("support"), catalog.kind("hinge")
+    assert catalog.count_rule(support) == "constraint"
+    assert catalog.count_rule(hinge) == "split"
+    assert catalog.count_rule(catalog.kind("spring_mass")) == "stiffness"
+    assert descriptor.rigid_of(support, {}) == ("Y",)
+    assert descriptor.rigid_of(hinge, {}) == ("kink_if_free",)
+    assert descriptor.rigid_of(_rotation_clamp(), {}) == ("theta",)
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"energy": lambda v: None}, "declares one of"),
+        ({"CONSTRAINS": ("Y", "theta")}, "CONSTRAINS is"),
+        ({"COUNT": "stiffness"}, "its physics makes COUNT 'constraint'"),
+    ],
+)
+def test_declaration_errors(change, message):
+    module = _rotation_clamp()
+    for name, value in change.items():
+        setattr(module, name, value)
+    with pytest.raises(ValueError, match=message):
+        catalog.register_kind(module)
+
+
+def test_a_release_names_its_spring():
+    module = types.ModuleType("bad_hinge")
+    module.KIND = "bad_hinge"
+    module.DOC = "test only"
+    module.KEYS = (catalog.Key("x", "m", check="interior"), catalog.Key("k", "N m/rad"))
+    module.RELEASES = ("theta", "stiffness")
+    with pytest.raises(ValueError, match="names the key of its spring"):
+        catalog.register_kind(module)
