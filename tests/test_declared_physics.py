@@ -3,11 +3,12 @@ holds (``CONSTRAINS``), a hinge by the freedom it releases (``RELEASES``), and
 ``mstmm.derive`` derives its descriptor, its count rule, its constraint on rigid motions.
 
 Checked against a closed form, through the default path (mode shapes on): a rotation
-held at the middle of a pinned-pinned beam of length 2 (a kind registered from this file,
-``tests/kinds/rotation_clamp.py``, touching nothing else). Its symmetric modes are those of the free beam (zero slope at the
-middle already), ``beta = n pi / 2`` for odd n; its antisymmetric ones have Y = 0 and
-theta = 0 at the middle, so each half is a pinned-clamped beam of length 1,
-``tan(beta) = tanh(beta)``. And the declaration errors a contributor meets.
+held at the middle of a pinned-pinned beam of length 2 (a kind registered from its one
+file, ``tests/kinds/rotation_clamp.py``, touching nothing else). Its symmetric modes are
+those of the free beam (zero slope at the middle already), ``beta = n pi / 2`` for odd
+n; its antisymmetric ones have Y = 0 and theta = 0 at the middle, so each half is a
+pinned-clamped beam of length 1, ``tan(beta) = tanh(beta)``. And the declaration errors
+a contributor meets.
 """
 
 from __future__ import annotations
@@ -23,7 +24,6 @@ import pytest
 
 import mstmm
 from mstmm import catalog
-
 
 KIND_FILE = Path(__file__).parent / "kinds" / "rotation_clamp.py"
 
