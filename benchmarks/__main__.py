@@ -549,6 +549,44 @@ def damped_large_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
     ]
 
 
+def codebase_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
+    """Issue 21's code figures, from what ``benchmarks.codebase`` recorded."""
+    c = figs.get("codebase")
+    if not c:
+        return []
+    g, n = c["generated"], c["numerics"]
+    every = g["every_kind"]
+    share = g["printed"] / g["lines"]
+    return [
+        (
+            "lines of `generated/` printed by SymPy",
+            ">= 90 %",
+            f"{g['printed']} of {g['lines']} = {share:.0%} (a kernel of every kind:"
+            f" {every['undamped']['printed'] / every['undamped']['lines']:.0%} undamped,"
+            f" {every['damped']['printed'] / every['damped']['lines']:.0%} damped)",
+            _status(share >= 0.9),
+            f"`{c['measured']['command']}`, {c['measured']['date']}; the rest is each"
+            " kernel's hot loops written out around its printed branches (numba cannot cache"
+            " a shared driver that takes a topology's branch as a value, and a call per"
+            " event costs reference counting) and the dispatch glue",
+        ),
+        (
+            "hand-written numba in `src/mstmm/numerics/` (ordinary, linted code)",
+            "measured",
+            f"{n['lines']} lines of code (statements; no blank lines, comments, docstrings)",
+            "",
+            f"`{c['measured']['command']}`",
+        ),
+        (
+            "files touched to add a point kind",
+            "1",
+            f"{c['files_to_add_a_kind']} (the kind's file)",
+            _status(c["files_to_add_a_kind"] == 1),
+            f"{c['files_to_add_a_kind_checked_by']} adds one to a copy of the package",
+        ),
+    ]
+
+
 def targets_markdown(rows) -> str:
     out = [
         "| target | goal | measured | status | what limits it / remark |",
@@ -664,6 +702,7 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=Non
         + component_rows(recorded)
         + damping_rows(recorded)
         + damped_large_rows(recorded)
+        + codebase_rows(recorded)
     )
     parts.append(targets_markdown(rows))
     notes = findings(wp, sc)

@@ -1,0 +1,152 @@
+"""How much of the generated code SymPy prints, and how much numba is written by hand.
+
+Run: ``python -m benchmarks.codebase [--record]`` (a few seconds; no timing).
+
+Issue 21 asks for three numbers in the benchmark report:
+
+* the lines of ``generated/`` printed by SymPy against all its lines: the derivation is
+  run again with the printer's entry points (``assignments``, ``code``, the series) wrapped
+  so that every line they return is counted; the rest of a generated file is the
+  template (headers, the hot loops written out for speed, the dispatch glue). Counted for
+  the committed modules, and for a kernel of every kind (undamped and damped) as a user's
+  richest topology;
+* the lines of hand-written numba in ``src/mstmm/numerics/`` (ordinary, linted code:
+  statements, not blank lines, comments or docstrings);
+* the files a contributor touches to add a kind, from ``tests/test_new_kind.py``'s
+  contract: the kind's file (the test fails if anything else must change).
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import io
+import tokenize
+from contextlib import contextmanager
+from pathlib import Path
+
+from . import figures
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _nonblank(text: str) -> int:
+    return sum(1 for line in text.splitlines() if line.strip())
+
+
+@contextmanager
+def _counting():
+    """Count the lines the printer's entry points hand to ``derive.emit``."""
+    from mstmm.derive import emit
+
+    tally = [0]
+    originals = {name: getattr(emit, name) for name in ("assignments", "code", "_series_lines")}
+
+    def counted(fn):
+        def wrapper(*args, **kwargs):
+            out = fn(*args, **kwargs)
+            tally[0] += 1 if isinstance(out, str) else sum(1 for line in out if line.strip())
+            return out
+
+        return wrapper
+
+    for name, fn in originals.items():
+        setattr(emit, name, counted(fn))
+    try:
+        yield tally
+    finally:
+        for name, fn in originals.items():
+            setattr(emit, name, fn)
+
+
+def _printed(make) -> tuple[int, int]:
+    """(lines printed by SymPy, non-blank lines) of the source ``make()`` returns."""
+    with _counting() as tally:
+        source = make()
+    return tally[0], _nonblank(source)
+
+
+def generated_share() -> dict:
+    """The committed modules of ``generated/`` and a kernel of every kind."""
+    from mstmm.derive import emit
+    from mstmm.derive.bundled import BUNDLED_TOPOLOGIES
+
+    from mstmm import catalog
+
+    committed = [("euler_bernoulli.py", emit.numerics_source)]
+    committed += [(f"{t.key}.py", lambda t=t: emit.kernel_source(t)) for t in BUNDLED_TOPOLOGIES]
+    rows = {}
+    for name, make in committed:
+        printed, total = _printed(make)
+        rows[name] = {"printed": printed, "lines": total}
+    kinds = tuple(sorted(catalog.builtin_kinds()))
+    every = {
+        "undamped": catalog.Topology("pinned", "free", tuple(k for k in kinds if k != "dashpot")),
+        "damped": catalog.Topology("pinned", "free", kinds, True),
+    }
+    richest = {}
+    for label, topology in every.items():
+        printed, total = _printed(lambda t=topology: emit.kernel_source(t))
+        richest[label] = {"kinds": len(topology.kinds), "printed": printed, "lines": total}
+    printed = sum(r["printed"] for r in rows.values())
+    total = sum(r["lines"] for r in rows.values())
+    return {"modules": rows, "printed": printed, "lines": total, "every_kind": richest}
+
+
+def _statements(path: Path) -> int:
+    """Lines holding code in a Python file: not blank, not a comment, not a docstring."""
+    text = path.read_text()
+    docstrings: set[int] = set()
+    for node in ast.walk(ast.parse(text)):
+        body = getattr(node, "body", None)
+        if isinstance(body, list) and body and isinstance(body[0], ast.Expr):
+            value = body[0].value
+            if isinstance(value, ast.Constant) and isinstance(value.value, str):
+                docstrings.update(range(body[0].lineno, body[0].end_lineno + 1))
+    lines: set[int] = set()
+    for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+        if tok.type in (tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT):
+            continue
+        if tok.type in (tokenize.DEDENT, tokenize.ENDMARKER):
+            continue
+        lines.update(range(tok.start[0], tok.end[0] + 1))
+    return len(lines - docstrings)
+
+
+def numerics_lines() -> dict:
+    """Statements of hand-written numba per module of ``src/mstmm/numerics``."""
+    folder = ROOT / "src" / "mstmm" / "numerics"
+    per = {p.name: _statements(p) for p in sorted(folder.glob("*.py"))}
+    return {"modules": per, "lines": sum(per.values())}
+
+
+def measure() -> dict:
+    return {
+        "generated": generated_share(),
+        "numerics": numerics_lines(),
+        "files_to_add_a_kind": 1,
+        "files_to_add_a_kind_checked_by": "tests/test_new_kind.py",
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--record", action="store_true", help="write docs/figures.json")
+    args = ap.parse_args(argv)
+    fig = measure()
+    g = fig["generated"]
+    for name, r in g["modules"].items():
+        print(f"generated/{name}: {r['printed']} of {r['lines']} lines printed by SymPy")
+    print(f"generated/: {g['printed']} of {g['lines']} ({g['printed'] / g['lines']:.0%})")
+    for label, r in g["every_kind"].items():
+        share = r["printed"] / r["lines"]
+        print(f"a kernel of every kind ({label}, {r['kinds']} kinds): {share:.0%} of {r['lines']}")
+    print(f"hand-written numba in src/mstmm/numerics: {fig['numerics']['lines']} lines of code")
+    if args.record:
+        path = figures.record("codebase", fig, command="python -m benchmarks.codebase --record")
+        print(f"recorded in {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
