@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "c1ea4911e54b66fe29098cf378bedb349e2d377e"
+DIGEST = "8f85f466e0b66647b2d82e112d3bcd388287d00c"
 
 
 @njit(cache=True, inline="always")

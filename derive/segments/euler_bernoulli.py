@@ -9,6 +9,16 @@ import sympy as sp
 from mstmm.derive.compound import second_compound, split_krylov_products
 
 
+def field(v: dict) -> sp.Matrix:
+    """``A`` of the segment's differential equation ``Z' = A Z`` (paper Eq. (1)'s signs:
+    ``Y' = theta``, ``theta' = M / EI``, ``M' = Q``, ``Q' = mbar w^2 Y``), from the values
+    ``EI``, ``mbar``, ``w2`` (omega^2): ``exp(A l)`` is :func:`transfer_matrix`
+    (``tests/test_field.py``)."""
+    return sp.Matrix(
+        [[0, 1, 0, 0], [0, 0, 1 / v["EI"], 0], [0, 0, 0, 1], [v["mbar"] * v["w2"], 0, 0, 0]]
+    )
+
+
 def transfer_matrix(lam: sp.Expr, l: sp.Expr, EI: sp.Expr) -> sp.Matrix:
     """Beam transfer matrix exactly as printed in paper Eq. (1) (``a_1 .. a_16``)."""
     x = lam * l

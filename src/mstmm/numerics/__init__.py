@@ -5,7 +5,8 @@ are printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star
 this package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
-table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``paper``
+table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``field`` (a segment's
+field matrix from its differential equation), ``paper``
 (the paper's determinant), ``search`` (the certified scan), ``shapes`` (mode shapes),
 ``frf`` (frequency response), ``entries`` (the drivers called from Python).
 """
@@ -16,6 +17,7 @@ from . import cache  # noqa: F401  (numba's cache of these modules follows all o
 from .chain import *  # noqa: F403
 from .count import *  # noqa: F403
 from .entries import *  # noqa: F403
+from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .paper import *  # noqa: F403

@@ -1,0 +1,204 @@
+"""The field transfer matrix of a segment from its differential equation
+(``mstmm.numerics.field``; issue 21 item 2, the base of issue 22's segment kinds).
+
+Independent checks: Euler-Bernoulli's ``exp(A h)`` against the closed form of paper
+Eq. (1) (SymPy's cosh/cos, evaluated by mpmath at 30 digits); the general field matrix
+(Timoshenko, axial force, foundation, both signs of every branch: below and above the
+Timoshenko cut-off, tension and compression) against mpmath's ``expm`` at 30 digits; the
+second compound ``exp(A2 h)`` against the 2 x 2 minors of mpmath's ``exp(A h)``; the
+clamped-clamped bound below the first clamped-clamped frequency found by mpmath (the
+first sign change of the determinant of the clamped-clamped block of ``exp(A h)``), and
+not far below it.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from mstmm.numerics import field
+
+mpmath.mp.dps = 30
+PAIRS = list(itertools.combinations(range(4), 2))
+
+
+def general_A(EI, kGA, rhoI, mbar, P, kw, kG, w2, mp=False):
+    """``Z' = A Z`` over ``[Y, psi, M, Q]`` (paper signs: ``M' = Q`` and
+    ``Q' = mbar w^2 Y`` for Euler-Bernoulli) of a Timoshenko beam under the axial force P
+    (tension positive) on a Winkler (kw) and Pasternak (kG) foundation; written here from
+    the energies, independently of ``derive/segments``."""
+    one = mpmath.mpf(1) if mp else 1.0
+    t = P + kG
+    if math.isinf(kGA):
+        a01, a03, a21, a23 = one, 0 * one, t * one, one
+    else:
+        g = kGA + t
+        a01, a03 = kGA * one / g, -one / g
+        a21, a23 = kGA * t * one / g - rhoI * w2, kGA * one / g
+    rows = [
+        [0, a01, 0, a03],
+        [0, 0, one / EI, 0],
+        [0, a21, 0, a23],
+        [(mbar * w2 - kw) * one, 0, 0, 0],
+    ]
+    return mpmath.matrix(rows) if mp else np.array(rows, dtype=float)
+
+
+def _expm(A, h, complex_=False):
+    U = np.zeros(A.shape, dtype=A.dtype)
+    field.expm_short(A, h, field.wavenumber(A) if A.shape[0] == 4 else 1.0, U)
+    return U
+
+
+def _rel(got, want) -> float:
+    """Entry-wise error relative to the row and column scale (the state's units differ)."""
+    want = np.array(want.tolist(), dtype=complex).reshape(got.shape)
+    scale = np.sqrt(np.outer(np.max(abs(want), axis=1), np.max(abs(want), axis=0)))
+    return float(np.max(abs(got - want) / scale))
+
+
+@pytest.mark.parametrize("beta_h", [1e-6, 0.01, 0.5, 1.0, 2.0, 4.0])
+def test_euler_bernoulli_against_paper_eq_1(beta_h):
+    import sympy as sp
+    from mstmm.derive.segments import euler_bernoulli as eb
+
+    beta = 3.7
+    h = beta_h / beta
+    U = _expm(general_A(1.0, math.inf, 0.0, 1.0, 0.0, 0.0, 0.0, beta**4), h)
+    closed = eb.transfer_matrix(sp.Float(beta, 40), sp.Float(h, 40), 1)  # paper Eq. (1)
+    want = np.array([[complex(e.evalf(40)) for e in row] for row in closed.tolist()])
+    assert _rel(U, want) < 5e-15
+
+
+CASES = {
+    # EI, kGA, rhoI, mbar, P, kw, kG, omega^2 (kernel-like units)
+    "timoshenko below cut-off": (1.0, 400.0, 2e-3, 1.0, 0.0, 0.0, 0.0, 5.0e3),
+    "timoshenko above cut-off": (1.0, 400.0, 2e-3, 1.0, 0.0, 0.0, 0.0, 4.0e5),
+    "tension": (1.0, math.inf, 0.0, 1.0, 50.0, 0.0, 0.0, 800.0),
+    "compression": (1.0, math.inf, 0.0, 1.0, -5.0, 0.0, 0.0, 800.0),
+    "compression beyond buckling": (1.0, math.inf, 0.0, 1.0, -60.0, 0.0, 0.0, 0.5),
+    "winkler below its cut-off": (1.0, math.inf, 0.0, 1.0, 0.0, 900.0, 0.0, 100.0),
+    "pasternak and winkler": (1.0, math.inf, 0.0, 1.0, 0.0, 300.0, 20.0, 1000.0),
+    "everything": (2.0, 300.0, 1e-3, 1.5, -3.0, 50.0, 4.0, 2.0e5),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize("kh", [0.05, 1.0, 2.5])
+def test_general_field_against_mpmath(name, kh):
+    args = CASES[name]
+    A = general_A(*args)
+    h = kh / field.wavenumber(A)
+    want = mpmath.expm(general_A(*args, mp=True) * h)
+    assert _rel(_expm(A, h), want) < 1e-13
+    # the second compound: exp(A2 h) against the minors of mpmath's exp(A h)
+    A2 = np.zeros((6, 6))
+    field.additive_compound(A, A2)
+    C = np.zeros((6, 6))
+    k = field.wavenumber(A)
+    field.expm_short(A2, h, k, C)
+    minors = mpmath.matrix(6, 6)
+    for a, (i, j) in enumerate(PAIRS):
+        for b, (r, s) in enumerate(PAIRS):
+            minors[a, b] = want[i, r] * want[j, s] - want[i, s] * want[j, r]
+    assert _rel(C, minors) < 1e-13
+
+
+def test_complex_field_is_the_same_code():
+    args = CASES["everything"]
+    A = general_A(*args).astype(complex)
+    A[1, 2] = 1.0 / (args[0] * (1.0 + 0.02j))  # a loss factor on the bending stiffness
+    h = 1.5 / field.wavenumber(A)
+    want = mpmath.expm(mpmath.matrix(A.tolist()) * h)
+    assert _rel(_expm(A, h), want) < 1e-13
+
+
+def _first_clamped_clamped(args, h) -> float:
+    """The lowest omega^2 at which the piece clamped at both ends has a mode: the first
+    sign change (real part) of det of exp(A h)'s block from [M, Q] to [Y, psi], bracketed
+    on a fine grid in omega and refined by bisection (mpmath, 30 digits)."""
+
+    def f(w2):
+        U = mpmath.expm(general_A(*args[:-1], w2, mp=True) * h)
+        return U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2]
+
+    grid = np.geomspace(1e-3, 1e12, 700)
+    prev = f(grid[0])
+    for lo, hi in zip(grid[:-1], grid[1:]):
+        cur = f(hi)
+        if mpmath.sign(cur) != mpmath.sign(prev):
+            a, b = mpmath.mpf(lo), mpmath.mpf(hi)
+            for _ in range(60):
+                m = (a + b) / 2
+                if mpmath.sign(f(m)) == mpmath.sign(prev):
+                    a = m
+                else:
+                    b = m
+            return float(a)
+        prev = cur
+    raise AssertionError("no clamped-clamped frequency below 1e12")
+
+
+@pytest.mark.parametrize(
+    "name", ["timoshenko below cut-off", "tension", "compression", "everything"]
+)
+@pytest.mark.parametrize("h", [0.05, 0.2])
+def test_clamped_clamped_bound_is_a_lower_bound(name, h):
+    EI, kGA, rhoI, mbar, P, kw, kG, _ = CASES[name]
+    bound = field.clamped_clamped_bound(EI, kGA, rhoI, mbar, P + kG, h)
+    exact = _first_clamped_clamped(CASES[name], h)
+    assert 0.0 < bound <= exact
+    assert bound >= 0.02 * exact  # a bound, but not a useless one
+
+
+@settings(max_examples=15, deadline=None)
+@given(
+    st.floats(0.5, 4.0),
+    st.floats(50.0, 5e4),
+    st.floats(1e-5, 1e-2),
+    st.floats(0.5, 3.0),
+    st.floats(-3.0, 30.0),
+    st.floats(0.02, 0.3),
+)
+def test_clamped_clamped_bound_random(EI, kGA, rhoI, mbar, P, h):
+    """No clamped-clamped mode below the bound: the determinant keeps its sign on a fine
+    grid up to it (what J0 = 0 needs)."""
+    bound = field.clamped_clamped_bound(EI, kGA, rhoI, mbar, P, h)
+    if not bound > 0.0:
+        return
+    A = general_A(EI, kGA, rhoI, mbar, P, 0.0, 0.0, 0.0, mp=True)
+
+    def f(w2):
+        A[2, 1] = general_A(EI, kGA, rhoI, mbar, P, 0.0, 0.0, w2, mp=True)[2, 1]
+        A[3, 0] = mbar * w2
+        U = mpmath.expm(A * h)
+        return mpmath.sign(U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2])
+
+    signs = {f(w2) for w2 in np.geomspace(1e-6 * bound, bound, 120)}
+    assert len(signs) == 1
+
+
+def test_declared_fields_are_the_equations_written_here():
+    """``derive/segments``' declared differential equations (SymPy) equal the ones written
+    above from the energies, at random values; the general one reduces to
+    Euler-Bernoulli's with its optional terms left out."""
+    import sympy as sp
+    from mstmm.derive.segments import euler_bernoulli, general
+
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        EI, kGA, rhoI, mbar, w2 = rng.uniform(0.5, 3.0, 5) * [1, 300, 1e-3, 1, 1e3]
+        P, kw, kG = rng.uniform(-5.0, 50.0), rng.uniform(0, 100), rng.uniform(0, 10)
+        values = dict(EI=EI, kGA=kGA, rhoI=rhoI, mbar=mbar, P=P, k_w=kw, k_G=kG, w2=w2)
+        got = np.array(general.field(values).evalf(), dtype=float)
+        np.testing.assert_allclose(got, general_A(EI, kGA, rhoI, mbar, P, kw, kG, w2), rtol=1e-14)
+        plain = dict(EI=EI, mbar=mbar, w2=w2)
+        assert (general.field(plain) - euler_bernoulli.field(plain)).is_zero_matrix
+    symbols = {name: sp.Symbol(name, positive=True) for name in ("EI", "mbar", "w2")}
+    assert sp.simplify(general.field(symbols) - euler_bernoulli.field(symbols)) == sp.zeros(4, 4)
