@@ -604,7 +604,8 @@ def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tup
     if bound is None:
         top = 4.0 * found
         return top, (
-            "no proved bound on the decay rate applies (a damper on a massless coordinate):"
+            "no proved bound on the decay rate applies (a rotational damper, or a damper on"
+            " a massless coordinate):"
             f" roots with sigma > {top:.6g} rad/s are not counted"
         )
     cap = max(unit * (TALLEST * math.pi) ** 2, 4.0 * found)
