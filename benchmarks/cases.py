@@ -405,6 +405,14 @@ def _kind_cases() -> list[Case]:
             "20 identical two-stage chains at one point (roots of multiplicity 19)",
         ),
         (
+            "kind_stiff_chain",
+            _beam("clamped", "free"),
+            [{"type": "oscillator_chain", "x": 0.6, "k": [1e10, 3e9, 1e9], "m": [0.3, 0.2, 0.1]}],
+            8,
+            "a three-stage chain on springs of 1e9 .. 1e10 EI/L^3 (its masses nearly fixed to"
+            " the beam)",
+        ),
+        (
             "kind_every_kind_stepped",
             _beam("free", "free", [(0.35, 1.0, 1.0), (0.4, 30.0, 4.0), (0.25, 0.05, 0.3)]),
             [

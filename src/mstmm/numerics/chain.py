@@ -19,44 +19,43 @@ from numba import njit
 def chain_tip(st):
     """The chain condensed on the beam point, free of its poles: eliminating ``u_n .. u_1``
     from the tip gives ``Y = u0 y`` and the force on the beam ``Q+ = Q + g y`` for a tip
-    unknown ``y`` (each stage's elimination multiplied by minus its coupling ``-b``, so
-    ``u0`` is ``det D_qq`` times a positive factor for springs), renormalised by powers of
-    two whose log is returned; and the number of negative pivots of ``D_qq`` (its own
-    frequencies below omega with the beam point held, a Sturm count; real kernels only).
-    Returns ``(u0, g, log, own)``."""
+    unknown ``y``; and the number of negative pivots of ``D_qq`` (its own frequencies below
+    omega with the beam point held, a Sturm count; real kernels only). Returns
+    ``(u0, g, log, own)``, renormalised by powers of two whose log is ``log``.
+
+    With ``t_j`` the force stage j + 1 puts on node j (``t_n = 0``), node j's equation
+    ``b_j u_(j-1) + c_j u_j + t_j = 0`` and ``c_j = s1_j - b_j`` give
+    ``t_(j-1) = t_j + s1_j u_j`` (the inertia forces summed from the tip: no difference of
+    two stiffnesses) and ``u_(j-1) = u_j - t_(j-1) / b_j``; each step is multiplied by
+    ``-b_j`` (a spring's stiffness, positive), so ``u0`` is ``det D_qq`` times a positive
+    factor and no pole appears. ``g = -t_0``."""
     n = st.shape[1]
     u = st[2, 0] * 0.0 + 1.0
     t = u * 0.0
-    g = u * 0.0
     d = u
     own = 0
     log = 0.0
     for j in range(n - 1, -1, -1):
-        a = st[0, j]
         b = st[1, j]
-        c = st[2, j]
         if j == n - 1:
-            d = c
+            d = st[2, j]
         else:
-            d = c + st[0, j + 1] - st[1, j + 1] * st[1, j + 1] / d
+            d = st[2, j] + st[0, j + 1] - st[1, j + 1] * st[1, j + 1] / d
         if d.real == 0.0:
             d = d * 0.0 - 5e-324
         if d.real < 0.0:
             own += 1
-        g -= st[3, j] * u
-        v = c * u + t
-        t = a * v - b * b * u
-        u = v
-        g *= -b
-        big = max(abs(u), abs(g), abs(t))
+        t += st[3, j] * u
+        u = t - b * u
+        t = -b * t
+        big = max(abs(u), abs(t))
         if big > 0.0 and math.isfinite(big):
             e = math.frexp(big)[1]
             s = math.ldexp(1.0, -e)
             u *= s
             t *= s
-            g *= s
             log += e * 0.6931471805599453
-    return u, g, log, own
+    return u, -t, log, own
 
 
 @njit(cache=True)
