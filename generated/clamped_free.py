@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "1110a1a90ae1b1a107f2c79823f827b9ecccf4b0"
+SIGNATURE = "a9fe711ac8055725dcc089f46e136e3085df5241"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 LEFT_UNKNOWN = (2, 3)
@@ -39,7 +39,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "da5a7c0c3c5cf88c3cf2efb273384b633c730768"
+NUMERICS = "d59a1f104c93df2c62b3e1a14af81457aab8d936"
 
 
 @njit(cache=True)

@@ -270,6 +270,9 @@ def test_cli_frf_csv_and_json(tmp_path):
         (["--input", "force:x=50"], "input"),
         (["--input", "force:mass=3"], "input"),
         (["--input", "force:x=5.0", "--output", "rotation:mass=0"], "output"),
+        (["--input", "force:x=5.0", "--output", "rotation:inertia=0"], "output"),
+        (["--input", "force:inertia=0"], "input"),
+        (["--input", "moment:inertia=1.5"], "input"),
         (["--input", "force"], "input"),
     ],
 )

@@ -71,6 +71,8 @@ SCRIPT = textwrap.dedent(
     ws = np.array([5.0, 40.0, 77.0, 150.0])
     H = mstmm.frf(damped, f"force:x={{L!r}}", f"displacement:x={{L!r}}", ws)
     H0 = mstmm.frf(scene, f"force:x={{L!r}}", f"rotation:x={{XA!r}}", ws)
+    H1 = mstmm.frf(damped, f"force:x={{L!r}}", "rotation:inertia=0", ws)
+    H2 = mstmm.frf(damped, "moment:inertia=0", f"displacement:x={{L!r}}", ws)
     bundled = catalog.Topology("clamped", "free", ("spring_mass",))
     json.dump(dict(
         package=mstmm.__file__,
@@ -87,6 +89,8 @@ SCRIPT = textwrap.dedent(
         damped_checked=dsol.count_checked,
         H=[[h.real, h.imag] for h in H],
         H0=[[h.real, h.imag] for h in H0],
+        H1=[[h.real, h.imag] for h in H1],
+        H2=[[h.real, h.imag] for h in H2],
     ), sys.stdout)
     """
 )
@@ -264,3 +268,14 @@ def test_frequency_response_against_finite_elements(got):
     rotation = richardson(lambda n: fe_frf(n, 0.0, lambda n: 2 * (node * n // 64) - 1))
     H0 = np.array([complex(*z) for z in got["H0"]])
     np.testing.assert_allclose(H0, rotation, rtol=1e-7)
+
+
+def test_the_absorber_rotation_is_a_response_and_a_load_point(got):
+    """``rotation:inertia=0`` (the absorber's own rotation, its energy says a rigid rotation
+    carries it) against the finite-element model's extra degree of freedom, and
+    ``moment:inertia=0`` by reciprocity (a couple on the absorber, the tip's response)."""
+    exact = richardson(lambda n: fe_frf(n, CA, lambda n: -1))
+    H1 = np.array([complex(*z) for z in got["H1"]])
+    H2 = np.array([complex(*z) for z in got["H2"]])
+    np.testing.assert_allclose(H1, exact, rtol=1e-7)
+    np.testing.assert_allclose(H2, H1, rtol=1e-10)

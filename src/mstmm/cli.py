@@ -157,15 +157,17 @@ def build_parser() -> argparse.ArgumentParser:
         "--input",
         required=True,
         metavar="LOAD:WHERE=VALUE",
-        help="the unit harmonic load: force:x=X (N at X m), moment:x=X (N m), or force:mass=J"
-        " (on hanging mass J, numbered from 0 in x order as the mode shapes' mass_Y)",
+        help="the unit harmonic load: force:x=X (N at X m), moment:x=X (N m), force:mass=J"
+        " (on hanging mass J, numbered from 0 in x order as the mode shapes' mass_Y) or"
+        " moment:inertia=J (on rotary inertia J, a torsional absorber's)",
     )
     f.add_argument(
         "--output",
         action="append",
         required=True,
         metavar="RESPONSE:WHERE=VALUE",
-        help="displacement:x=X, rotation:x=X or displacement:mass=J; repeat for more columns",
+        help="displacement:x=X, rotation:x=X, displacement:mass=J or rotation:inertia=J; repeat for"
+        " more columns",
     )
     f.add_argument(
         "--band",

@@ -1150,7 +1150,7 @@ def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity
     p = np.ascontiguousarray(p, dtype=np.float64)
     L, EI = float(p[0]), float(p[1])
     xs = sample_points(p, kernel)
-    masses = [(i, x) for i, (x, mass) in enumerate(kernel.unknowns(p)) if mass > 0.0]
+    masses = [(i, x) for i, (x, mass, _) in enumerate(kernel.unknowns(p)) if mass > 0.0]
     rows = []
     for x in xs:
         rows += [[0, x, -1, L], [1, x, -1, 1.0], [3, x, -1, EI / L], [4, x, -1, EI / L**2]]

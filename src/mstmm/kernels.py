@@ -513,10 +513,12 @@ class Kernel:
         self._entry("frf")(fa, ends, self.topology.damped, ws, _params(p), inputs, outputs, out)
         return out
 
-    def unknowns(self, p: np.ndarray) -> list[tuple[float, float]]:
-        """``(x, mass)`` of every component unknown in order (the q index of ``frf``): a
-        hanging mass's (the mass a rigid translation carries, > 0, units mbar_0 L), a
-        reaction's or a rotation's (0)."""
+    def unknowns(self, p: np.ndarray) -> list[tuple[float, float, float]]:
+        """``(x, mass, inertia)`` of every component unknown in order (the q index of
+        ``frf``): ``mass`` the mass a rigid translation carries (> 0 for a hanging mass,
+        units mbar_0 L), ``inertia`` the mass or rotary inertia moving with it (a rotary
+        inertia is an unknown with ``inertia > 0`` and ``mass = 0``, such as a torsional
+        absorber's rotation); both 0 for a reaction or a hinge's rotation."""
         p = _params(p)
         m = self.module
         total, most = (int(v) for v in self._compiled("shape_sizes")(p))
@@ -527,7 +529,7 @@ class Kernel:
         event = self._compiled("shape_event_c")
         for row in m.event_order(p):
             nc, nq = event(p, int(row), 1.0 + 0.0j, Cz, Cq, A, B, qmass)
-            out += [(float(p[row + 1]), float(qmass[1, j])) for j in range(nq)]
+            out += [(float(p[row + 1]), float(qmass[1, j]), float(qmass[0, j])) for j in range(nq)]
         return out
 
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:

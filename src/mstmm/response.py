@@ -11,12 +11,15 @@ at a natural frequency); damped ones complex.
 
 Inputs: ``force:x=X`` (a point force, N, on the beam at X m: ``EI [W'''] = F``),
 ``moment:x=X`` (a couple, N m, doing positive work on a positive rotation:
-``EI [W''] = -C``), ``force:mass=J`` (a force on hanging mass J). Outputs:
-``displacement:x=X`` (``Y``, m), ``rotation:x=X`` (``theta``, rad),
-``displacement:mass=J``. Hanging masses are numbered from 0 as ``ModeShape.mass_Y``
-lists them: the attachments in x order (file order at equal x), each spring-mass its
-mass, each chain its masses from the beam outwards; a ``mass`` fixed to the beam is not
-one (its point is ``force:x=...``). Tuples ``("force", "x", 0.5)`` are accepted too.
+``EI [W''] = -C``), ``force:mass=J`` (a force on hanging mass J), ``moment:inertia=J``
+(a couple on rotary inertia J). Outputs: ``displacement:x=X`` (``Y``, m),
+``rotation:x=X`` (``theta``, rad), ``displacement:mass=J``, ``rotation:inertia=J``.
+Hanging masses are numbered from 0 as ``ModeShape.mass_Y`` lists them: the attachments
+in x order (file order at equal x), each spring-mass its mass, each chain its masses from
+the beam outwards; a ``mass`` fixed to the beam is not one (its point is
+``force:x=...``). Rotary inertias are the unknowns a rigid rotation of the beam carries
+(a kind's energy says so: a torsional absorber's rotation), numbered from 0 in the same
+order. Tuples ``("force", "x", 0.5)`` are accepted too.
 """
 
 from __future__ import annotations
@@ -40,20 +43,23 @@ _INPUTS = {"force": _FORCE, "moment": _MOMENT}
 _OUTPUTS = {"displacement": _FORCE, "y": _FORCE, "rotation": _MOMENT, "theta": _MOMENT}
 #: ``receptance`` H, ``mobility`` i w H, ``accelerance`` -w^2 H.
 QUANTITIES = ("receptance", "mobility", "accelerance")
-_SPEC = re.compile(r"^\s*(\w+)\s*[:@]\s*(x|mass)\s*=\s*([^\s]+)\s*$", re.IGNORECASE)
+_SPEC = re.compile(r"^\s*(\w+)\s*[:@]\s*(x|mass|inertia)\s*=\s*([^\s]+)\s*$", re.IGNORECASE)
+#: Where a load or a response on a component's unknown sits, and the quantity it takes.
+_CARRIED = {"mass": _FORCE, "inertia": _MOMENT}
 
 
 @dataclass(frozen=True)
 class Point:
     """An input or output: its quantity (``force``, ``moment``, ``displacement``,
-    ``rotation``), where (``x`` or ``mass``) and the position (m) or mass index."""
+    ``rotation``), where (``x``, ``mass`` or ``inertia``) and the position (m) or the
+    index of the hanging mass or rotary inertia."""
 
     quantity: str
     where: str
     at: float
 
     def __str__(self) -> str:
-        at = int(self.at) if self.where == "mass" else repr(float(self.at))
+        at = int(self.at) if self.where in _CARRIED else repr(float(self.at))
         return f"{self.quantity}:{self.where}={at}"
 
 
@@ -68,20 +74,27 @@ def parse_point(spec, role: str, source: str = "<frf>") -> Point:
     elif isinstance(spec, str) and _SPEC.match(spec):
         quantity, where, at = _SPEC.match(spec).groups()
     else:
-        raise SceneError(source, role, "must read QUANTITY:x=POSITION or QUANTITY:mass=INDEX", spec)
+        raise SceneError(
+            source,
+            role,
+            "must read QUANTITY:x=POSITION, QUANTITY:mass=INDEX or QUANTITY:inertia=INDEX",
+            spec,
+        )
     quantity, where = str(quantity).lower(), str(where).lower()
     if quantity not in names:
         raise SceneError(source, role, f"quantity must be one of {sorted(names)}", quantity)
-    if where not in ("x", "mass"):
-        raise SceneError(source, role, "must be at x=POSITION or at mass=INDEX", where)
+    if where not in ("x", *_CARRIED):
+        raise SceneError(source, role, "must be at x=POSITION, mass=INDEX or inertia=INDEX", where)
     if where == "mass" and names[quantity] != _FORCE:
         raise SceneError(source, role, f"a hanging mass has no {quantity}", spec)
+    if where == "inertia" and names[quantity] != _MOMENT:
+        raise SceneError(source, role, f"a rotary inertia has no {quantity}", spec)
     try:
         value = float(at)
     except (TypeError, ValueError):
         raise SceneError(source, role, "the position or index must be a number", at) from None
-    if where == "mass" and (value != int(value) or value < 0):
-        raise SceneError(source, role, "a mass index is a whole number from 0", at)
+    if where in _CARRIED and (value != int(value) or value < 0):
+        raise SceneError(source, role, f"an {where} index is a whole number from 0", at)
     if not math.isfinite(value):
         raise SceneError(source, role, "must be finite", at)
     if role == "output":  # y and theta are read as displacement and rotation
@@ -89,19 +102,24 @@ def parse_point(spec, role: str, source: str = "<frf>") -> Point:
     return Point(quantity, where, value)
 
 
-def _row(point: Point, role: str, scene: Scene, masses: list[int], source: str) -> list[float]:
+def _row(
+    point: Point, role: str, scene: Scene, carried: dict[str, list[int]], source: str
+) -> list[float]:
     """``(kind, x, q index, scale)`` of a point for the march: scale takes SI loads to the
     kernel's units (force L^2/EI_0, couple L/EI_0) and its responses back (Y and a mass's
-    displacement times L, a rotation as it is)."""
+    displacement times L, a rotation as it is). ``carried``: the q indices of the hanging
+    masses (``mass``) and of the rotary inertias (``inertia``)."""
     beam = scene.beam
     L, EI = beam.length, beam.EI
-    if point.where == "mass":
+    if point.where in _CARRIED:
+        qs = carried[point.where]
         j = int(point.at)
-        if j >= len(masses):
-            raise SceneError(
-                source, role, f"the scene has {len(masses)} hanging masses (0..)", point.at
-            )
-        return [_MASS, 0.0, float(masses[j]), L * L / EI if role == "input" else L]
+        if j >= len(qs):
+            what = "hanging masses" if point.where == "mass" else "rotary inertias"
+            raise SceneError(source, role, f"the scene has {len(qs)} {what} (0..)", point.at)
+        if point.where == "mass":
+            return [_MASS, 0.0, float(qs[j]), L * L / EI if role == "input" else L]
+        return [_MASS, 0.0, float(qs[j]), L / EI if role == "input" else 1.0]
     x = float(point.at)
     if not 0.0 <= x <= L:
         raise SceneError(source, role, f"x must lie on the beam, in [0, {L:g}] m", x)
@@ -121,7 +139,20 @@ def _row(point: Point, role: str, scene: Scene, masses: list[int], source: str) 
 
 def hanging_masses(kernel: Kernel, p: np.ndarray) -> list[int]:
     """The q index (``frf``'s) of every hanging mass, in the order of ``mass=J``."""
-    return [i for i, (_, mass) in enumerate(kernel.unknowns(p)) if mass > 0.0]
+    return carried_unknowns(kernel, p)["mass"]
+
+
+def carried_unknowns(kernel: Kernel, p: np.ndarray) -> dict[str, list[int]]:
+    """The q indices (``frf``'s) of the hanging masses (``mass=J``: a rigid translation
+    carries them) and of the rotary inertias (``inertia=J``: unknowns with an inertia that
+    a translation does not carry, a rigid rotation does)."""
+    out: dict[str, list[int]] = {"mass": [], "inertia": []}
+    for i, (_, mass, inertia) in enumerate(kernel.unknowns(p)):
+        if mass > 0.0:
+            out["mass"].append(i)
+        elif inertia > 0.0:
+            out["inertia"].append(i)
+    return out
 
 
 #: At most this many responses (frequencies x inputs x outputs, 16 bytes each: 160 MB)
@@ -231,9 +262,9 @@ class _Job:
         self.quantity = quantity
         self.kernel = load_kernel(topology_of(scene)) if kernel is None else kernel
         self.p = parameter_vector(scene)
-        masses = hanging_masses(self.kernel, self.p)
-        self.rows_in = np.array([_row(pt, "input", scene, masses, source) for pt in ins])
-        self.rows_out = np.array([_row(pt, "output", scene, masses, source) for pt in outs])
+        carried = carried_unknowns(self.kernel, self.p)
+        self.rows_in = np.array([_row(pt, "input", scene, carried, source) for pt in ins])
+        self.rows_out = np.array([_row(pt, "output", scene, carried, source) for pt in outs])
 
     def empty(self, n: int) -> np.ndarray:
         return np.empty((n, len(self.rows_in), len(self.rows_out)), dtype=complex)

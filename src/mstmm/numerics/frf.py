@@ -36,7 +36,7 @@ from .walk import (
 #: Kinds of input and output of ``frf_march``.
 FRF_FORCE = 0  # input: a force on the beam at x (Q jumps by F); output: Y at x
 FRF_MOMENT = 1  # input: a couple at x (M jumps by -C); output: theta at x
-FRF_MASS = 2  # a force on / the displacement of a hanging mass (a component's unknown)
+FRF_MASS = 2  # a load on / the response of a component's unknown (hanging mass, rotary inertia)
 FRF_M = 3  # output: the moment M at x
 FRF_Q = 4  # output: the shear Q at x
 #: Inputs of a homogeneous march (a mode shape at a root): no load; the end's conditions
@@ -611,9 +611,13 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     done[j] = True
                 mptr += 1
             if kind_in == FRF_MASS and q0 <= q_in < q0 + nq:
-                # B q is the masses' inertia passed to the beam; a force on one of them
-                # reaches the beam's shear too
-                zz[3] += load
+                # B q is the unknowns' inertia passed to the beam; a force on a hanging
+                # mass reaches the beam's shear too, a couple on a rotary inertia (a
+                # translation does not carry it: ev_mass[1] = 0) its moment
+                if ev_mass[1, q_in - q0] > 0.0:
+                    zz[3] += load
+                else:
+                    zz[2] -= load
             for a in range(4):
                 z[a] = zz[a]
                 for c in range(2):
