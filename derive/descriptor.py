@@ -208,6 +208,77 @@ def release(kappa) -> Descriptor:
     return Descriptor(Cz=unit(2).T, Cq=sp.Matrix([[-kappa]]), A=sp.eye(4), B=unit(1), qmass=(0,))
 
 
+#: What a kind's damping connects, for the proved decay bound (``mstmm.decay_bound``):
+#: nothing; the beam's Y to the ground; the beam to unknowns with a mass that a rigid
+#: translation carries (or such unknowns to each other); anything else (a rotation, an
+#: unknown without mass), where the proof does not apply.
+DAMPERS = ("none", "grounded", "carried", "unproved")
+
+
+def damper_class(e: Energy) -> str:
+    """Which of :data:`DAMPERS` a kind's damping is, from its energy: where ``C`` is
+    nonzero (symbolically: damping values are symbols) and what the unknowns it touches
+    carry."""
+    n = e.C.rows
+    touched = {i for i in range(n) for j in range(n) if sp.expand(e.C[i, j]) != 0}
+    if not touched:
+        return "none"
+    if 1 in touched:
+        return "unproved"  # a rotational damper: the interpolation does not close
+    qs = [i for i in touched if i >= 2]
+    if not qs:
+        return "grounded"
+    if all(e.moves[i - 2] == "Y" and e.M[i, i] != 0 for i in qs):
+        return "carried"
+    return "unproved"
+
+
+def damper_of(module, values: dict) -> str:
+    """A kind's :func:`damper_class` from its energy or its stage's (``values`` with the
+    damping values as symbols); a constraint has none; a kind in descriptor form says it
+    with ``DAMPS`` (``("Y",)``: grounded), else ``unproved`` if it has damping keys."""
+    with sp.evaluate(True):
+        if hasattr(module, "energy"):
+            return damper_class(module.energy(values))
+        if hasattr(module, "stage"):
+            return damper_class(module.stage(values))
+    if hasattr(module, "CONSTRAINS") or hasattr(module, "RELEASES"):
+        return "none"
+    if tuple(getattr(module, "DAMPS", ())) == ("Y",):
+        return "grounded"
+    return "unproved" if any(k.damping for k in module.KEYS) else "none"
+
+
+def damps_constraint(e: Energy) -> tuple:
+    """The constraint a kind's damping puts on the beam's rigid motions at omega -> 0:
+    its unknowns follow the beam statically (``q = -K_qq^-1 K_qb z``) and the damping of
+    that motion, ``T^T C T`` with ``T = [I; -K_qq^-1 K_qb]``, must vanish for a rigid
+    motion to dissipate nothing: ``("Y",)`` for a grounded dashpot, ``()`` for a dashpot
+    beside a spring-mass's spring (the mass follows the beam)."""
+    T = sp.eye(2)
+    if e.moves:
+        Kqq = e.K[2:, 2:]
+        if sp.simplify(Kqq.det()) == 0:
+            raise ValueError("energy: an unknown with no stiffness (a free mass) at omega = 0")
+        T = T.col_join(-Kqq.inv() * e.K[2:, :2])
+    Cc = (T.T * e.C * T).applyfunc(sp.simplify)
+    if Cc[0, 1] != 0:
+        raise ValueError("energy: a static damping coupling Y and theta has no DAMPS flag")
+    return tuple(name for i, name in enumerate(("Y", "theta")) if Cc[i, i] != 0)
+
+
+def damps_of(module, values: dict) -> tuple:
+    """A kind's constraint on rigid motions at omega -> 0 by its damping: derived from its
+    energy or its stage's (:func:`damps_constraint`), declared (``DAMPS``) only by a kind
+    in descriptor form."""
+    with sp.evaluate(True):
+        if hasattr(module, "energy"):
+            return damps_constraint(module.energy(values))
+        if hasattr(module, "stage"):
+            return damps_constraint(module.stage(values))
+    return tuple(getattr(module, "DAMPS", ()))
+
+
 def rigid_of(module, values: dict) -> tuple:
     """A kind's constraint on rigid motions: declared (``RIGID``), or derived from its
     physics: its energy (:func:`rigid_constraint`), the freedoms it holds, or a kink

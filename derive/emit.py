@@ -346,13 +346,13 @@ def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
 
 
 def _damps_lines(module, d: descriptor.Descriptor) -> list[str]:
-    """A damper's constraint on rigid motions at w = 0 (``DAMPS``: a grounded dashpot
-    dissipates unless Y = 0 there)."""
-    damps = tuple(getattr(module, "DAMPS", ()))
+    """A damper's constraint on rigid motions at w = 0 (a grounded dashpot dissipates
+    unless Y = 0 there), derived from the kind's damping (``descriptor.damps_of``)."""
+    damps = descriptor.damps_of(module, _value_lines(module, damped=True)[1])
     if not damps:
         return ["return 0"]
     if damps not in (("Y",), ("theta",)):
-        raise ValueError(f"{module.KIND}: DAMPS must be ('Y',), ('theta',) or empty")
+        raise ValueError(f"{module.KIND}: its damping holds ('Y',), ('theta',) or nothing")
     return [f"return {RIGID_FLAGS[damps[0]]}"]
 
 
@@ -533,6 +533,18 @@ def _penalty_lines(end: str) -> list[str]:
     return [f"S[{d}, {d}] += PENALTY" for d in KNOWN_ZERO[end] if d < 2]
 
 
+def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
+    """``descriptor.damper_of`` of each kind present that has damping (read at run time by
+    the proved decay bound, ``mstmm.decay_bound``: the runtime has no SymPy)."""
+    out = {}
+    for k in kinds:
+        module = catalog.kind(k)
+        what = descriptor.damper_of(module, _value_lines(module, damped=True)[1])
+        if what != "none":
+            out[k] = what
+    return out
+
+
 def _parameter_doc(topology: Topology) -> str:
     parts = [
         "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment,"
@@ -614,6 +626,7 @@ def kernel_source(topology: Topology) -> str:
         attachments_text=kinds_text,
         what=Template(WHAT[damped]).substitute(threshold=repr(special.SERIES_THRESHOLD)),
         kinds=repr(kinds),
+        dampers=repr(_dampers(kinds)),
         parameter_doc=_parameter_doc(topology),
         regenerate=regenerate_command(topology),
         sympy_version=importlib.metadata.version("sympy"),

@@ -27,9 +27,12 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "a9fe711ac8055725dcc089f46e136e3085df5241"
+SIGNATURE = "6fe97868531f1289ef772b63cde9fdd3080299ff"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
+#: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
+#: decay bound of damped roots (``mstmm.decay_bound``).
+DAMPERS = {}
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 LEFT_KNOWN = (0, 1)

@@ -27,9 +27,12 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "82c95f67e009af99d617e351580b398710f651f6"
+SIGNATURE = "07dba2b9874ea1a06baf0022b9b76d150b53b2be"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
+#: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
+#: decay bound of damped roots (``mstmm.decay_bound``).
+DAMPERS = {'spring_mass': 'carried'}
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)
 LEFT_KNOWN = (0, 1)

@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "8f85f466e0b66647b2d82e112d3bcd388287d00c"
+DIGEST = "7b9abe45234bb7a9ae0bd3eae0a8c2a419a3afa6"
 
 
 @njit(cache=True, inline="always")

@@ -118,3 +118,60 @@ def test_a_release_names_its_spring():
     module.RELEASES = ("theta", "stiffness")
     with pytest.raises(ValueError, match="names the key of its spring"):
         catalog.register_kind(module)
+
+
+def _kind_file(name: str) -> types.ModuleType:
+    path = Path(__file__).parent / "kinds" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_what_a_damping_connects_is_derived():
+    """The proved decay bound's classes and the constraint on rigid motions at omega -> 0,
+    from each kind's energy: no declaration (``DAMPS``) left on a built-in kind."""
+    from mstmm.derive import descriptor
+
+    c, k, m, J = (sp_symbol(n) for n in ("c", "k", "m", "J"))
+    cases = {
+        "dashpot": ({"c": c}, "grounded", ("Y",)),
+        "spring_mass": ({"k": k, "m": m, "c": c}, "carried", ()),
+        "oscillator_chain": ({"k": k, "m": m, "c": c}, "carried", ()),
+        "spring": ({"k": k}, "none", ("Y",)),
+    }
+    for name, (values, klass, damps) in cases.items():
+        module = catalog.kind(name)
+        assert not hasattr(module, "DAMPS"), name
+        assert descriptor.damper_of(module, values) == klass, name
+        if name != "spring":
+            assert descriptor.damps_of(module, values) == damps, name
+    absorber = _kind_file("torsional_absorber")
+    assert descriptor.damper_of(absorber, {"k": k, "J": J, "c": c}) == "unproved"
+    assert descriptor.damper_of(_kind_file("maxwell"), {"k": k, "c": c}) == "unproved"
+
+
+def sp_symbol(name: str):
+    import sympy as sp
+
+    return sp.Symbol(f"val_{name}", real=True)
+
+
+def test_the_decay_bound_refuses_a_damper_it_does_not_cover():
+    """A damper in N s/m on a massless node (a Maxwell element, one test file): its energy
+    says the proof does not cover it (the kernel's ``DAMPERS``), so no bound (None) and
+    the solver says which roots it did not count; a grounded dashpot gets its bound."""
+    from mstmm.decay_bound import sigma_max
+
+    module = _kind_file("maxwell")
+    catalog.register_kind(module)
+    try:
+        beam = dict(length=2.0, EI=7.0, mass_per_length=3.0, left="clamped", right="free")
+        maxwell = {"type": "maxwell", "x": 1.0, "k": 30.0, "c": 0.2}
+        scene = mstmm.scene_from_dict({"beam": beam, "attachments": [maxwell]})
+        assert sigma_max(scene, 100.0) is None
+        dashpot = {"type": "dashpot", "x": 1.0, "c": 0.2}
+        grounded = mstmm.scene_from_dict({"beam": beam, "attachments": [dashpot]})
+        assert sigma_max(grounded, 100.0).gamma == 0.2
+    finally:
+        del catalog.kinds()["maxwell"]

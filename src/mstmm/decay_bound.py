@@ -77,9 +77,13 @@ class DecayBound:
     eta: float  # the largest loss factor
 
 
-def _grounded(kind: str) -> bool:
-    """Whether a kind's damping acts between the beam and the ground (a dashpot)."""
-    return "Y" in getattr(catalog.kind(kind), "DAMPS", ())
+def _dampers(scene) -> dict[str, str]:
+    """What each kind's damping connects, derived from its declared energy when its kernel
+    was printed (the kernel's ``DAMPERS``: ``grounded``, ``carried`` or ``unproved``)."""
+    from .kernels import load_kernel
+    from .topology import topology_of
+
+    return dict(getattr(load_kernel(topology_of(scene)).module, "DAMPERS", {}))
 
 
 def _positive_root(coefficients: list[float]) -> float:
@@ -119,8 +123,8 @@ def _positive_root(coefficients: list[float]) -> float:
 def sigma_max(scene, w_top: float) -> DecayBound | None:
     """An upper bound on ``sigma`` of every damped root of ``scene`` with ``|w_d| <=
     w_top`` (rad/s), proved as in the module's docstring; None when the proof does not
-    apply (a damper on a massless coordinate, a damping value in a unit other than
-    N s/m)."""
+    apply (a damper the proof does not cover: on a rotation or on a massless coordinate,
+    as the kind's energy says; a damping value in a unit other than N s/m)."""
     beam = scene.beam
     segs = beam.segments or (beam,)
     EI = min(s.EI for s in segs)
@@ -130,6 +134,11 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     gamma = 0.0
     rate = 0.0
     where: list[tuple[float, float]] = []  # each damper: x and Gamma_j
+    dampers = (
+        _dampers(scene)
+        if any(k.damping for a in scene.attachments for k in catalog.kind(a.kind).KEYS)
+        else {}
+    )
     for a in scene.attachments:
         if catalog.splits_rotation(a.kind):
             breaks.add(float(a.x))
@@ -148,16 +157,16 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
         if not cs:
             continue
         total = math.fsum(cs)
-        if _grounded(a.kind) and not ms:
+        what = dampers.get(a.kind, "unproved")
+        if what == "grounded":
             gamma += total
             where.append((float(a.x), total))
             continue
+        if what != "carried" or not ms or min(ms) <= 0.0:
+            return None
         gamma += 2.0 * total
         where.append((float(a.x), 2.0 * total))
-        if ms:
-            if min(ms) <= 0.0:
-                return None
-            rate = max(rate, 2.0 * total / min(ms))
+        rate = max(rate, 2.0 * total / min(ms))
     points = sorted(breaks)
     piece = float(beam.length)
     reach = 0.0

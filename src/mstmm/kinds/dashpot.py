@@ -19,10 +19,6 @@ KEYS = (
 )
 #: Its marker and colour in plots (matplotlib).
 MARKER = ("*", "C8")
-#: It stores no energy: a rigid-body motion stays a zero frequency (``rigid_body_modes``,
-#: its constraint on rigid motions derived from its energy: none); the damped count at
-#: w = 0 treats it as a constraint on Y (``DAMPS``).
-DAMPS = ("Y",)
 
 
 def energy(v: dict):
