@@ -163,6 +163,19 @@ def from_energy(e: Energy) -> Descriptor:
     return Descriptor(Cz, Cq, A, B, qmass, qpart, tuple(qforce))
 
 
+def _statically_condensed(e: Energy, X: sp.Matrix) -> sp.Matrix:
+    """``T^T X T`` on ``[Y, theta]`` (simplified), ``T = [I; -K_qq^-1 K_qb]`` the motion of
+    ``[Y, theta, q...]`` in which the unknowns follow the beam statically; for ``X = K``
+    it is the static stiffness ``K_bb - K_bq K_qq^-1 K_qb``."""
+    T = sp.eye(2)
+    if e.moves:
+        Kqq = e.K[2:, 2:]
+        if sp.simplify(Kqq.det()) == 0:
+            raise ValueError("energy: an unknown with no stiffness (a free mass) at omega = 0")
+        T = T.col_join(-Kqq.inv() * e.K[2:, :2])
+    return (T.T * X * T).applyfunc(sp.simplify)
+
+
 def rigid_constraint(e: Energy) -> tuple:
     """The kinematic constraint a kind declared by its energy puts on the beam's rigid
     motions (``RIGID``): the static stiffness it adds on ``[Y, theta]`` with its unknowns
@@ -170,13 +183,7 @@ def rigid_constraint(e: Energy) -> tuple:
     that vanishes): ``("Y",)`` for a grounded spring, ``("theta",)`` for a grounded
     rotational spring, ``()`` for a mass, a spring-mass or a torsional absorber (its
     unknowns follow the beam)."""
-    Kb = e.K[:2, :2]
-    if e.moves:
-        Kqq = e.K[2:, 2:]
-        if sp.simplify(Kqq.det()) == 0:
-            raise ValueError("energy: an unknown with no stiffness (a free mass) at omega = 0")
-        Kb = Kb - e.K[:2, 2:] * Kqq.inv() * e.K[2:, :2]
-    Kc = Kb.applyfunc(sp.simplify)
+    Kc = _statically_condensed(e, e.K)
     if Kc[0, 1] != 0:
         raise ValueError("energy: a static stiffness coupling Y and theta has no RIGID flag")
     held = tuple(name for i, name in enumerate(("Y", "theta")) if Kc[i, i] != 0)
@@ -237,11 +244,9 @@ def damper_of(module, values: dict) -> str:
     """A kind's :func:`damper_class` from its energy or its stage's (``values`` with the
     damping values as symbols); a constraint has none; a kind in descriptor form says it
     with ``DAMPS`` (``("Y",)``: grounded), else ``unproved`` if it has damping keys."""
-    with sp.evaluate(True):
-        if hasattr(module, "energy"):
-            return damper_class(module.energy(values))
-        if hasattr(module, "stage"):
-            return damper_class(module.stage(values))
+    derived = _from_declared_energy(module, values, damper_class)
+    if derived is not None:
+        return derived
     if hasattr(module, "CONSTRAINS") or hasattr(module, "RELEASES"):
         return "none"
     if tuple(getattr(module, "DAMPS", ())) == ("Y",):
@@ -251,32 +256,33 @@ def damper_of(module, values: dict) -> str:
 
 def damps_constraint(e: Energy) -> tuple:
     """The constraint a kind's damping puts on the beam's rigid motions at omega -> 0:
-    its unknowns follow the beam statically (``q = -K_qq^-1 K_qb z``) and the damping of
-    that motion, ``T^T C T`` with ``T = [I; -K_qq^-1 K_qb]``, must vanish for a rigid
-    motion to dissipate nothing: ``("Y",)`` for a grounded dashpot, ``()`` for a dashpot
-    beside a spring-mass's spring (the mass follows the beam)."""
-    T = sp.eye(2)
-    if e.moves:
-        Kqq = e.K[2:, 2:]
-        if sp.simplify(Kqq.det()) == 0:
-            raise ValueError("energy: an unknown with no stiffness (a free mass) at omega = 0")
-        T = T.col_join(-Kqq.inv() * e.K[2:, :2])
-    Cc = (T.T * e.C * T).applyfunc(sp.simplify)
+    its unknowns follow the beam statically and the damping of that motion, ``T^T C T``
+    (:func:`_statically_condensed`), must vanish for a rigid motion to dissipate nothing:
+    ``("Y",)`` for a grounded dashpot, ``()`` for a dashpot beside a spring-mass's spring
+    (the mass follows the beam)."""
+    Cc = _statically_condensed(e, e.C)
     if Cc[0, 1] != 0:
         raise ValueError("energy: a static damping coupling Y and theta has no DAMPS flag")
     return tuple(name for i, name in enumerate(("Y", "theta")) if Cc[i, i] != 0)
+
+
+def _from_declared_energy(module, values: dict, derive):
+    """``derive`` of the energy a kind declares (its own, or its stage's for a kind of
+    stages), evaluated even inside the unevaluated derivation of ``show``; None for a
+    kind that declares no energy (a constraint, a kind in descriptor form)."""
+    declare = getattr(module, "energy", None) or getattr(module, "stage", None)
+    if declare is None:
+        return None
+    with sp.evaluate(True):
+        return derive(declare(values))
 
 
 def damps_of(module, values: dict) -> tuple:
     """A kind's constraint on rigid motions at omega -> 0 by its damping: derived from its
     energy or its stage's (:func:`damps_constraint`), declared (``DAMPS``) only by a kind
     in descriptor form."""
-    with sp.evaluate(True):
-        if hasattr(module, "energy"):
-            return damps_constraint(module.energy(values))
-        if hasattr(module, "stage"):
-            return damps_constraint(module.stage(values))
-    return tuple(getattr(module, "DAMPS", ()))
+    derived = _from_declared_energy(module, values, damps_constraint)
+    return tuple(getattr(module, "DAMPS", ())) if derived is None else derived
 
 
 def rigid_of(module, values: dict) -> tuple:
@@ -287,13 +293,10 @@ def rigid_of(module, values: dict) -> tuple:
         return tuple(module.CONSTRAINS)
     if hasattr(module, "RELEASES"):
         return ("kink_if_free",)
-    if hasattr(module, "stage"):
-        with sp.evaluate(True):
-            return rigid_constraint(module.stage(values))
-    if hasattr(module, "RIGID") or not hasattr(module, "energy"):
-        return tuple(getattr(module, "RIGID", ()))
-    with sp.evaluate(True):
-        return rigid_constraint(module.energy(values))
+    if hasattr(module, "RIGID") and not hasattr(module, "stage"):
+        return tuple(module.RIGID)
+    derived = _from_declared_energy(module, values, rigid_constraint)
+    return () if derived is None else derived
 
 
 def of(module, values: dict) -> Descriptor:
@@ -348,7 +351,7 @@ def stage_parts(e: Energy) -> tuple:
     return D[0, 0], D[0, 2], D[2, 2], s1, e.M[2, 2]
 
 
-def stage_values(module, values: dict, j: int) -> dict:
+def stage_values(values: dict, j: int) -> dict:
     """The values of stage j: the j-th entry of each of the kind's lists."""
     return {key: (v[j] if isinstance(v, (list, tuple)) else v) for key, v in values.items()}
 
@@ -360,7 +363,7 @@ def chain_energy(module, values: dict) -> Energy:
     size = 2 + n
     K, C, M = sp.zeros(size, size), sp.zeros(size, size), sp.zeros(size, size)
     for j in range(n):
-        e = module.stage(stage_values(module, values, j))
+        e = module.stage(stage_values(values, j))
         at = (0 if j == 0 else 1 + j, 2 + j)  # u_(j-1), u_j
         for X, Y in ((K, e.K), (C, e.C), (M, e.M)):
             for r, R in ((0, at[0]), (2, at[1])):

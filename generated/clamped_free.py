@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "6fe97868531f1289ef772b63cde9fdd3080299ff"
+SIGNATURE = "d79ce57292bbba79559aaa8dd2115a106bfc589c"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved

@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "07dba2b9874ea1a06baf0022b9b76d150b53b2be"
+SIGNATURE = "79e33f68ba160902ec979344d5d47cccc076d072"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved

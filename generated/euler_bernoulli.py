@@ -18,7 +18,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "7b9abe45234bb7a9ae0bd3eae0a8c2a419a3afa6"
+DIGEST = "050f3fb1e9e994a4334501aca5362eb7cc065642"
 
 
 @njit(cache=True, inline="always")

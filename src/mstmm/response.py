@@ -137,11 +137,6 @@ def _row(
     return [kind, x, -1.0, scale]
 
 
-def hanging_masses(kernel: Kernel, p: np.ndarray) -> list[int]:
-    """The q index (``frf``'s) of every hanging mass, in the order of ``mass=J``."""
-    return carried_unknowns(kernel, p)["mass"]
-
-
 def carried_unknowns(kernel: Kernel, p: np.ndarray) -> dict[str, list[int]]:
     """The q indices (``frf``'s) of the hanging masses (``mass=J``: a rigid translation
     carries them) and of the rotary inertias (``inertia=J``: unknowns with an inertia that
