@@ -134,11 +134,7 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     gamma = 0.0
     rate = 0.0
     where: list[tuple[float, float]] = []  # each damper: x and Gamma_j
-    dampers = (
-        _dampers(scene)
-        if any(k.damping for a in scene.attachments for k in catalog.kind(a.kind).KEYS)
-        else {}
-    )
+    dampers: dict[str, str] | None = None  # read from the kernel at the first damper
     for a in scene.attachments:
         if catalog.splits_rotation(a.kind):
             breaks.add(float(a.x))
@@ -157,6 +153,8 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
         if not cs:
             continue
         total = math.fsum(cs)
+        if dampers is None:
+            dampers = _dampers(scene)
         what = dampers.get(a.kind, "unproved")
         if what == "grounded":
             gamma += total
