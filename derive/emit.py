@@ -26,6 +26,7 @@ from . import symbols as S
 from .compound import pair_index
 from .printer import assignments, code
 from .segments import euler_bernoulli as beam
+from .segments import general
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 NUMERICS_TEMPLATE = TEMPLATE.with_name("euler_bernoulli.py.tmpl")
@@ -585,8 +586,19 @@ def numerics_source() -> str:
         beam_transfer_scaled_c=_indent(_matrix_fill(U_nd, "U", complex_=True), 4),
         beam_compound_c=_indent(_compound_step(C_beam, complex_=True), 4),
         node_stiffness=_indent(_node_stiffness_lines(), 4),
+        general_rigid=_indent(_general_field_lines(shear=False), 8),
+        general_shear=_indent(_general_field_lines(shear=True), 8),
     )
     return _clean(Template(NUMERICS_TEMPLATE.read_text()).substitute(values))
+
+
+def _general_field_lines(shear: bool) -> list[str]:
+    """``A`` of the general segment's differential equation (``general.field``), filled
+    entry by entry from its dimensionless values."""
+    names = ("e", "m", "w2", "kGA", "rhoI", "P", "k_w", "k_G")
+    v = dict(zip(names, sp.symbols(names)))
+    values = {"EI": v["e"], "mbar": v["m"], **v, "kGA": v["kGA"] if shear else None}
+    return _matrix_fill(general.field(values), "A")
 
 
 def _clean(text: str) -> str:

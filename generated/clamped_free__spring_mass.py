@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "79e33f68ba160902ec979344d5d47cccc076d072"
+SIGNATURE = "68fa7586ffe59dd8b1d67482ee1380ef9cf7e0a7"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +42,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "d59a1f104c93df2c62b3e1a14af81457aab8d936"
+NUMERICS = "f84073fdbc821ae21f66bd59cdb3ce55b6c5d2f9"
 
 
 @njit(cache=True)
@@ -193,6 +193,7 @@ def delta_stable(omega, p):
     log = 0.0
     pos = 0.0
     seg = 0
+    general = any_general(p)
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
@@ -210,7 +211,9 @@ def delta_stable(omega, p):
                 after = seg + 1
             rho = (target - pos) / L
             if rho > 0.0:
-                if n_seg == 1:
+                if general and is_general(p, seg):  # exp(A2 h) of its field matrix
+                    log += segment_compound(v, p, seg, b4, 1.0, rho)
+                elif n_seg == 1:
                     log += beam_compound_step(v, beta, rho)
                 else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
                     i = HEAD + SEGMENT_WIDTH * seg
@@ -305,7 +308,10 @@ def count_below(omega, p):
                 target = p[HEAD + SEGMENT_WIDTH * seg]
                 after = seg + 1
             rho = (target - pos) / L
-            if rho > MERGE_LENGTH:
+            if rho > MERGE_LENGTH and is_general(p, seg):
+                count += field_count(Zc, p, seg, b4, rho)  # pieces of J0 = 0
+                pos = target
+            elif rho > MERGE_LENGTH:
                 # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
                 # transfer matrix is rank-one to working precision): the pivots of each
                 # near node and J0 of each step, with the segment's own properties
@@ -516,8 +522,9 @@ def rigid_motions(p, dampers):
     rows = event_order(p)
     n_ev = rows.shape[0]
     knots = np.empty(n_ev)
-    cx = np.empty(n_ev + 4)
-    ct = np.empty(n_ev + 4, dtype=np.int64)
+    room = n_ev + 4 + int(p[3]) * (2 * n_ev + 4)
+    cx = np.empty(room)
+    ct = np.empty(room, dtype=np.int64)
     h = 0
     n = 0
     for r in range(n_ev):
@@ -535,4 +542,5 @@ def rigid_motions(p, dampers):
                 cx[n] = x
                 ct[n] = d + 1
                 n += 1
+    n = segment_constraints(p, knots, h, cx, ct, n)
     return rigid_dimension(p[0], knots, h, cx, ct, n)

@@ -5,8 +5,10 @@ reduced Krylov functions and the second-compound functions (series below x = 1.5
 closed forms with their exp(-x) scaling above), the segment transfer matrix (paper units
 and reduced units), the compound step of the minors, their complex twins (damped kernels,
 the frequency response), the clamped-clamped count of one segment (J0, Wittrick-Williams)
-and a node stiffness step of the count. The numerics that use them are ordinary code
-(``mstmm.numerics``).
+and a node stiffness step of the count; and from ``derive/segments/general.py`` the
+differential equation ``Z' = A Z`` of a segment with a Timoshenko shear stiffness, an
+axial force or an elastic foundation (issue 22), whose transfer matrix is ``exp(A l)``.
+The numerics that use them are ordinary code (``mstmm.numerics``).
 
 Regenerate: python -m mstmm.derive --bundled
 Derived by mstmm.derive with SymPy 1.14.0.
@@ -18,7 +20,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "050f3fb1e9e994a4334501aca5362eb7cc065642"
+DIGEST = "68b2e1c3c05f0e799786096d621ac960c728df49"
 
 
 @njit(cache=True, inline="always")
@@ -378,3 +380,48 @@ def node_stiffness_step(Zc, kY, kT):
     Zc[3] = v3
     Zc[4] = kY*v0 + v4
     Zc[5] = kT*v4 + kY*t0 + kY*v1 + v5
+
+
+@njit(cache=True)
+def general_field(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
+    """A of Z' = A Z, Z = [Y, psi, M, Q], for a segment of ``derive/segments/general.py``
+    in units L = EI_0 = mbar_0 = 1: e = EI / EI_0, m = mbar / mbar_0, w2 = (lam_0 L)^4 (the
+    squared frequency), kGA, rhoI, P, k_w, k_G dimensionless (kGA = 0: no shear
+    deformation). Real or complex (a loss factor in e, kGA, k_w, k_G), like its arguments."""
+    if kGA == 0.0:
+        A[0, 0] = 0.0
+        A[0, 1] = 1.0
+        A[0, 2] = 0.0
+        A[0, 3] = 0.0
+        A[1, 0] = 0.0
+        A[1, 1] = 0.0
+        A[1, 2] = 1.0/e
+        A[1, 3] = 0.0
+        A[2, 0] = 0.0
+        A[2, 1] = P + k_G - rhoI*w2
+        A[2, 2] = 0.0
+        A[2, 3] = 1.0
+        A[3, 0] = -k_w + m*w2
+        A[3, 1] = 0.0
+        A[3, 2] = 0.0
+        A[3, 3] = 0.0
+    else:
+        t0 = P + k_G
+        t1 = 1.0/(kGA + t0)
+        t2 = kGA*t1
+        A[0, 0] = 0.0
+        A[0, 1] = t2
+        A[0, 2] = 0.0
+        A[0, 3] = -t1
+        A[1, 0] = 0.0
+        A[1, 1] = 0.0
+        A[1, 2] = 1.0/e
+        A[1, 3] = 0.0
+        A[2, 0] = 0.0
+        A[2, 1] = -rhoI*w2 + t0*t2
+        A[2, 2] = 0.0
+        A[2, 3] = t2
+        A[3, 0] = -k_w + m*w2
+        A[3, 1] = 0.0
+        A[3, 2] = 0.0
+        A[3, 3] = 0.0

@@ -44,11 +44,30 @@ KNOWN_ZERO: dict[str, tuple[int, int]] = {
 #: and mass per length are the reference units of the kernel).
 BEAM_PARAMETERS = ("L", "EI", "mbar")
 
+#: A segment's physics beyond Euler-Bernoulli (issue 22; ``derive/segments/general.py``):
+#: scene key, check, unit. Each defaults to 0, which means the term is absent
+#: (``kappa_GA`` 0: no shear deformation). Tension is a positive ``axial_force``.
+SEGMENT_PHYSICS: tuple[tuple[str, str, str], ...] = (
+    ("kappa_GA", "positive", "N"),
+    ("rho_I", "nonnegative", "kg m"),
+    ("axial_force", "finite", "N"),
+    ("foundation_k", "nonnegative", "N/m^2"),
+    ("foundation_kG", "nonnegative", "N"),
+)
+#: The segment row's values, after x_end: the scene keys of a segment in their order.
+SEGMENT_KEYS: tuple[str, ...] = (
+    "EI",
+    "mass_per_length",
+    "loss_factor",
+    *(key for key, _, _ in SEGMENT_PHYSICS),
+)
+
 #: Layout of the head of the parameter vector (docs/components.md, section 4):
-#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) * n_seg, (tag, x, offset) * n_ev,
-#: data...]`` (eta: the segment's loss factor, read by damped kernels only).
+#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G)
+#: * n_seg, (tag, x, offset) * n_ev, data...]`` (eta: the segment's loss factor, read by
+#: damped kernels only; the physics of ``SEGMENT_PHYSICS``, all 0 for Euler-Bernoulli).
 HEAD = 5
-SEGMENT_WIDTH = 4
+SEGMENT_WIDTH = 1 + len(SEGMENT_KEYS)
 EVENT_WIDTH = 3
 
 #: Exponents (L, EI_0, mbar_0) that make a value of each SI unit dimensionless:
@@ -331,13 +350,15 @@ def layout(
     components: Sequence[Component],
     topology: Topology,
 ) -> tuple[np.ndarray, dict[str, int]]:
-    """The parameter vector of a beam (segments ``(length, EI, mbar[, eta])`` from the left
-    end, eta the loss factor, default 0) carrying ``components`` (in scene order), and the
+    """The parameter vector of a beam (segments ``(length, EI, mbar[, eta, kappa_GA, rho_I,
+    P, k_w, k_G])`` from the left end, eta the loss factor and the rest the physics of
+    ``SEGMENT_PHYSICS``, each default 0) carrying ``components`` (in scene order), and the
     index of every field in it.
 
     Field paths: ``beam.length`` (total), ``beam.EI``, ``beam.mass_per_length`` (first
-    segment), ``beam.loss_factor`` (a uniform beam's), ``beam.segments[s].EI|
-    mass_per_length|loss_factor``, ``attachments[i].x``, ``attachments[i].<key>`` and
+    segment), ``beam.loss_factor`` and ``beam.<physics key>`` (a uniform beam's),
+    ``beam.segments[s].<key>`` (every key of ``SEGMENT_KEYS``),
+    ``attachments[i].x``, ``attachments[i].<key>`` and
     ``attachments[i].<key>[j]`` for a list key. The event rows are sorted by x (stable);
     their offsets point at each component's data block.
     """
@@ -348,14 +369,16 @@ def layout(
     head = [total, float(segments[0][1]), float(segments[0][2]), float(n_seg), float(n_ev)]
     seg_rows: list[float] = []
     end = 0.0
-    for s, (length, ei, mbar, *eta) in enumerate(segments):
+    for s, (length, *values) in enumerate(segments):
         end = total if s == n_seg - 1 else end + float(length)
-        seg_rows += [end, float(ei), float(mbar), float(eta[0]) if eta else 0.0]
+        values += [0.0] * (len(SEGMENT_KEYS) - len(values))
+        seg_rows += [end, *(float(v) for v in values)]
     data_start = HEAD + SEGMENT_WIDTH * n_seg + EVENT_WIDTH * n_ev
     fields = {"beam.length": 0, "beam.EI": 1, "beam.mass_per_length": 2}
-    fields["beam.loss_factor"] = HEAD + 3
+    for j, name in enumerate(SEGMENT_KEYS[2:]):
+        fields[f"beam.{name}"] = HEAD + 3 + j
     for s in range(n_seg):
-        for j, name in enumerate(("EI", "mass_per_length", "loss_factor")):
+        for j, name in enumerate(SEGMENT_KEYS):
             fields[f"beam.segments[{s}].{name}"] = HEAD + SEGMENT_WIDTH * s + 1 + j
     data: list[float] = []
     rows: list[tuple[float, int, list[float]]] = []

@@ -10,6 +10,11 @@ A scene is a TOML file (SI units), read as data and never evaluated::
     EI = 63476.125002707834        # mass_per_length (kg/m), OR a stepped beam:
     mass_per_length = 15.3875      # [[beam.segments]] from the left end, each with
                                    # length, EI and mass_per_length (then none of the three here)
+    kappa_GA = 2.1e9               # optional on [beam] or on each segment: Timoshenko shear
+    rho_I = 0.004                  # stiffness (N) and rotary inertia per length (kg m),
+    axial_force = 1e4              # axial force (N, tension positive), Winkler foundation
+    foundation_k = 0.0             # (N/m^2) and Pasternak shear layer (N); all default 0
+    foundation_kG = 0.0            # (kappa_GA 0: no shear deformation, Euler-Bernoulli)
     [[attachments]]                # zero or more components
     type = "spring_mass"           # any kind of mstmm.catalog.kinds()
     x = 0.1                        # m from the left end
@@ -93,7 +98,13 @@ def __getattr__(name: str) -> Any:
 
 _TOP_KEYS: tuple[str, ...] = ("name", "beam", "attachments")
 _UNIFORM_KEYS: tuple[str, ...] = ("length", "EI", "mass_per_length")
-_BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, "loss_factor", "left", "right", "segments")
+#: Optional keys of a uniform beam or of a segment: its loss factor and its beam physics
+#: beyond Euler-Bernoulli (``catalog.SEGMENT_PHYSICS``), each with its check.
+_OPTIONAL_KEYS: dict[str, str] = {
+    "loss_factor": "nonnegative",
+    **{key: check for key, check, _ in catalog.SEGMENT_PHYSICS},
+}
+_BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, *_OPTIONAL_KEYS, "left", "right", "segments")
 
 _NAME_RE = re.compile(r"[A-Za-z0-9_.-]+")
 _NAME_MAX = 128
@@ -170,12 +181,21 @@ class SceneError(ValueError):
 @dataclass(frozen=True)
 class Segment:
     """One piece of a stepped beam (SI): its length, bending stiffness, mass per length,
-    and loss factor (hysteretic damping, ``EI -> EI (1 + i eta)``; 0: none)."""
+    loss factor (hysteretic damping, ``EI -> EI (1 + i eta)``; 0: none), and its physics
+    beyond Euler-Bernoulli (``catalog.SEGMENT_PHYSICS``; 0: none): the Timoshenko shear
+    stiffness ``kappa_GA`` (N; 0: no shear deformation) and rotary inertia per length
+    ``rho_I`` (kg m), the ``axial_force`` (N, tension positive), a Winkler foundation
+    ``foundation_k`` (N/m^2) and a Pasternak shear layer ``foundation_kG`` (N)."""
 
     length: float
     EI: float
     mass_per_length: float
     loss_factor: float = 0.0
+    kappa_GA: float = 0.0
+    rho_I: float = 0.0
+    axial_force: float = 0.0
+    foundation_k: float = 0.0
+    foundation_kG: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -186,7 +206,8 @@ class Beam:
     uniform beam, or of the first segment of a stepped beam. ``segments`` lists a
     stepped beam's pieces from the left end, and is empty for a uniform beam.
     ``loss_factor`` is a uniform beam's hysteretic damping ``eta`` (``EI -> EI (1 + i
-    eta)``, a frequency-domain model; a stepped beam gives it per segment).
+    eta)``, a frequency-domain model; a stepped beam gives it per segment), and so are
+    the physics keys of a uniform beam (:class:`Segment`).
     """
 
     length: float
@@ -196,6 +217,11 @@ class Beam:
     right: str
     segments: tuple[Segment, ...] = ()
     loss_factor: float = 0.0
+    kappa_GA: float = 0.0
+    rho_I: float = 0.0
+    axial_force: float = 0.0
+    foundation_k: float = 0.0
+    foundation_kG: float = 0.0
 
 
 Value = float | tuple[float, ...]
@@ -374,9 +400,7 @@ def scene_to_dict(scene: Scene) -> dict[str, Any]:
 def _beam_dict(beam: Beam) -> dict[str, Any]:
     if not beam.segments:
         out = {"length": beam.length, "EI": beam.EI, "mass_per_length": beam.mass_per_length}
-        if beam.loss_factor:
-            out["loss_factor"] = beam.loss_factor
-        return out | {"left": beam.left, "right": beam.right}
+        return out | _optional_dict(beam) | {"left": beam.left, "right": beam.right}
     return {
         "left": beam.left,
         "right": beam.right,
@@ -386,9 +410,12 @@ def _beam_dict(beam: Beam) -> dict[str, Any]:
 
 def _segment_dict(s: Segment) -> dict[str, Any]:
     out = {"length": s.length, "EI": s.EI, "mass_per_length": s.mass_per_length}
-    if s.loss_factor:
-        out["loss_factor"] = s.loss_factor
-    return out
+    return out | _optional_dict(s)
+
+
+def _optional_dict(s: Segment | Beam) -> dict[str, float]:
+    """The optional keys of a uniform beam or a segment that are set (nonzero)."""
+    return {key: getattr(s, key) for key in _OPTIONAL_KEYS if getattr(s, key, 0.0)}
 
 
 def _attachment_dict(a: Attachment) -> dict[str, Any]:
@@ -914,6 +941,7 @@ def _number(value: Any, field_path: str, source: str) -> float:
 CHECKS: dict[str, tuple[Callable[[Any, Any], Any], str]] = {
     "positive": (lambda v, length: v > 0.0, "must be > 0"),
     "nonnegative": (lambda v, length: v >= 0.0, "must be >= 0"),
+    "finite": (lambda v, length: v == v, "must be finite"),
     "position": (
         lambda v, length: (v >= 0.0) & (v <= length),
         "must lie in [0, length] with beam length {length!r}",
@@ -972,13 +1000,14 @@ def _beam(value: Any, source: str) -> Beam:
     table = _table(value, "beam", source)
     _reject_unknown(table, _BEAM_KEYS, "beam", source)
     if "segments" in table:
-        for key in (*_UNIFORM_KEYS, "loss_factor"):
+        for key in (*_UNIFORM_KEYS, *_OPTIONAL_KEYS):
             if key in table:
                 raise SceneError(
                     source,
                     f"beam.{key}",
                     "not with [[beam.segments]]: a stepped beam gives length, EI,"
-                    " mass_per_length and loss_factor per segment",
+                    f" mass_per_length and {key if key not in _UNIFORM_KEYS else 'the rest'}"
+                    " per segment",
                     table[key],
                 )
         segments = _segments(table["segments"], source)
@@ -993,19 +1022,33 @@ def _beam(value: Any, source: str) -> Beam:
             _checked(_require(table, key, "beam", source), "positive", f"beam.{key}", source)
             for key in _UNIFORM_KEYS
         )
-    eta = _loss_factor(table, "beam", source)
+    optional = _optional(table, "beam", source)
     left, right = (
         _choice(_require(table, key, "beam", source), BOUNDARY_KINDS, f"beam.{key}", source)
         for key in ("left", "right")
     )
-    return Beam(length, ei, mu, left, right, segments, eta)
+    return Beam(length, ei, mu, left, right, segments, **optional)
 
 
-def _loss_factor(table: Mapping[str, Any], prefix: str, source: str) -> float:
-    """The optional ``loss_factor`` of a beam or a segment (>= 0, default 0)."""
-    if "loss_factor" not in table:
-        return 0.0
-    return _checked(table["loss_factor"], "nonnegative", f"{prefix}.loss_factor", source)
+def _optional(table: Mapping[str, Any], prefix: str, source: str) -> dict[str, float]:
+    """The optional keys of a beam or a segment (default 0): its ``loss_factor`` (>= 0)
+    and its physics (``catalog.SEGMENT_PHYSICS``). A segment in compression beyond its
+    shear stiffness (``kappa_GA + axial_force + foundation_kG <= 0``) has no static
+    equilibrium (shear buckling) and is refused here."""
+    values = {
+        key: _checked(table[key], check, f"{prefix}.{key}", source) if key in table else 0.0
+        for key, check in _OPTIONAL_KEYS.items()
+    }
+    g = values["kappa_GA"] + values["axial_force"] + values["foundation_kG"]
+    if values["kappa_GA"] > 0.0 and g <= 0.0:
+        raise SceneError(
+            source,
+            f"{prefix}.axial_force",
+            "a compression of kappa_GA + foundation_kG or more buckles the segment in shear"
+            " (kappa_GA + axial_force + foundation_kG must be > 0)",
+            values["axial_force"],
+        )
+    return values
 
 
 def _segments(value: Any, source: str) -> tuple[Segment, ...]:
@@ -1019,7 +1062,7 @@ def _segments(value: Any, source: str) -> tuple[Segment, ...]:
     for s, item in enumerate(value):
         prefix = f"beam.segments[{s}]"
         table = _table(item, prefix, source)
-        _reject_unknown(table, (*_UNIFORM_KEYS, "loss_factor"), prefix, source)
+        _reject_unknown(table, (*_UNIFORM_KEYS, *_OPTIONAL_KEYS), prefix, source)
         values = (_require(table, key, prefix, source) for key in _UNIFORM_KEYS)
         segments.append(
             Segment(
@@ -1027,7 +1070,7 @@ def _segments(value: Any, source: str) -> tuple[Segment, ...]:
                     _checked(v, "positive", f"{prefix}.{key}", source)
                     for key, v in zip(_UNIFORM_KEYS, values)
                 ),
-                _loss_factor(table, prefix, source),
+                **_optional(table, prefix, source),
             )
         )
     return tuple(segments)

@@ -7,6 +7,7 @@ import numpy as np
 from mstmm.catalog import (
     BEAM_PARAMETERS,
     KNOWN_ZERO,
+    SEGMENT_KEYS,
     STATE,
     Component,
     Topology,
@@ -42,14 +43,15 @@ def topology_of(scene) -> Topology:
     return topology
 
 
-def _segments(scene) -> list[tuple[float, float, float, float]]:
+def _segments(scene) -> list[tuple[float, ...]]:
+    """``(length, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G)`` of each segment
+    (``catalog.SEGMENT_KEYS``; an optional value a beam-like object lacks is 0)."""
     beam = scene.beam
-    segments = getattr(beam, "segments", ()) or ()
-    if segments:
-        return [
-            (s.length, s.EI, s.mass_per_length, getattr(s, "loss_factor", 0.0)) for s in segments
-        ]
-    return [(beam.length, beam.EI, beam.mass_per_length, getattr(beam, "loss_factor", 0.0))]
+    segments = getattr(beam, "segments", ()) or (beam,)
+    return [
+        (s.length, s.EI, s.mass_per_length, *(getattr(s, k, 0.0) for k in SEGMENT_KEYS[2:]))
+        for s in segments
+    ]
 
 
 def _components(scene) -> list[Component]:
@@ -62,8 +64,8 @@ def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
 
 def parameter_vector(scene) -> np.ndarray:
     """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
-    (x_end, EI, mbar, eta), event rows (tag, x, offset) sorted by x, data...]``
-    (:func:`mstmm.catalog.layout`)."""
+    (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G), event rows (tag, x, offset)
+    sorted by x, data...]`` (:func:`mstmm.catalog.layout`)."""
     return _layout(scene)[0]
 
 

@@ -6,7 +6,8 @@ this package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
 table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``field`` (a segment's
-field matrix from its differential equation), ``paper``
+field matrix from its differential equation), ``segment`` (a piece's transfer, whichever
+the segment's kind), ``paper``
 (the paper's determinant), ``search`` (the certified scan), ``shapes`` (mode shapes),
 ``frf`` (frequency response), ``entries`` (the drivers called from Python).
 """
@@ -22,5 +23,6 @@ from .frf import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .paper import *  # noqa: F403
 from .search import *  # noqa: F403
+from .segment import *  # noqa: F403
 from .shapes import *  # noqa: F403
 from .walk import *  # noqa: F403

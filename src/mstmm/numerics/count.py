@@ -1,6 +1,7 @@
 """The Wittrick-Williams count: negative pivots of the dynamic stiffness eliminated node
 by node on the minors of the state subspace (paper's Eq. (4) reduced; docs/components.md)."""
 
+import numpy as np
 from numba import njit
 
 from mstmm.generated.euler_bernoulli import (
@@ -8,6 +9,15 @@ from mstmm.generated.euler_bernoulli import (
     beam_transfer_scaled,
 )
 
+from .field import (
+    additive_compound,
+    expm_short,
+)
+from .segment import (
+    balance,
+    count_pieces,
+    segment_field,
+)
 from .walk import (
     renormalise,
 )
@@ -44,14 +54,28 @@ def pair_count(Zc, U, beta, rho):
     """
     beam_transfer_scaled(beta, rho, U)
     a = Zc[0]
-    # W = Xd' adj(Xd) from the minors before the step (Zc(2,1) = -Zc[3], Zc(3,1) = -Zc[4])
+    w00, w10, w01, w11 = pivot_products(Zc, U)
+    beam_compound_step(Zc, beta, rho)
+    renormalise(Zc)
+    return pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
+
+
+@njit(cache=True, inline="always")
+def pivot_products(Zc, U):
+    """W = Xd' adj(Xd) from the minors before the step (Zc(2,1) = -Zc[3], Zc(3,1) =
+    -Zc[4]): (W00, W10, W01, W11) (``pair_count``)."""
     w00 = U[0, 0] * Zc[0] - U[0, 2] * Zc[3] - U[0, 3] * Zc[4]
     w10 = U[1, 0] * Zc[0] - U[1, 2] * Zc[3] - U[1, 3] * Zc[4]
     w01 = U[0, 1] * Zc[0] + U[0, 2] * Zc[1] + U[0, 3] * Zc[2]
     w11 = U[1, 1] * Zc[0] + U[1, 2] * Zc[1] + U[1, 3] * Zc[2]
-    beam_compound_step(Zc, beta, rho)
-    renormalise(Zc)
-    b = Zc[0]
+    return w00, w10, w01, w11
+
+
+@njit(cache=True, inline="always")
+def pivot_negatives(U, a, b, w00, w10, w01, w11):
+    """Negative pivots of the near node's block M = S + k_aa from the signs of det Xd
+    before (a) and after (b) the step, det(B PI_LEFT) and tr(adj(B PI_LEFT) W)
+    (``pair_count``)."""
     # B PI_LEFT = [[U03, -U02], [U13, -U12]]; tr(adj(B PI_LEFT) W):
     detBP = U[0, 2] * U[1, 3] - U[0, 3] * U[1, 2]
     tr = -U[1, 2] * w00 + U[0, 2] * w10 - U[1, 3] * w01 + U[0, 3] * w11
@@ -61,6 +85,39 @@ def pair_count(Zc, U, beta, rho):
         n = 1
     elif tr != 0.0 and a != 0.0 and (tr > 0.0) == ((detBP > 0.0) == (a > 0.0)):
         n = 2
+    return n
+
+
+@njit(cache=True)
+def field_count(Zc, p, seg, w2, rho):
+    """The count across rho of a general segment (``derive/segments/general.py``): in
+    pieces whose J0 is proved 0 (``segment.count_pieces``), each its near node's negative
+    pivots (``pair_count`` with the piece's ``exp(A h)`` and the minors' ``exp(A2 h)``)."""
+    A = np.empty((4, 4))
+    segment_field(p, seg, w2, 1.0, A)
+    pieces = count_pieces(p, seg, A, w2, rho)
+    h = rho / pieces
+    k = balance(A)
+    U = np.empty((4, 4))
+    expm_short(A, h, k, U)
+    A2 = np.empty((6, 6))
+    additive_compound(A, A2)
+    E = np.empty((6, 6))
+    expm_short(A2, h, k, E)
+    v = np.empty(6)
+    n = 0
+    for _ in range(pieces):
+        a = Zc[0]
+        w00, w10, w01, w11 = pivot_products(Zc, U)
+        for i in range(6):
+            acc = 0.0
+            for j in range(6):
+                acc += E[i, j] * Zc[j]
+            v[i] = acc
+        for i in range(6):
+            Zc[i] = v[i]
+        renormalise(Zc)
+        n += pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
     return n
 
 

@@ -151,9 +151,9 @@ def clamped_clamped_bound(EI, kGA, rhoI, mbar, tension, h):
     count on such pieces is its nodes' negative pivots alone, for any segment kind."""
     q = (math.pi / h) ** 2
     m1 = mbar / q
-    if math.isinf(kGA):  # psi = w': the shear term is a constraint
+    if math.isinf(kGA):  # psi = w': the shear term is a constraint, ||w''|| >= (pi/h) ||w'||
         top = EI * q + tension
-        return top / m1 if top > 0.0 else -math.inf
+        return top / (m1 + rhoI) if top > 0.0 else -math.inf
     k11 = kGA + tension
     k22 = kGA + EI * q
     det = k11 * k22 - kGA * kGA

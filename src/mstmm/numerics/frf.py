@@ -7,13 +7,18 @@ import math
 import numpy as np
 from numba import njit
 
-from mstmm.generated.euler_bernoulli import (
-    beam_transfer_scaled_c,
+from .field import (
+    expm_short,
 )
-
 from .layout import (
     HEAD,
     SEGMENT_WIDTH,
+)
+from .segment import (
+    balance,
+    is_general,
+    piece_transfer_c,
+    segment_field,
 )
 from .shapes import (
     DEGENERATE,
@@ -313,16 +318,6 @@ def carry_c(S, nn, X, T, n_out, q0, nq, outputs, frozen, nf):
 
 
 @njit(cache=True)
-def piece_transfer_c(bs, e, rho, U):
-    """U <- D U(bs rho) D^-1 for a complex bs and segment factor e (its EI, with its loss
-    factor, over the first's), bs*rho <= MARCH_STEP (no scaling)."""
-    beam_transfer_scaled_c(bs, rho, U)
-    for r in range(4):
-        for c in range(4):
-            U[r, c] *= (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
-
-
-@njit(cache=True)
 def frf_record_at(outputs, x, bo, bptr, done, W, z, T, t, ep, nep):
     """Record the beam outputs at x not yet recorded (bo: the beam outputs by x, from
     bptr on every one before x is recorded or skipped). Returns the new bptr."""
@@ -419,6 +414,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     SS = np.zeros((4, nb + 2), dtype=np.complex128)
     xp = np.zeros(nb + 2, dtype=np.complex128)
     U = np.zeros((4, 4), dtype=np.complex128)
+    Af = np.zeros((4, 4), dtype=np.complex128)
     S = np.zeros((4, 2), dtype=np.complex128)
     zz = np.zeros(4, dtype=np.complex128)
     W = np.zeros((4, 2), dtype=np.complex128)
@@ -496,8 +492,15 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     e = p[i + 1] / EI * (1.0 + 1j * (p[i + 3] if damped else 0.0))
                     bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar / e))
                     pieces = max(1, int(math.ceil(abs(bs) * rho / MARCH_STEP)))
+                    general = is_general(p, seg)
+                    if general:  # exp(A h) of its field matrix, stiffnesses times 1 + i eta
+                        segment_field(p, seg, w1 * w1, e / (p[i + 1] / EI), Af)
+                        kf = balance(Af)
+                        pieces = max(1, int(math.ceil(kf * rho / MARCH_STEP)))
+                        expm_short(Af, rho / pieces, kf, U)
                     for _ in range(pieces):
-                        piece_transfer_c(bs, e, rho / pieces, U)
+                        if not general:
+                            piece_transfer_c(bs, e, rho / pieces, U)
                         for a in range(4):
                             zz[a] = (
                                 U[a, 0] * z[0] + U[a, 1] * z[1] + U[a, 2] * z[2] + U[a, 3] * z[3]

@@ -5,25 +5,16 @@ import math
 
 from numba import njit
 
-from mstmm.generated.euler_bernoulli import (
-    beam_transfer_scaled,
-)
-
-from .walk import (
-    segment_scale,
+from .segment import (
+    long_transfer,
 )
 
 
 @njit(cache=True)
 def segment_transfer(p, seg, beta, rho, U):
-    """U <- D U(beta_s rho) D^-1, the transfer across a piece of segment seg (paper Eq. (1)
-    in units L = EI_0 = 1), unscaled."""
-    e, a = segment_scale(p, seg)
-    shift = beam_transfer_scaled(beta * a, rho, U)
-    f = math.exp(shift)
-    for r in range(4):
-        for c in range(4):
-            U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+    """U <- the transfer across a piece of segment seg (paper Eq. (1) in units L = EI_0 =
+    1, or exp(A rho) of a general segment), unscaled (``segment.long_transfer``)."""
+    long_transfer(p, seg, beta, rho, U)
 
 
 @njit(cache=True)

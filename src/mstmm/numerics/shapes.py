@@ -6,18 +6,18 @@ import math
 import numpy as np
 from numba import njit
 
-from mstmm.generated.euler_bernoulli import (
-    beam_transfer_scaled,
-)
-
 from .layout import (
     HEAD,
     SEGMENT_WIDTH,
 )
+from .segment import (
+    piece_matrix,
+    segment_pieces,
+    segment_rotary,
+)
 from .walk import (
     event_order,
     next_piece,
-    segment_scale,
 )
 
 # Mode shapes (paper Eq. (5)): an orthonormalisation march with every attached unknown kept.
@@ -138,21 +138,9 @@ def carry(S, k, W, G):
 
 
 @njit(cache=True)
-def piece_transfer(bs, e, rho, U):
-    """U <- D U(bs rho) D^-1, D = diag(1, 1, e, e): a piece of a segment whose EI is e
-    times the first's (bs*rho <= MARCH_STEP: no scaling, shift 0)."""
-    beam_transfer_scaled(bs, rho, U)
-    if e != 1.0:
-        for r in range(4):
-            for c in range(4):
-                U[r, c] *= (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
-
-
-@njit(cache=True)
-def piece_step(W, G, bs, e, rho):
-    """W <- U(rho) W re-orthonormalised; G (2 x 2) takes the new coordinates to the old."""
-    U = np.empty((4, 4))
-    piece_transfer(bs, e, rho, U)
+def piece_step(W, G, U):
+    """W <- U W re-orthonormalised (U the transfer across a piece); G (2 x 2) takes the new
+    coordinates to the old."""
     S = np.empty((4, 2))
     for r in range(4):
         for c in range(2):
@@ -255,8 +243,7 @@ def shape_steps(p, beta, rows):
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                e, a = segment_scale(p, seg)
-                steps += max(1, int(math.ceil(beta * a * rho / MARCH_STEP)))
+                steps += segment_pieces(p, seg, beta, rho, MARCH_STEP)
                 pos = target
             if after == seg:
                 break
@@ -299,9 +286,10 @@ def mode_shapes(
     # nq, nf, offsets of its q and frozen params
     kind = np.zeros(n_steps, dtype=np.int64)
     rho_s = np.zeros(n_steps)
-    bs_s = np.zeros(n_steps)
-    e_s = np.ones(n_steps)
+    seg_s = np.zeros(n_steps, dtype=np.int64)
     r_s = np.ones(n_steps)
+    rot_s = np.zeros(n_steps)
+    U = np.empty((4, 4))
     x_s = np.zeros(n_steps + 1)
     nq_s = np.zeros(n_steps, dtype=np.int64)
     nf_s = np.zeros(n_steps, dtype=np.int64)
@@ -336,15 +324,15 @@ def mode_shapes(
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                e, a = segment_scale(p, seg)
-                pieces = max(1, int(math.ceil(beta * a * rho / MARCH_STEP)))
+                pieces = segment_pieces(p, seg, beta, rho, MARCH_STEP)
+                piece_matrix(p, seg, beta, rho / pieces, U)
                 for _ in range(pieces):
-                    piece_step(W, G, beta * a, e, rho / pieces)
+                    piece_step(W, G, U)
                     kind[s] = 0
                     rho_s[s] = rho / pieces
-                    bs_s[s] = beta * a
-                    e_s[s] = e
+                    seg_s[s] = seg
                     r_s[s] = p[HEAD + SEGMENT_WIDTH * seg + 2] / mbar
+                    rot_s[s] = segment_rotary(p, seg)
                     x_s[s + 1] = x_s[s] + rho / pieces
                     for r in range(2):
                         for c in range(2):
@@ -437,8 +425,8 @@ def mode_shapes(
         part[i] = 0.0
         for j in range(m):
             gram[i, j] = 0.0
-    U = np.empty((4, 4))
     Y = np.empty(m)
+    psi = np.empty(m)
     j = 0
     ns = xs.shape[0]
     for t in range(n_steps):
@@ -455,7 +443,7 @@ def mode_shapes(
         x1 = x0 + rho_s[t]
         while j < ns and xs[j] / L < x1:
             d = max(xs[j] / L - x0, 0.0)
-            piece_transfer(bs_s[t], e_s[t], d, U)
+            piece_matrix(p, seg_s[t], beta, d, U)
             for k in range(m):
                 for r in range(4):
                     Z_out[k, j, r] = (
@@ -466,8 +454,9 @@ def mode_shapes(
                     )
             j += 1
         for g in range(GAUSS_X.shape[0]):
-            piece_transfer(bs_s[t], e_s[t], rho_s[t] * GAUSS_X[g], U)
+            piece_matrix(p, seg_s[t], beta, rho_s[t] * GAUSS_X[g], U)
             w = rho_s[t] * GAUSS_W[g] * r_s[t]
+            wr = rho_s[t] * GAUSS_W[g] * rot_s[t]  # rho_I psi^2: a section's rotary inertia
             for k in range(m):
                 Y[k] = (
                     U[0, 0] * Zn[k, t, 0]
@@ -475,10 +464,16 @@ def mode_shapes(
                     + U[0, 2] * Zn[k, t, 2]
                     + U[0, 3] * Zn[k, t, 3]
                 )
+                psi[k] = (
+                    U[1, 0] * Zn[k, t, 0]
+                    + U[1, 1] * Zn[k, t, 1]
+                    + U[1, 2] * Zn[k, t, 2]
+                    + U[1, 3] * Zn[k, t, 3]
+                )
             for k in range(m):
                 part[k] += w * Y[k]
                 for l in range(m):
-                    gram[k, l] += w * Y[k] * Y[l]
+                    gram[k, l] += w * Y[k] * Y[l] + wr * psi[k] * psi[l]
     while j < ns:  # at x = L: the state after every component there
         for k in range(m):
             for r in range(4):
