@@ -148,7 +148,7 @@ from __future__ import annotations
 import importlib.util
 import math
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from pathlib import Path
 
@@ -301,6 +301,23 @@ def _loss_factors(beam) -> list:
     return [_opt(beam, "loss_factor", 0)]
 
 
+#: Optional segment keys of a general (Timoshenko, axially loaded, founded) segment, default 0.
+GENERAL_KEYS = ("kappa_GA", "rho_I", "axial_force", "foundation_k", "foundation_kG")
+
+
+def _general_values(beam) -> list:
+    """Raw ``{key: value}`` of :data:`GENERAL_KEYS` (default 0) of each beam segment: the
+    beam's own for a uniform beam, each segment's for a stepped one (a nonzero beam-level
+    value beside segments is refused, as for ``loss_factor``)."""
+    segments = _opt(beam, "segments")
+    if segments:
+        stray = [key for key in GENERAL_KEYS if _opt(beam, key) not in (None, 0, 0.0)]
+        if stray:
+            raise ValueError(f"{stray} on a stepped [beam]: give them on each [[beam.segments]]")
+        return [{key: _opt(s, key, 0) for key in GENERAL_KEYS} for s in segments]
+    return [{key: _opt(beam, key, 0) for key in GENERAL_KEYS}]
+
+
 def _attachments(scene) -> list:
     try:
         return list(_get(scene, "attachments") or ())
@@ -350,6 +367,22 @@ class _Node:
     chain_c: list = field(default_factory=list)  # [C_i, ...] per chain, parallel to chains
 
 
+@dataclass(frozen=True)
+class _General:
+    """The general terms of a segment, dimensionless with EI0, mbar0 of the first segment and
+    the total length L: ``G = kappa_GA L^2 / EI0`` (0: no shear deformation), ``r = rho_I /
+    (mbar0 L^2)``, ``P = axial_force L^2 / EI0``, ``kg = foundation_kG L^2 / EI0``, ``kw =
+    foundation_k L^4 / EI0``.  With ``beta^4 = mbar0 w^2 L^4 / EI0`` the energies per
+    dimensionless length are ``1/2 [e psi'^2 + G (y' - psi)^2 + (P + kg) y'^2 + kw y^2]`` and
+    ``1/2 beta^4 [mu y^2 + r psi^2]`` (y = Y / L, ' = d / dxi)."""
+
+    G: mpf
+    r: mpf
+    P: mpf
+    kg: mpf
+    kw: mpf
+
+
 @dataclass
 class _Model:
     left: str
@@ -368,6 +401,12 @@ class _Model:
     seg_eta: list = None  # loss factor of each segment
     ei0: mpf = None  # EI of the first segment (N m^2)
     point_nodes: list = None  # node index of each extra point given to _build
+    seg_gen: list = None  # per segment: None (Euler-Bernoulli) or its _General terms
+
+    @property
+    def general(self) -> bool:
+        """A segment with shear, rotary inertia, axial force or a foundation."""
+        return any(g is not None for g in self.seg_gen or ())
 
     @property
     def damped(self) -> bool:
@@ -415,6 +454,7 @@ def _build(scene, points=()) -> _Model:
         raise ValueError(f"loss_factor must be >= 0: {seg_eta}")
     length = mpmath.fsum(seg_len)
     ei0, mu0 = seg_ei[0], seg_mu[0]
+    seg_gen = [_general_terms(v, ei0, mu0, length) for v in _general_values(beam)]
     left = _end(_get(beam, "left"))
     right = _end(_get(beam, "right"))
     bounds, x = [], mpf(0)
@@ -499,7 +539,7 @@ def _build(scene, points=()) -> _Model:
     nodes[-1].fix_w |= right in ("clamped", "pinned")
     nodes[-1].fix_t |= right in ("clamped", "sliding")
     # material of each mesh segment: the beam segment it lies in
-    seg, seg_e, seg_a, mesh_mu, mesh_eta = [], [], [], [], []
+    seg, seg_e, seg_a, mesh_mu, mesh_eta, mesh_gen = [], [], [], [], [], []
     edges = [mpf(0)] + bounds
     for a, b in zip(xs, xs[1:], strict=False):
         s = max(i for i, e in enumerate(edges) if e <= a)
@@ -509,6 +549,7 @@ def _build(scene, points=()) -> _Model:
         seg_a.append(mpf(1) if e_rel == mu_rel else mpmath.root(mu_rel / e_rel, 4))
         mesh_mu.append(mu_rel)
         mesh_eta.append(seg_eta[s])
+        mesh_gen.append(seg_gen[s])
     w_scale = mpmath.sqrt(ei0 / mu0) / length**2
     min_x = min(a * ell for a, ell in zip(seg_a, seg, strict=True))
     return _Model(
@@ -528,6 +569,28 @@ def _build(scene, points=()) -> _Model:
         mesh_eta,
         ei0,
         [xs.index(x) for x in snapped],
+        mesh_gen,
+    )
+
+
+def _general_terms(values: dict, ei0, mu0, length):
+    """The :class:`_General` terms of a segment from its raw keys, or None when all are 0
+    (an Euler-Bernoulli segment, on the original closed-form path)."""
+    kga, rho_i, p, kw, kg = (_num(values[key]) for key in GENERAL_KEYS)
+    if kga < 0 or rho_i < 0 or kw < 0 or kg < 0:
+        raise ValueError(
+            f"kappa_GA, rho_I, foundation_k, foundation_kG must be >= 0: {kga}, {rho_i}, {kw}, {kg}"
+        )
+    if kga > 0 and not kga + p + kg > 0:
+        raise ValueError(f"kappa_GA + axial_force + foundation_kG must be > 0: {kga + p + kg}")
+    if kga == rho_i == p == kw == kg == 0:
+        return None
+    return _General(
+        kga * length**2 / ei0,
+        rho_i / (mu0 * length**2),
+        p * length**2 / ei0,
+        kg * length**2 / ei0,
+        kw * length**4 / ei0,
     )
 
 
@@ -557,10 +620,269 @@ def _work_dps(model: _Model, dps: int, beta) -> int:
     return dps + _GUARD_DPS + extra
 
 
+# ------------------------------------------------------------------ general segments
+#
+# A segment with any of GENERAL_KEYS is integrated in its state Z = (y, psi, m, q) =
+# (Y / L, psi, M L / EI_s, Q L^2 / EI_s), ' = d / dxi, M = EI psi', Q = -(kGA (Y' - psi) +
+# (P + k_G) Y') the total transverse force.  Stationary energy (see _General) at beta^4,
+# with t = P + kg, g = G + t, the Euler-Lagrange equations in first-order form are
+#
+#     y' = (G / g) psi - (e / g) q                    (G = 0: y' = psi)
+#     psi' = m / c
+#     m' = ((G t / g - r beta^4) psi + (G / g) e q) / e   (G = 0: m' = q + (t - r beta^4) psi / e)
+#     q' = (mu beta^4 - kw) y / e
+#
+# (c = 1 + i eta: the loss factor multiplies EI, kappa_GA, foundation_k, foundation_kG, not P;
+# m and q are scaled by the real EI_s, so that a segment's rows meet its neighbours' with the
+# factor 1).  Without the general terms this is the Euler-Bernoulli equation y^(4) = (mu / e)
+# beta^4 y, and e m, e q are the e W'', e W''' of the closed-form path, so the node
+# conditions of _assemble and the nodal forces of the count apply unchanged.  A general
+# segment is cut into pieces (blank nodes) short enough that exp(A h) stays well conditioned
+# (|lambda| h <= _PIECE_REACH) and, for the Wittrick-Williams count, that its clamped-clamped
+# fundamental provably exceeds the trial frequency (_cc_bound), so that its J0 is 0.  The
+# global determinant does not depend on the cut (a blank node's rows are z_next - exp(A h) z:
+# the Schur complement gives back exp(A (h1 + h2))), so it is one entire function of w.
+
+_PIECE_REACH = 3.0  # largest |lambda| h of a piece (exp(A h) grows like exp(|lambda| h))
+_CC_MARGIN = 1.25  # a piece's clamped-clamped bound must exceed beta^4 by this factor
+
+
+def _field_matrix(gen: _General, e, mu, eta, b4):
+    """The 4x4 ``A`` of ``Z' = A Z`` of a general segment at ``beta^4 = b4`` (complex with a
+    loss factor eta), current precision."""
+    c = 1 if eta == 0 else mpc(1, eta)
+    G, kw, t = gen.G * c, gen.kw * c, gen.P + gen.kg * c
+    R = gen.r * b4
+    A = mpmath.matrix(4, 4)
+    A[1, 2] = 1 / c
+    A[3, 0] = (mu * b4 - kw) / e
+    if gen.G == 0:
+        A[0, 1] = 1
+        A[2, 1] = (t - R) / e
+        A[2, 3] = 1
+    else:
+        g = G + t
+        A[0, 1] = G / g
+        A[0, 3] = -e / g
+        A[2, 1] = (G * t / g - R) / e
+        A[2, 3] = G / g
+    return A
+
+
+def _wavenumber_bound(gen: _General, e, mu, eta, b4) -> float:
+    """Upper bound of |lambda| over the eigenvalues of A: det(lambda - A) is a quadratic in
+    lambda^2, z^2 + B z + C (B, C below, by SymPy), and |z| <= |B| + sqrt |C|."""
+    c = complex(1, float(eta))
+    b4 = complex(b4)
+    e, mu = float(e), float(mu)
+    G, kw, t = float(gen.G) * c, float(gen.kw) * c, float(gen.P) + float(gen.kg) * c
+    R, Mw = float(gen.r) * b4, mu * b4 - kw
+    if gen.G == 0:
+        B, C = (R - t) / (c * e), -Mw / (c * e)
+    else:
+        g = G + t
+        B = (G * R - G * t + Mw * c * e + R * t) / (c * e * g)
+        C = Mw * (R - G) / (c * e * g)
+    return math.sqrt(abs(B) + math.sqrt(abs(C)))
+
+
+def _cc_bound(gen: _General, e, mu, h: float) -> float:
+    """A lower bound of beta^4 of the clamped-clamped fundamental of an undamped piece of
+    dimensionless length h (0 if none is proved).  With y, psi = 0 at both ends, s = (pi/h)^2:
+
+    * G = 0 (psi = y'): int y''^2 >= 4 s int y'^2 (clamped-clamped buckling) and int y^2 <=
+      int y'^2 / s give U >= (4 e s + t) int y'^2 and T <= (mu / s + r) int y'^2;
+    * G > 0: G (a - b)^2 >= G (1 - eps) a^2 - G (1 / eps - 1) b^2 (0 < eps < 1, eps < g / G
+      so that c_w = G (1 - eps) + t > 0) and int psi'^2 >= s int psi^2 give U >= c_psi int
+      psi^2 + c_w s int y^2, c_psi = e s - G (1 / eps - 1), against T = mu int y^2 + r int
+      psi^2
+
+    (U, T the potential and kinetic energies over beta^4; the foundation only adds to U)."""
+    e, mu, r = float(e), float(mu), float(gen.r)
+    G, t = float(gen.G), float(gen.P) + float(gen.kg)
+    s = (math.pi / h) ** 2
+    if G == 0:
+        c1 = 4 * e * s + t
+        return c1 / (mu / s + r) if c1 > 0 else 0.0
+    eps = 0.5 if t >= 0 else (G + t) / (2 * G)
+    c_w = G * (1 - eps) + t
+    c_psi = e * s - G * (1 / eps - 1)
+    if c_psi < 0 or c_w <= 0:
+        return 0.0
+    return min(c_w * s / mu, c_psi / r if r > 0 else math.inf)
+
+
+def _mesh_pieces(model: _Model, b4, count: bool) -> list:
+    """Number of pieces of each segment at beta^4 = b4 (1 for an Euler-Bernoulli segment):
+    |lambda| h <= _PIECE_REACH, and for the count (real b4) a clamped-clamped bound above
+    _CC_MARGIN b4."""
+    out = []
+    for j, gen in enumerate(model.seg_gen):
+        if gen is None:
+            out.append(1)
+            continue
+        e, mu, eta, ell = model.seg_e[j], model.seg_mu[j], model.seg_eta[j], float(model.seg[j])
+        lam = _wavenumber_bound(gen, e, mu, eta, b4)
+        n = max(1, math.ceil(ell * lam / _PIECE_REACH))
+        if count:
+            target = _CC_MARGIN * float(b4)
+            while not _cc_bound(gen, e, mu, ell / n) > target:
+                n = max(n + 1, math.ceil(n * 1.25))
+        out.append(n)
+    return out
+
+
+def _refine(model: _Model, pieces: list) -> _Model:
+    """``model`` with segment j cut into ``pieces[j]`` equal pieces (blank nodes between)."""
+    if all(n == 1 for n in pieces):
+        return model
+    nodes, index = [model.nodes[0]], [0]
+    lists = {name: [] for name in ("seg", "seg_e", "seg_a", "seg_mu", "seg_eta", "seg_gen")}
+    for j, n in enumerate(pieces):
+        h = model.seg[j] / n
+        for i in range(n):
+            for name, values in lists.items():
+                values.append(h if name == "seg" else getattr(model, name)[j])
+            if i < n - 1:
+                nodes.append(_Node(model.nodes[j].xi + h * (i + 1)))
+        nodes.append(model.nodes[j + 1])
+        index.append(len(nodes) - 1)
+    seg, seg_a = lists["seg"], lists["seg_a"]
+    points = None if model.point_nodes is None else [index[i] for i in model.point_nodes]
+    return replace(
+        model,
+        nodes=nodes,
+        min_seg=min(seg),
+        min_x=min(a * ell for a, ell in zip(seg_a, seg, strict=True)),
+        point_nodes=points,
+        **lists,
+    )
+
+
+def _general_dps(model: _Model, b4) -> int:
+    """Extra digits for the general segments' rows: their state's entries differ by powers
+    of the wave number (no cancellation across a piece, |lambda| h <= _PIECE_REACH)."""
+    lam = max(
+        [1.0]
+        + [
+            _wavenumber_bound(gen, model.seg_e[j], model.seg_mu[j], model.seg_eta[j], b4)
+            for j, gen in enumerate(model.seg_gen)
+            if gen is not None
+        ]
+    )
+    return int(math.ceil(3 * math.log10(lam))) + 5
+
+
+def _general_stiffness_matrix(gen: _General, e, mu, b4, h) -> list:
+    """Exact dynamic stiffness (4x4, nested lists) of an undamped general piece of length h,
+    DOFs (y0, psi0, y1, psi1), the nodal forces e (q0, -m0, -q1, m1) (the boundary terms
+    [e m dpsi - e q dy] of the energy), from T = exp(A h): with d = (y, psi), f = (m, q),
+    d1 = T11 d0 + T12 f0, f1 = T21 d0 + T22 f0."""
+    T = mpmath.expm(_field_matrix(gen, e, mu, 0, b4) * h)
+
+    def block(r, c):
+        return [[T[r + i, c + j] for j in range(2)] for i in range(2)]
+
+    def mul(a, b):
+        return [[a[i][0] * b[0][j] + a[i][1] * b[1][j] for j in range(2)] for i in range(2)]
+
+    t11, t12, t21, t22 = block(0, 0), block(0, 2), block(2, 0), block(2, 2)
+    det = t12[0][0] * t12[1][1] - t12[0][1] * t12[1][0]
+    if det == 0:
+        raise _Degenerate
+    inv = [[t12[1][1] / det, -t12[0][1] / det], [-t12[1][0] / det, t12[0][0] / det]]
+    x = [[-v for v in row] for row in mul(inv, t11)]  # f0 = x d0 + inv d1
+    u = [[a + b for a, b in zip(ra, rb, strict=True)] for ra, rb in zip(t21, mul(t22, x))]
+    v = mul(t22, inv)  # f1 = u d0 + v d1
+    rows = [x[1] + inv[1], [-a for a in x[0] + inv[0]], [-a for a in u[1] + v[1]], u[0] + v[0]]
+    return [[e * a for a in row] for row in rows]
+
+
+def _general_stiffness(model: _Model, j: int, beta, cache: dict):
+    """The stiffness entries (k00, k01, k02, k03, k11, k13) of the general piece j (a uniform
+    piece is symmetric under reflection, like the closed form), its J0 = 0 proved by
+    :func:`_cc_bound`."""
+    gen, e, mu, h = model.seg_gen[j], model.seg_e[j], model.seg_mu[j], model.seg[j]
+    key = (gen, e, mu, h)
+    if key not in cache:
+        b4 = beta**4
+        if not _cc_bound(gen, e, mu, float(h)) > float(b4):
+            raise AssertionError("a general piece too long for the count (J0 > 0 possible)")
+        with mp.workdps(mp.dps + _extra_dps(beta * model.seg_a[j] * h) + 10):
+            K = _general_stiffness_matrix(gen, e, mu, b4, h)
+            ks = (K[0][0], K[0][1], K[0][2], K[0][3], K[1][1], K[1][3])
+        cache[key] = tuple(+v for v in ks)
+    return cache[key]
+
+
+def general_segment_stiffness_matrix(segment: dict, beta, ell) -> list:
+    """The 4x4 dynamic stiffness of an undamped general segment of dimensionless length
+    ``ell`` at ``beta`` (nested lists, current mp precision; for tests), the segment given
+    as ``{"EI", "mass_per_length", key: value for GENERAL_KEYS}`` with L = EI0 = mbar0 = 1."""
+    gen = _general_terms({key: segment.get(key, 0) for key in GENERAL_KEYS}, 1, 1, 1)
+    if gen is None:
+        gen = _General(mpf(0), mpf(0), mpf(0), mpf(0), mpf(0))
+    e, mu = _num(segment.get("EI", 1)), _num(segment.get("mass_per_length", 1))
+    return _general_stiffness_matrix(gen, e, mu, _num(beta) ** 4, _num(ell))
+
+
+def field_matrix(segment: dict, b4, eta=0) -> list:
+    """The 4x4 ``A`` (nested lists) of a segment given like
+    :func:`general_segment_stiffness_matrix` at ``beta^4 = b4`` (for tests)."""
+    gen = _general_terms({key: segment.get(key, 0) for key in GENERAL_KEYS}, 1, 1, 1)
+    if gen is None:
+        gen = _General(mpf(0), mpf(0), mpf(0), mpf(0), mpf(0))
+    e, mu = _num(segment.get("EI", 1)), _num(segment.get("mass_per_length", 1))
+    A = _field_matrix(gen, e, mu, _num(eta), _cnum(b4))
+    return [[A[i, j] for j in range(4)] for i in range(4)]
+
+
+class _GeneralRows:
+    """A basis (:class:`_TrigBasis` or :class:`_KrylovBasis`) with the rows of the general
+    segments replaced: their unknowns are the state (y, psi, m, q) at the segment's left end,
+    the right end ``exp(A l)`` times it (derivative factors 1, ``e`` the real EI_s / EI0)."""
+
+    def __init__(self, model: _Model, base, b4):
+        self.base = base
+        self.b4 = base.b4
+        self.bs = list(base.bs)
+        self.e = list(base.e)
+        self.T = {}
+        cache: dict = {}
+        for s, gen in enumerate(model.seg_gen):
+            if gen is None:
+                continue
+            self.bs[s] = 1
+            self.e[s] = model.seg_e[s]
+            key = (gen, model.seg_e[s], model.seg_mu[s], model.seg_eta[s], model.seg[s])
+            if key not in cache:
+                A = _field_matrix(gen, *key[1:4], b4)
+                cache[key] = mpmath.expm(A * model.seg[s])
+            self.T[s] = cache[key]
+
+    def row(self, side, order: int, cols: list) -> dict:
+        seg, at_end = side
+        T = self.T.get(seg)
+        if T is None:
+            return self.base.row(side, order, cols)
+        base = cols[seg]
+        if not at_end:
+            return {base + order: mpf(1)}
+        return {base + i: T[order, i] for i in range(4) if T[order, i] != 0}
+
+    def stiffness(self, k, c):
+        return self.base.stiffness(k, c)
+
+    def mass_scale(self, k, k_next, m):
+        return self.base.mass_scale(k, k_next, m)
+
+
 def _rigid_constraints(scene) -> tuple:
     """Rigid motions ``W(x) = a + b x + sum_h c_h (x - x_h)_+`` (kinks c_h at the free
     hinges x_h): the hinge positions and the exact linear constraints on (a, b, c...)
-    from the ends, supports, springs and rotational springs to ground."""
+    from the ends, supports, springs and rotational springs to ground, foundations,
+    axial forces and Pasternak layers (the shear stiffness and rotary inertia hold none:
+    a rigid motion has psi = W', no shear strain)."""
     beam = _get(scene, "beam")
     left, right = _end(_get(beam, "left")), _end(_get(beam, "right"))
     edges = [Fraction(0)]
@@ -591,6 +913,17 @@ def _rigid_constraints(scene) -> tuple:
             rows.append(value(at(a)))
         elif kind == "rotational_spring":
             rows.append(slope(at(a)))
+    # general segments: a foundation (k_w > 0) holds the motion at every point of its
+    # segment (W = 0 at its ends and at its free hinges: W is straight between them); an
+    # axial force or a Pasternak layer (P + k_G != 0) its slope (at a point of each piece
+    # between the free hinges), since 1/2 (P + k_G) W'^2 is then the energy of a rotation
+    for (a, b), values in zip(zip(edges, edges[1:]), _general_values(beam), strict=True):
+        kinks = [h for h in hinges if a < h < b]
+        if _frac(values["foundation_k"]) != 0:
+            rows.extend(value(x) for x in [a, *kinks, b])
+        if _frac(values["axial_force"]) + _frac(values["foundation_kG"]) != 0:
+            ends = [a, *kinks, b]
+            rows.extend(slope((x + y) / 2) for x, y in zip(ends, ends[1:]))
     return hinges, rows
 
 
@@ -716,7 +1049,11 @@ class _TrigBasis:
     def __init__(self, model: _Model, beta):
         self.bs = [beta * a for a in model.seg_a]  # derivative factors beta_s
         self.trig = []
-        for ell, b in zip(model.seg, self.bs, strict=True):
+        gens = model.seg_gen or [None] * len(model.seg)
+        for ell, b, gen in zip(model.seg, self.bs, gens, strict=True):
+            if gen is not None:  # a general segment: its rows come from _GeneralRows
+                self.trig.append(None)
+                continue
             x = b * ell
             self.trig.append((mpmath.cos(x), mpmath.sin(x), mpmath.exp(-x)))
         self.e = model.seg_e  # EI of each segment / EI0
@@ -752,7 +1089,10 @@ class _System:
 def _global_rows(model: _Model, beta):
     """Rows of the global system, the column count, the deflection row at each node and
     the mass columns of each node (undamped path; see :func:`_assemble`)."""
-    system = _assemble(model, _TrigBasis(model, beta))
+    basis = _TrigBasis(model, beta)
+    if model.general:  # (model cut into pieces by _refine)
+        basis = _GeneralRows(model, basis, beta**4)
+    system = _assemble(model, basis)
     return system.rows, system.ncol, system.w_rows, system.mass_cols
 
 
@@ -1036,7 +1376,9 @@ def _chain(model: _Model, beta):
     the determinant of the dynamic stiffness with the segment poles removed,
     divided by a positive power-law envelope (beta^4 per node block, k + m beta^4
     per mass); it is only used as a cheap function to interpolate on while
-    polishing, the bracket being decided by the count.
+    polishing, the bracket being decided by the count.  A general piece (the model cut by
+    :func:`_refine` with the counts of :func:`_mesh_pieces`) has J0 = 0 and no pole below
+    beta: its stiffness from exp(A h), delta 1.
     """
     nseg = len(model.seg)
     prod = mpf(1)
@@ -1047,9 +1389,13 @@ def _chain(model: _Model, beta):
     # Schur complement carried from the previous node onto (W, W') of this node
     c00 = c01 = c11 = mpf(0)
     prev = None
+    gens = model.seg_gen or [None] * nseg
+    pieces: dict = {}  # the stiffness of the general pieces, computed once per kind of piece
     for j in range(nseg + 1):
         node = model.nodes[j]
-        if j < nseg:
+        if j < nseg and gens[j] is not None:  # a general piece: J0 = 0 (_mesh_pieces)
+            ks = _general_stiffness(model, j, beta, pieces)
+        elif j < nseg:
             a, e = model.seg_a[j], model.seg_e[j]
             if a == 1:
                 ks, n0, delta = _segment_stiffness(beta, beta2, beta3, model.seg[j])
@@ -1247,17 +1593,32 @@ def _polish(lo, jlo, hi, dps: int, chain_fn, det_fn):
 class _Solver:
     """Scene at working precision with the count, chain and determinant evaluators."""
 
-    def __init__(self, scene, dps: int):
-        self.model = _undamped_model(scene)
+    def __init__(self, scene, dps: int, model: _Model | None = None):
+        self.model = _undamped_model(scene) if model is None else model
         self.nrigid = rigid_body_mode_count(scene)
         self.dps = dps
         self._cache: dict = {}
+        self._pieces = [1] * len(self.model.seg)
+        self._meshes: dict = {}
+
+    def mesh(self, beta) -> _Model:
+        """The model, its general segments cut for the count at beta (never into fewer pieces
+        than before: F of the count stays one function while a root is polished)."""
+        if not self.model.general:
+            return self.model
+        need = _mesh_pieces(self.model, beta**4, count=True)
+        self._pieces = [max(a, b) for a, b in zip(self._pieces, need, strict=True)]
+        key = tuple(self._pieces)
+        if key not in self._meshes:
+            self._meshes[key] = _refine(self.model, self._pieces)
+        return self._meshes[key]
 
     def chain(self, beta):
         key = mpf(beta)
         if key not in self._cache:
-            with mp.workdps(_work_dps(self.model, 2 * self.dps, beta)):
-                self._cache[key] = _chain_safe(self.model, +beta)
+            model = self.mesh(beta)
+            with mp.workdps(_work_dps(model, 2 * self.dps, beta)):
+                self._cache[key] = _chain_safe(model, +beta)
         return self._cache[key]
 
     def count(self, beta) -> int:
@@ -1265,10 +1626,25 @@ class _Solver:
 
     def det(self, beta):
         # stiff springs: the K / beta^3 shear terms cancel against the mass rows
-        stiff = max(self.model.k_max / beta**3, self.model.kr_max / beta)
+        model = self.mesh(beta)
+        stiff = max(model.k_max / beta**3, model.kr_max / beta)
         extra = int(math.ceil(float(mpmath.log10(stiff)))) if stiff > 1 else 0
-        with mp.workdps(_work_dps(self.model, self.dps, beta) + extra):
-            return _global_det(self.model, +beta)
+        if model.general:
+            extra += _general_dps(model, beta**4)
+        with mp.workdps(_work_dps(model, self.dps, beta) + extra):
+            return _global_det(model, +beta)
+
+    def check_stable(self) -> None:
+        """With a compression somewhere, no natural frequency squared below 0: the count at
+        a tiny beta must be the number of rigid-body modes (else ValueError: buckled)."""
+        gens = [g for g in self.model.seg_gen or () if g is not None]
+        if any(g.P + g.kg < 0 for g in gens):
+            tiny = mpf(10) ** -3
+            if self.count(tiny) != self.nrigid:
+                raise ValueError(
+                    f"{self.count(tiny)} natural frequencies below beta = 1e-3 besides the "
+                    f"{self.nrigid} rigid-body modes: the compression buckles the beam"
+                )
 
     def solve(self, lo, jlo, hi, jhi, want_lo: int, want_hi: int) -> list:
         """Betas of the eigenvalues with indices in [want_lo, want_hi) inside [lo, hi)."""
@@ -1302,20 +1678,24 @@ def frequencies(scene, n_modes: int, dps: int = 40) -> list:
         return []
     with mp.workdps(dps + _GUARD_DPS):
         solver = _Solver(scene, dps)
-        nrigid = solver.nrigid
-        if n_modes <= nrigid:
-            result = [mpf(0)] * n_modes
-        else:
-            # an upper bound off the rational multiples of pi, where bare-beam roots sit
-            hi = mp.pi * (n_modes + 1) * (1 + mpmath.sqrt(2) / 100)
-            jhi = solver.count(hi)
-            while jhi < n_modes:
-                hi *= 2
-                jhi = solver.count(hi)
-            betas = solver.solve(mpf(0), nrigid, hi, jhi, nrigid, n_modes)
-            result = [mpf(0)] * nrigid + [b * b * solver.model.w_scale for b in betas]
+        solver.check_stable()
+        result = [b * b * solver.model.w_scale for b in _lowest(solver, n_modes)]
     with mp.workdps(dps):
         return [+w for w in result]
+
+
+def _lowest(solver: _Solver, n_modes: int) -> list:
+    """The betas of the lowest ``n_modes`` natural frequencies (rigid-body zeros first)."""
+    nrigid = solver.nrigid
+    if n_modes <= nrigid:
+        return [mpf(0)] * n_modes
+    # an upper bound off the rational multiples of pi, where bare-beam roots sit
+    hi = mp.pi * (n_modes + 1) * (1 + mpmath.sqrt(2) / 100)
+    jhi = solver.count(hi)
+    while jhi < n_modes:
+        hi *= 2
+        jhi = solver.count(hi)
+    return [mpf(0)] * nrigid + solver.solve(mpf(0), nrigid, hi, jhi, nrigid, n_modes)
 
 
 def band(scene, w_lo, w_hi, dps: int = 40) -> list:
@@ -1325,6 +1705,7 @@ def band(scene, w_lo, w_hi, dps: int = 40) -> list:
     """
     with mp.workdps(dps + _GUARD_DPS):
         solver = _Solver(scene, dps)
+        solver.check_stable()
         model, nrigid = solver.model, solver.nrigid
         w_lo, w_hi = _num(w_lo), _num(w_hi)
         if w_hi < w_lo or w_hi <= 0:
@@ -1367,6 +1748,11 @@ def _null_vectors(model: _Model, beta, m: int):
     return [[V[i, c] for c in range(ncol)] for i in order], w_rows, mass_cols
 
 
+def _shape_mesh(model: _Model, beta) -> _Model:
+    """The model with its general segments cut for the global system at beta."""
+    return _refine(model, _mesh_pieces(model, beta**4, count=False)) if model.general else model
+
+
 def mode_at_attachments(scene, w, dps: int = 40):
     """Mode shape at a natural frequency ``w``: for every hanging mass (the mass of each
     spring-mass, each mass of each oscillator chain; sorted by x, stable) the beam's
@@ -1375,7 +1761,9 @@ def mode_at_attachments(scene, w, dps: int = 40):
     with mp.workdps(dps + _GUARD_DPS):
         model = _undamped_model(scene)
         beta = _beta_of(model, _num(w))
-        (v,), w_rows, mass_cols = _null_vectors(model, beta, 1)
+        model = _shape_mesh(model, beta)
+        with mp.workdps(mp.dps + (_general_dps(model, beta**4) if model.general else 0)):
+            (v,), w_rows, mass_cols = _null_vectors(model, beta, 1)
         beam, masses = [], []
         for j, cols in enumerate(mass_cols):
             deflection = sum(val * v[col] for col, val in w_rows[j].items())
@@ -1416,6 +1804,9 @@ def eigenspace(scene, w, m: int, xs, dps: int = 40):
         if _num(w) == 0:
             return _rigid_space(scene, m, xs)
         beta = _beta_of(model, _num(w))
+        model = _shape_mesh(model, beta)
+        if model.general:
+            mp.dps += _general_dps(model, beta**4)
         vectors, _w_rows, mass_cols = _null_vectors(model, beta, m)
         nseg = len(model.seg)
         starts = [node.xi for node in model.nodes]
@@ -1425,12 +1816,18 @@ def eigenspace(scene, w, m: int, xs, dps: int = 40):
             j = min(max(k for k in range(nseg) if starts[k] <= xi), nseg - 1)
             sloc, b = xi - starts[j], beta * model.seg_a[j]
             base = 4 * j + sum(len(cols) for cols in mass_cols[: j + 1])
-            funcs = (
-                mpmath.cos(b * sloc),
-                mpmath.sin(b * sloc),
-                mpmath.exp(-b * sloc),
-                mpmath.exp(b * (sloc - model.seg[j])),
-            )
+            gen = model.seg_gen[j]
+            if gen is not None:  # y(s) = row 0 of exp(A s) times the state at the piece's start
+                A = _field_matrix(gen, model.seg_e[j], model.seg_mu[j], 0, beta**4)
+                E = mpmath.expm(A * sloc)
+                funcs = tuple(E[0, i] for i in range(4))
+            else:
+                funcs = (
+                    mpmath.cos(b * sloc),
+                    mpmath.sin(b * sloc),
+                    mpmath.exp(-b * sloc),
+                    mpmath.exp(b * (sloc - model.seg[j])),
+                )
             bases.append((base, funcs))
         out = []
         for v in vectors:
@@ -1513,7 +1910,11 @@ class _KrylovBasis:
             for e, eta in zip(model.seg_e, model.seg_eta, strict=True)
         ]
         self.phi = []
-        for ell, e, mu in zip(model.seg, self.e, model.seg_mu, strict=True):
+        gens = model.seg_gen or [None] * len(model.seg)
+        for ell, e, mu, gen in zip(model.seg, self.e, model.seg_mu, gens, strict=True):
+            if gen is not None:  # a general segment: its rows come from _GeneralRows
+                self.phi.append(None)
+                continue
             z = self.b4 * mu / e
             k = _krylov(z, ell)
             phi = [[k[j - n] if j >= n else z * k[j - n + 4] for j in range(4)] for n in range(4)]
@@ -1635,7 +2036,12 @@ class _DampedSolver:
         self.viscous = all(eta == 0 for eta in model.seg_eta)  # F(-conj w) = conj F(w)
         self.undamped = not model.damped
         self.scale = model.w_scale
-        self.reach = float(mpmath.fsum(a * ell for a, ell in zip(model.seg_a, model.seg)))
+        gens = model.seg_gen or [None] * len(model.seg)
+        self.reach = float(  # general segments: multiple shooting, no growth across them
+            mpmath.fsum(
+                a * ell for a, ell, g in zip(model.seg_a, model.seg, gens, strict=True) if g is None
+            )
+        )
         c_all = [node.c for node in model.nodes] + [
             c for node in model.nodes for cs in node.chain_c for c in cs
         ]
@@ -1654,13 +2060,28 @@ class _DampedSolver:
             float(self.c_max) * r * r / (1 + r**3),
         )
         digits = int(math.ceil(math.log10(stiff))) if stiff > 1 else 0
+        if m.general:
+            digits += _general_dps(m, omega * omega)
         return self.dps + _GUARD_DPS + growth + digits + extra
+
+    def mesh(self, omega) -> _Model:
+        """The model, its general segments cut for the global system at omega (any cut gives
+        the same determinant, see the notes on general segments)."""
+        if not self.model.general:
+            return self.model
+        return _refine(self.model, _mesh_pieces(self.model, omega * omega, count=False))
+
+    def basis(self, model: _Model, omega):
+        """The Krylov basis at omega, with :class:`_GeneralRows` on the general segments."""
+        basis = _KrylovBasis(model, omega)
+        return _GeneralRows(model, basis, omega * omega) if model.general else basis
 
     def F(self, w, extra: int = 0):
         """Characteristic function at w (rad/s, complex)."""
         omega = w / self.scale
         with mp.workdps(self.wp(omega, extra)):
-            system = _assemble(self.model, _KrylovBasis(self.model, w / self.scale))
+            model = self.mesh(w / self.scale)
+            system = _assemble(model, self.basis(model, w / self.scale))
             return _sparse_det(system.rows, system.ncol)
 
     def G(self, w):
@@ -1875,18 +2296,39 @@ class _DampedSolver:
     def roots(self, need: int, n_elements=None) -> list:
         """The lowest ``need`` non-zero reported roots, certified (see
         :func:`damped_frequencies`); FE seeds, the mesh doubled when the count disagrees."""
-        fem = _fem()
         n_el = n_elements or max(24, 4 * need + 16)
+        n_seeds = need + max(4, need // 2)
         failures = []
         for _attempt in range(3):
-            spectrum = fem.damped_spectrum(self.scene, n_el)
-            seeds = [mpc(complex(w)) for w in spectrum.roots]
+            if self.model.general:  # no FE model of them: the undamped roots as seeds
+                seeds = self._undamped_seeds(n_seeds)
+                what = f"{n_seeds} undamped seeds"
+            else:
+                spectrum = _fem().damped_spectrum(self.scene, n_el)
+                seeds = [mpc(complex(w)) for w in spectrum.roots]
+                what = f"{n_el} elements"
             try:
                 return self._certified(need, seeds)
             except (_Uncertified, _OnContour) as exc:
-                failures.append(f"{n_el} elements: {exc}")
+                failures.append(f"{what}: {exc}")
                 n_el *= 2
+                n_seeds *= 2
         raise RuntimeError("damped roots not certified: " + "; ".join(failures))
+
+    def _undamped_seeds(self, n: int) -> list:
+        """The lowest n nonzero natural frequencies of the scene without its dashpots and
+        loss factors (undamped reference, 15 digits), as seeds of a general scene (an
+        overdamped root has no such seed: the count then refuses the result)."""
+        nodes = [
+            replace(node, c=mpf(0), chain_c=[[mpf(0)] * len(cs) for cs in node.chain_c])
+            for node in self.model.nodes
+        ]
+        model = replace(self.model, nodes=nodes, seg_eta=[mpf(0)] * len(self.model.seg))
+        with mp.workdps(15 + _GUARD_DPS):
+            solver = _Solver(self.scene, 15, model)
+            solver.check_stable()
+            betas = _lowest(solver, solver.nrigid + n)[solver.nrigid :]
+            return [mpc(b * b * model.w_scale) for b in betas]
 
     def _certified(self, need: int, seeds: list) -> list:
         if len(seeds) < need + 1:
@@ -2122,23 +2564,25 @@ def frf(scene, input, output, omegas, dps: int = 30) -> list:
         solver = _DampedSolver(scene, dps, points)
         model = solver.model
         n_hung = sum(len(stages) for stages in model.masses)
-        nodes = []  # node index of the input, of the output (None: a hanging mass)
+        nodes = []  # index in point_nodes of the input, of the output (None: a hanging mass)
         for quantity, where, point in (src, dst):
             if where == "mass":
                 if point >= n_hung:
                     raise ValueError(f"hanging mass {point} of {n_hung}")
                 nodes.append(None)
                 continue
-            j = model.point_nodes[-1 if nodes else 0]  # the input's point comes first
+            k = -1 if nodes else 0  # the input's point comes first
+            j = model.point_nodes[k]
             if quantity in ("moment", "rotation") and model.nodes[j].hinge is not None:
                 raise ValueError(f"{quantity} at the hinge at x = {point}: ambiguous")
-            nodes.append(j)
+            nodes.append(k)
         length, ei0 = model.length, model.ei0
         for w in omegas:
             omega = _cnum(w) / model.w_scale
             with mp.workdps(solver.wp(omega)):
-                basis = _KrylovBasis(model, _cnum(w) / model.w_scale)
-                system = _assemble(model, basis)
+                mesh = solver.mesh(_cnum(w) / model.w_scale)  # general segments cut
+                basis = solver.basis(mesh, _cnum(w) / model.w_scale)
+                system = _assemble(mesh, basis)
                 n = system.ncol
                 A = mpmath.matrix(n, n)
                 for r, row in enumerate(system.rows):
@@ -2150,7 +2594,7 @@ def frf(scene, input, output, omegas, dps: int = 30) -> list:
                     row, factor = system.mass_eqs[point]
                     b[row] = factor * length**3 / ei0
                 else:
-                    j = nodes[0]
+                    j = mesh.point_nodes[nodes[0]]
                     eqs = system.shear if quantity == "force" else system.moment
                     if j in eqs:
                         row, factor = eqs[j]
@@ -2162,8 +2606,8 @@ def frf(scene, input, output, omegas, dps: int = 30) -> list:
                     col = [c for cols in system.mass_cols for c in cols][point]
                     value = x[col]
                 else:
-                    j = nodes[1]
-                    nseg = len(model.seg)
+                    j = mesh.point_nodes[nodes[1]]
+                    nseg = len(mesh.seg)
                     side = (j, False) if j < nseg else (nseg - 1, True)
                     order = 0 if quantity == "displacement" else 1
                     row = basis.row(side, order, system.cols)

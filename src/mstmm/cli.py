@@ -333,6 +333,12 @@ def _solve(args) -> int:
     sol = solve(
         scene, modes=args.modes, band=band, formulation=args.formulation, shapes=args.shapes
     )
+    if sol.buckling is not None and sol.buckling.buckled:
+        if args.format == "json":
+            print(output.dumps(sol.to_dict())[0])
+        else:
+            print(f"{scene.name}: {sol.buckling.message()}")
+        return EXIT_UNTRUSTED
     if band is not None and not sol.omega.size:
         raise NoRoots(
             f"no natural frequency in the band [{band[0]:.6g}, {band[1]:.6g}] rad/s"

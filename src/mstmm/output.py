@@ -238,6 +238,8 @@ def frequencies_table(sol: Solution) -> str:
         f"time: load {t['load']:.3f} s, {machine}, "
         f"scan+refine {t['scan_refine'] * 1e3:.2f} ms, count checked: {sol.count_checked}"
     )
+    if getattr(sol, "buckling", None) is not None:
+        lines.append(sol.buckling.message())
     return "\n".join(lines) + "\n"
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
 from .scan import TRUST, find_roots
@@ -40,6 +41,9 @@ class Solution:
     #: True when the lowest ``modes`` end inside a multiple root: its multiplicity
     #: (the true one, in :attr:`multiplicity`) exceeds the copies in :attr:`omega`.
     truncated: bool = False
+    #: A scene with a segment in compression: its stability and buckling load factor
+    #: (:mod:`mstmm.buckling`); when buckled, ``omega`` is empty. None: no compression.
+    buckling: Buckling | None = None
 
     @property
     def hz(self) -> np.ndarray:
@@ -69,6 +73,12 @@ class Solution:
             "kernel_mode": self.kernel_mode,
             "timings": {k: float(v) for k, v in self.timings.items()},
         }
+        if self.buckling is not None:
+            out["buckling"] = {
+                "buckled": self.buckling.buckled,
+                "load_factor": float(self.buckling.load_factor),
+                "unstable_modes": self.buckling.unstable_modes,
+            }
         if shapes and self.shapes is not None:
             out["mode_shapes"] = [
                 {
@@ -117,6 +127,23 @@ def solve_undamped(
         timings["derive"] = kernel.derive_seconds
     # a small first solve of the stable formulation runs the kernel as Python
     # (mstmm.interpret); otherwise compile, or load from numba's cache, before timing
+    stability = buckling(kernel, p)
+    if stability is not None and stability.buckled:  # no root: a certified "buckled"
+        timings["compile"] = timings["scan_refine"] = 0.0
+        empty = np.zeros(0)
+        return Solution(
+            scene,
+            empty,
+            empty.astype(int),
+            empty.astype(bool),
+            formulation,
+            kernel.origin,
+            timings,
+            False,
+            [] if shapes else None,
+            [stability.message()],
+            buckling=stability,
+        )
     interpreted = modes is not None and formulation == "stable" and kernel.interprets(p, modes)
     if not interpreted:
         kernel.warm_up(p, formulation)
@@ -162,4 +189,5 @@ def solve_undamped(
         warnings,
         "interpreted" if interpreted else "compiled",
         truncated,
+        stability,
     )

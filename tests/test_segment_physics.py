@@ -1,0 +1,270 @@
+"""Segments beyond Euler-Bernoulli (issue 22) against closed forms, through the default
+path (mode shapes on, the command line).
+
+Sources of the closed forms:
+
+* simply supported beam, every term at once: the mode ``w = W sin(k x)``, ``psi = Psi cos(k
+  x)``, ``k = n pi / L`` solves the Euler-Lagrange equations of the energies
+  ``EI psi'^2 + kGA (w' - psi)^2 + (P + k_G) w'^2 + k_w w^2`` and ``mbar w^2 + rhoI
+  psi^2`` exactly when ``det [[kGA k^2 + t k^2 + k_w - mbar w^2, -kGA k], [-kGA k, EI k^2 +
+  kGA - rhoI w^2]] = 0`` (t = P + k_G; Timoshenko 1921, Traill-Nash and Collar 1953 for
+  both spectra), plus ``w^2 = kGA / rhoI`` (n = 0: ``w = 0``, ``psi`` constant, the
+  thickness-shear mode of the second spectrum); without shear deformation ``w^2 = (EI k^4
+  + t k^2 + k_w) / (mbar + rhoI k^2)`` (the axial-force case is the issue's
+  ``omega_n^2 = ((n pi/L)^4 EI + P (n pi/L)^2) / mbar``);
+* a free beam on a uniform Winkler foundation: ``w^2 = w_EB^2 + k_w / mbar`` for every
+  free-free Euler-Bernoulli mode, its two rigid modes at ``sqrt(k_w / mbar)``;
+* Euler buckling: pinned-pinned at ``P = -pi^2 EI / L^2``, clamped-free at
+  ``-pi^2 EI / (4 L^2)``;
+* a loss factor on every stiffness with no axial force scales K by ``1 + i eta``:
+  every damped root is ``w_0 sqrt(1 + i eta)``;
+* the receptance of the simply supported beam as the sum over its exact modes.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import mstmm
+from mstmm.scene import SceneError, scene_from_dict
+
+L, EI, MBAR = 2.0, 3.0, 1.5
+
+
+def _scene(extra: dict, left: str = "pinned", right: str = "pinned", attachments=()):
+    beam = dict(length=L, EI=EI, mass_per_length=MBAR, left=left, right=right, **extra)
+    return scene_from_dict({"name": "seg", "beam": beam, "attachments": list(attachments)})
+
+
+def _terms(extra: dict) -> dict:
+    return dict(
+        kGA=extra.get("kappa_GA", 0.0),
+        rhoI=extra.get("rho_I", 0.0),
+        t=extra.get("axial_force", 0.0) + extra.get("foundation_kG", 0.0),
+        kw=extra.get("foundation_k", 0.0),
+    )
+
+
+def _pinned_modes(kGA, rhoI, t, kw, n_max=400):
+    """(omega^2, n, Psi / W) of every simply supported mode with n <= n_max (n = 0: the
+    thickness-shear mode, W = 0)."""
+    out = []
+    if kGA > 0.0 and rhoI > 0.0:
+        out.append((kGA / rhoI, 0, math.inf))
+    for n in range(1, n_max + 1):
+        k = n * math.pi / L
+        if kGA == 0.0:  # psi = w'
+            out.append(((EI * k**4 + t * k**2 + kw) / (MBAR + rhoI * k**2), n, k))
+            continue
+        X = kGA * k**2 + t * k**2 + kw
+        Y = EI * k**2 + kGA
+        a, b, c = MBAR * rhoI, -(MBAR * Y + rhoI * X), X * Y - kGA**2 * k**2
+        roots = [-c / b] if a == 0.0 else np.roots([a, b, c]).real.tolist()
+        for w2 in roots:
+            out.append((w2, n, (X - MBAR * w2) / (kGA * k)))  # row 1: Psi / W
+    return sorted(out)
+
+
+CASES = {
+    "tension": dict(axial_force=5.0),
+    "compression": dict(axial_force=-5.0),
+    "winkler": dict(foundation_k=40.0),
+    "pasternak": dict(foundation_kG=7.0),
+    "rayleigh": dict(rho_I=0.05),
+    "shear": dict(kappa_GA=30.0),
+    "timoshenko": dict(kappa_GA=30.0, rho_I=0.02),
+    "everything": dict(
+        kappa_GA=300.0, rho_I=0.01, axial_force=-3.0, foundation_k=20.0, foundation_kG=2.0
+    ),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_simply_supported_closed_form(name):
+    extra = CASES[name]
+    sol = mstmm.solve(_scene(extra), modes=16)
+    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:16])
+    assert sol.count_checked and sol.converged.all()
+    assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
+    # the paper's formulation, exp(A l) of each segment in its determinant: the same roots,
+    # losing digits with lam L as the paper's U_bar does for Euler-Bernoulli (2.5e-7 at
+    # the 8th mode of this beam without any term)
+    paper = mstmm.solve(_scene(extra), modes=4, formulation="paper", shapes=False)
+    assert np.max(np.abs(paper.omega - exact[:4]) / exact[:4]) < 1e-9
+
+
+def test_timoshenko_second_spectrum_far_above_the_cut_off():
+    """100 modes of a thick beam: the cut-off sqrt(kGA / rhoI) lies near mode 10, and both
+    spectra interleave above it."""
+    extra = dict(kappa_GA=30.0, rho_I=0.02)
+    sol = mstmm.solve(_scene(extra), modes=100, shapes=False)
+    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:100])
+    assert exact[-1] > 5 * math.sqrt(30.0 / 0.02)
+    assert sol.count_checked
+    assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
+
+
+def test_stepped_beam_with_the_same_terms_in_two_segments_is_the_uniform_beam():
+    extra = CASES["everything"]
+    seg = dict(EI=EI, mass_per_length=MBAR, **extra)
+    stepped = scene_from_dict(
+        {
+            "name": "s",
+            "beam": {
+                "left": "pinned",
+                "right": "pinned",
+                "segments": [dict(length=0.7, **seg), dict(length=L - 0.7, **seg)],
+            },
+            "attachments": [],
+        }
+    )
+    sol = mstmm.solve(stepped, modes=10)
+    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:10])
+    assert sol.count_checked
+    assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
+
+
+def test_mode_shapes_and_modal_mass_with_rotary_inertia():
+    """Y ~ sin(k x), theta = psi ~ (Psi/W) cos(k x), and the modal mass int mbar Y^2 +
+    rhoI psi^2 = (L/2)(mbar W^2 + rhoI Psi^2) at max |Y| = 1."""
+    extra = dict(kappa_GA=30.0, rho_I=0.02, foundation_k=10.0)
+    sol = mstmm.solve(_scene(extra), modes=8)
+    modes = _pinned_modes(**_terms(extra))[:8]
+    for shape, (w2, n, ratio) in zip(sol.shapes, modes):
+        assert shape.omega == pytest.approx(math.sqrt(w2), rel=1e-12)
+        if n == 0:  # the thickness-shear mode: no displacement, psi constant
+            assert np.max(np.abs(shape.theta - shape.theta[0])) < 1e-9 * abs(shape.theta[0])
+            continue
+        k = n * math.pi / L
+        sin, cos = np.sin(k * shape.x), np.cos(k * shape.x)
+        j = int(np.argmax(np.abs(sin)))
+        c = shape.Y[j] / sin[j]
+        assert abs(abs(c) * np.max(np.abs(sin)) - 1.0) < 1e-12
+        assert np.max(np.abs(shape.Y - c * sin)) < 1e-9
+        assert np.max(np.abs(shape.theta - c * ratio * cos)) < 1e-9 * max(1.0, abs(ratio))
+        modal = c**2 * (L / 2) * (MBAR + extra["rho_I"] * ratio**2)
+        assert shape.modal_mass == pytest.approx(modal, rel=1e-9)
+
+
+def test_free_beam_on_a_winkler_foundation_has_no_rigid_modes():
+    from scipy.optimize import brentq
+
+    kw = 40.0
+    sol = mstmm.solve(_scene(dict(foundation_k=kw), "free", "free"), modes=8)
+    x = [
+        brentq(lambda b: math.cos(b) * math.cosh(b) - 1.0, (n + 0.2) * math.pi, (n + 0.8) * math.pi)
+        for n in range(1, 7)
+    ]
+    exact = np.sqrt([kw / MBAR] * 2 + [(b / L) ** 4 * EI / MBAR + kw / MBAR for b in x])
+    assert sol.count_checked
+    assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
+    assert mstmm.kernel_for(sol.scene).rigid_body_modes(mstmm.parameter_vector(sol.scene)) == 0
+
+
+def test_tension_takes_the_rigid_rotation_of_a_free_beam():
+    sol = mstmm.solve(_scene(dict(axial_force=5.0), "free", "free"), modes=3)
+    assert sol.count_checked
+    assert sol.omega[0] == 0.0 and sol.omega[1] > 0.0
+
+
+@pytest.mark.parametrize(
+    "left, right, euler",
+    [
+        ("pinned", "pinned", math.pi**2 * EI / L**2),
+        ("clamped", "free", math.pi**2 * EI / (4 * L**2)),
+    ],
+)
+def test_buckling_load_factor(left, right, euler):
+    below = mstmm.solve(_scene(dict(axial_force=-0.9 * euler), left, right), modes=3)
+    assert below.buckling is not None and not below.buckling.buckled
+    assert below.buckling.load_factor == pytest.approx(1 / 0.9, rel=1e-11)
+    assert below.count_checked and below.omega[0] > 0.0
+    if left == "pinned":
+        k = math.pi / L
+        assert below.omega[0] == pytest.approx(
+            math.sqrt((EI * k**4 - 0.9 * euler * k**2) / MBAR), rel=1e-12
+        )
+    above = mstmm.solve(_scene(dict(axial_force=-1.1 * euler), left, right), modes=3)
+    assert above.buckling.buckled and above.omega.size == 0 and not above.count_checked
+    assert above.buckling.load_factor == pytest.approx(1 / 1.1, rel=1e-11)
+    assert "buckled" in above.warnings[0]
+
+
+def test_a_free_beam_buckles_under_any_compression():
+    sol = mstmm.solve(_scene(dict(axial_force=-1.0), "free", "free"), modes=3)
+    assert sol.buckling.buckled and sol.buckling.load_factor == 0.0
+
+
+def test_the_command_line_says_buckled(tmp_path):
+    path = tmp_path / "column.toml"
+    path.write_text(
+        '[beam]\nleft = "pinned"\nright = "pinned"\nlength = 2.0\nEI = 3.0\n'
+        f"mass_per_length = 1.5\naxial_force = {-1.1 * math.pi**2 * EI / L**2!r}\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-m", "mstmm", "solve", str(path)], capture_output=True, text=True
+    )
+    assert run.returncode == 3
+    assert "buckled" in run.stdout and "0.909090909" in run.stdout
+    run = subprocess.run(
+        [sys.executable, "-m", "mstmm", "solve", str(path), "--format", "json"],
+        capture_output=True,
+        text=True,
+    )
+    data = json.loads(run.stdout)
+    assert data["buckling"]["buckled"] is True
+    assert data["buckling"]["load_factor"] == pytest.approx(1 / 1.1, rel=1e-11)
+
+
+def test_hysteretic_loss_factor_on_every_stiffness():
+    extra = dict(kappa_GA=30.0, rho_I=0.02, foundation_k=10.0, foundation_kG=2.0)
+    eta = 0.05
+    undamped = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:6])
+    sol = mstmm.solve(_scene(dict(extra, loss_factor=eta)), modes=6)
+    exact = undamped * np.sqrt(1 + 1j * eta)
+    assert sol.count_checked
+    assert np.max(np.abs(sol.omega - exact) / np.abs(exact)) < 1e-10
+
+
+def test_receptance_is_the_sum_over_the_exact_modes():
+    extra = dict(kappa_GA=30.0, rho_I=0.02, axial_force=2.0, foundation_k=10.0)
+    x0, x1 = 0.37 * L, 0.81 * L
+    w = np.array([2.0, 11.0, 30.0])
+    got = mstmm.frf(_scene(extra), f"force:x={x0!r}", f"displacement:x={x1!r}", w)
+    H = _modal_sum(extra, x0, x1, w)
+    assert np.max(np.abs(got - H) / np.abs(H)) < 1e-9
+
+
+def _modal_sum(extra, x0, x1, w, n_max=20000):
+    t = _terms(extra)
+    kGA, rhoI, tt, kw = t["kGA"], t["rhoI"], t["t"], t["kw"]
+    n = np.arange(1, n_max + 1)
+    k = n * math.pi / L
+    X = kGA * k**2 + tt * k**2 + kw
+    Yv = EI * k**2 + kGA
+    a, b, c = MBAR * rhoI, -(MBAR * Yv + rhoI * X), X * Yv - kGA**2 * k**2
+    disc = np.sqrt(b * b - 4 * a * c)
+    H = np.zeros(w.size, dtype=complex)
+    for w2 in ((-b - disc) / (2 * a), 2 * c / (-b - disc)):
+        ratio = (X - MBAR * w2) / (kGA * k)
+        modal = (L / 2) * (MBAR + rhoI * ratio**2)
+        phi = np.sin(k * x0) * np.sin(k * x1) / modal
+        H += (phi[None, :] / (w2[None, :] - w[:, None] ** 2)).sum(axis=1)
+    return H
+
+
+def test_bad_segment_values_are_one_line_errors():
+    with pytest.raises(SceneError, match="beam.kappa_GA"):
+        _scene(dict(kappa_GA=-1.0))
+    with pytest.raises(SceneError, match="beam.foundation_k"):
+        _scene(dict(foundation_k=-1.0))
+    with pytest.raises(SceneError, match="shear"):
+        _scene(dict(kappa_GA=10.0, axial_force=-10.0))
+    with pytest.raises(SceneError, match="beam.axial_force"):
+        _scene(dict(axial_force="a lot"))
