@@ -110,7 +110,8 @@ Solvers (``solver=``):
 
 ``"dense"``
     all eigenvalues of the symmetric ``U (K - sigma M)^{-1} U^T``
-    (``M = U^T U``) by LAPACK (``scipy.linalg.eigh``); ``O(n**3)``.
+    (``M = U^T U``, ``U`` the banded Cholesky factor) by LAPACK
+    (``scipy.linalg.eigh``); ``O(n**3)``.
 ``"sparse"``
     ARPACK shift-invert Lanczos (``scipy.sparse.linalg.eigsh``) on the same
     operator; ``O(n)`` per mode.
@@ -125,8 +126,9 @@ with c > 0 or a loss factor > 0): a dashpot ``c`` parallel to a spring-mass's sp
 (``c``) or to each spring of a chain (``c``, a list) joins the same DOFs in a damping
 matrix ``C``; a grounded ``dashpot`` (``x``, ``c``) acts on its node's ``Y``; a segment's
 ``loss_factor`` eta multiplies the stiffness of its elements by ``1 + i eta``
-(``K* = G^T diag(1 + i eta) G``).  With ``s = i w`` (time dependence ``exp(i w t)``) the
-roots solve ``(K* + s C + s^2 M) v = 0``: :func:`damped_spectrum` takes every eigenvalue of
+(``K* = G^T diag(sign + i eta) G``, eta 0 on the rows of the axial force).  With
+``s = i w`` (time dependence ``exp(i w t)``) the roots solve ``(K* + s C + s^2 M) v = 0``:
+:func:`damped_spectrum` takes every eigenvalue of
 the shift-inverted state-space form (dense ``scipy.linalg.eigvals``), reports
 ``w = -i s = w_d + i sigma`` with ``w_d >= 0`` in the order of the reference model
 (rigid-body zeros, overdamped roots by sigma, then by w_d); their error is ``O(h**4)``
@@ -135,12 +137,14 @@ too (error ratio 16.0 between meshes n and 2 n, 64 after :func:`damped_richardso
 
 ``scene`` is duck-typed: an object with ``.beam.length``, ``.beam.EI``,
 ``.beam.mass_per_length`` (or ``.beam.segments``, each with ``.length``,
-``.EI``, ``.mass_per_length``), ``.beam.left``, ``.beam.right`` and
+``.EI``, ``.mass_per_length``; optional, default 0: ``.loss_factor``, ``.kappa_GA``,
+``.rho_I``, ``.axial_force``, ``.foundation_k``, ``.foundation_kG``, on the beam for a
+uniform one, else on each segment), ``.beam.left``, ``.beam.right`` and
 ``.attachments`` (each with ``.kind``, default ``spring_mass``, ``.x`` and the
 kind's values), e.g. ``mstmm.Scene``, or a mapping in the TOML layout::
 
     {"beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0,
-              "left": "clamped", "right": "free"},
+              "left": "clamped", "right": "free", "kappa_GA": 50.0, "rho_I": 0.01},
      "attachments": [{"type": "spring_mass", "x": 0.5, "k": 1.0, "m": 1.0}]}
 """
 
@@ -969,7 +973,8 @@ def frequencies(scene: Any, n_modes: int, n_elements: int, solver: str = "dense"
     ``solver`` is ``"dense"`` (LAPACK on the shift-inverted problem),
     ``"sparse"`` (ARPACK shift-invert), ``"svd"`` or ``"eigh"``; see the module
     docstring.  Eigenvalues within ``1e-12`` of the lowest elastic scale
-    (``EI / (mbar L^4)`` or the smallest ``k / m``) are reported as 0.
+    (``EI / (mbar L^4)`` or the smallest ``k / m``) are reported as 0.  A buckled beam
+    (an axial compression beyond the critical load): ValueError.
     """
     model = _undamped(_model(scene))
     return _solve(model, _nodes(model, n_elements), n_modes, solver)

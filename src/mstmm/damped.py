@@ -959,6 +959,9 @@ class DampedSolution:
     shapes: list | None = None
     formulation: str = "stable"
     damped: bool = True
+    #: A compressed scene's stability (:mod:`mstmm.buckling`, from its undamped twin: the
+    #: damping does not change the statics); when buckled, ``omega`` is empty.
+    buckling: object = None
 
     @property
     def w_d(self) -> np.ndarray:
@@ -1009,6 +1012,12 @@ class DampedSolution:
             "timings": dict(self.timings),
             "warnings": list(self.warnings),
         }
+        if self.buckling is not None:
+            out["buckling"] = {
+                "buckled": self.buckling.buckled,
+                "load_factor": float(self.buckling.load_factor),
+                "unstable_modes": self.buckling.unstable_modes,
+            }
         if shapes and self.shapes is not None:
             out["mode_shapes"] = [s.to_dict() for s in self.shapes]
         return out
@@ -1047,15 +1056,34 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
             w_top = band[1] * (1.0 + 1e-6)
         else:
             und = solve_undamped(twin, modes=need + 3, shapes=False, kernel=twin_kernel)
+            if und.buckling is not None and und.buckling.buckled:
+                break
             elastic = und.omega[und.omega > 0]
             w_top = 0.5 * (elastic[-2] + elastic[-1]) if elastic.size >= 2 else None
             if w_top is None:
                 w_top = 2.0 * float(und.omega.max() or 1.0)
+        if und.buckling is not None and und.buckling.buckled:
+            break
         found = damped_roots(scene, kernel, p, und.omega, w_top)
         listed = sum(r.multiplicity for r in found.roots)
         if band is not None or listed >= modes or need > 100_000:
             break
         need *= 2
+    if und.buckling is not None and und.buckling.buckled:
+        empty = np.zeros(0)
+        return DampedSolution(
+            scene,
+            empty.astype(complex),
+            empty.astype(int),
+            empty.astype(bool),
+            kernel.origin,
+            timings,
+            False,
+            (0.0, 0.0, 0.0, 0.0),
+            [und.buckling.message()],
+            shapes=[] if shapes else None,
+            buckling=und.buckling,
+        )
     roots = found.roots
     truncated = False
     if band is not None:

@@ -32,7 +32,7 @@ SOURCE = "<sweep>"
 
 #: Beam fields a stepped beam carries per segment: varying ``beam.<field>`` there would
 #: change its first segment only, so a sweep names the segment.
-PER_SEGMENT = ("EI", "mass_per_length", "loss_factor")
+PER_SEGMENT = catalog.SEGMENT_KEYS
 
 
 def _paths(scene: Scene) -> dict[str, int]:
@@ -62,8 +62,10 @@ _TWINS = {
 def columns(scene: Scene, path: str) -> tuple[int, ...]:
     """Every index in the parameter vector a value of the field ``path`` is written to.
 
-    Paths: ``beam.length|EI|mass_per_length|loss_factor`` (a uniform beam only),
-    ``beam.segments[s].EI|mass_per_length|loss_factor`` (a stepped beam),
+    Paths: ``beam.length|EI|mass_per_length|loss_factor|<physics>`` (a uniform beam
+    only), ``beam.segments[s].EI|mass_per_length|loss_factor|<physics>`` (a stepped beam;
+    the physics keys of ``catalog.SEGMENT_PHYSICS``: kappa_GA, rho_I, axial_force,
+    foundation_k, foundation_kG),
     ``attachments[i].x``, ``attachments[i].<key>`` and
     ``attachments[i].<key>[j]`` (``i`` in x order, as ``scene.attachments``). Raises
     :class:`SceneError` for a path the scene does not have, saying what it has there.
@@ -120,7 +122,8 @@ def _check_of(scene: Scene, path: str) -> str:
         return next(k.check for k in kind.KEYS if k.name == match.group(2))
     if path.endswith(".loss_factor"):
         return "nonnegative"
-    return "positive"
+    physics = {key: check for key, check, _ in catalog.SEGMENT_PHYSICS}
+    return physics.get(path.rsplit(".", 1)[-1], "positive")
 
 
 def is_damping(scene: Scene, path: str) -> bool:
@@ -226,8 +229,11 @@ def sweep(
         if kernel is None:
             kernel = load_kernel(topology)
         out, certified = _local_sweep(kernel, P, modes, progress)
-    out[~certified] = math.nan
-    unsure = int(np.count_nonzero(~certified))
+    buckled = np.zeros(len(P), dtype=bool)
+    if not topology.damped and not any(is_damping(scene, path) for path in vary):
+        buckled = _buckled_points(scene, vary, P, kernel)
+    out[~certified | buckled] = math.nan
+    unsure = int(np.count_nonzero(~certified & ~buckled))
     if unsure:
         warnings.warn(
             f"{unsure} of {len(P)} points could not be certified by the root count: set to NaN",
@@ -235,6 +241,34 @@ def sweep(
             stacklevel=2,
         )
     return out
+
+
+def _buckled_points(scene: Scene, vary: Mapping[str, np.ndarray], P: np.ndarray, kernel):
+    """The points of an undamped study whose axial forces reach the buckling load
+    (:mod:`mstmm.buckling`), with a warning that says where the structure buckles."""
+    from .buckling import buckling, compressed
+
+    rows = [i for i in range(len(P)) if compressed(P[i])]
+    buckled = np.zeros(len(P), dtype=bool)
+    if not rows:
+        return buckled
+    kernel = kernel or load_kernel(topology_of(scene))
+    factors = {}
+    for i in rows:
+        state = buckling(kernel, P[i])
+        factors[i] = state.load_factor
+        buckled[i] = state.buckled
+    if buckled.any():
+        first = int(np.argmax(buckled))
+        where = ", ".join(f"{path} = {np.asarray(v)[first]:.6g}" for path, v in vary.items())
+        warnings.warn(
+            f"{int(buckled.sum())} of {len(P)} points are buckled (their axial forces reach the"
+            f" buckling load; no natural frequencies): set to NaN; the first, at {where},"
+            f" buckles at {factors[first]:.12g} times its axial forces",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+    return buckled
 
 
 #: Seconds one chunk of a local sweep should take: Ctrl-C waits at most about this long
