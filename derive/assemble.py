@@ -23,6 +23,7 @@ from mstmm import catalog
 from . import descriptor
 from . import symbols as S
 from .segments import euler_bernoulli as beam
+from .segments import general
 
 
 @dataclass
@@ -35,6 +36,36 @@ class OverallTransfer:
     U_all: sp.Matrix
     Z_all: sp.Matrix
     components: list[tuple[str, dict]]
+
+
+def general_segments(scene) -> list[int]:
+    """Indices (from 1) of the segments with a term beyond Euler-Bernoulli
+    (``catalog.SEGMENT_PHYSICS``), whose transfer is ``exp(A l)`` of
+    ``segments.general.field``."""
+    b = scene.beam
+    segments = getattr(b, "segments", ()) or (b,)
+    keys = [key for key, _, _ in catalog.SEGMENT_PHYSICS]
+    return [s for s, seg in enumerate(segments, 1) if any(getattr(seg, k, 0.0) for k in keys)]
+
+
+def general_field(scene, s: int) -> sp.Matrix:
+    """``A`` of segment s (from 1) with a symbol for each term it has (paper symbols
+    ``EI``, ``mbar``, ``omega`` for a uniform beam, indexed by the segment otherwise)."""
+    b = scene.beam
+    segments = getattr(b, "segments", ()) or ()
+    seg = segments[s - 1] if segments else b
+    tag = f"_{s}" if segments else ""
+    names = {"kappa_GA": "kGA", "rho_I": "rhoI", "axial_force": "P"}
+    names |= {"foundation_k": "k_w", "foundation_kG": "k_G"}
+    v = {
+        "EI": sp.Symbol(f"EI{tag}", positive=True),
+        "mbar": sp.Symbol(f"mbar{tag}", positive=True),
+        "w2": S.omega**2,
+    }
+    for key, name in names.items():
+        if getattr(seg, key, 0.0):
+            v[name] = sp.Symbol(f"{name}{tag}", real=True)
+    return general.field(v)
 
 
 def _segments(scene) -> list[tuple[float, sp.Expr, sp.Expr, sp.Expr]]:
@@ -112,6 +143,7 @@ def chain(scene) -> list[tuple[str, dict]]:
     """Components along the main chain in x order: ``("beam", {l, EI, lam})`` pieces
     and ``(kind, {index, values})`` points."""
     segments = _segments(scene)
+    general_ = general_segments(scene)
     points = sorted(enumerate(scene.attachments), key=lambda t: t[1].x)
     out: list[tuple[str, dict]] = []
     pos = 0.0
@@ -128,7 +160,13 @@ def chain(scene) -> list[tuple[str, dict]]:
                 out.append(
                     (
                         "beam",
-                        {"l": S.indexed("l", piece), "EI": EI, "lam": lam, "length": target - pos},
+                        {
+                            "l": S.indexed("l", piece),
+                            "EI": EI,
+                            "lam": lam,
+                            "length": target - pos,
+                            "general": seg + 1 if seg + 1 in general_ else 0,
+                        },
                     )
                 )
                 pos = target
@@ -178,6 +216,11 @@ def overall_transfer(scene) -> OverallTransfer:
     names: list[str] = []
     d_iter = iter(descs)
     for kind, par in components:
+        if kind == "beam" and par["general"]:  # exp(A_s l), A_s printed by ``show``
+            name, l = f"E{par['general']}", par["l"]
+            U = sp.Matrix([[sp.Function(f"{name}_{i}{j}")(l) for j in "1234"] for i in "1234"])
+            W = _matmul(U, W)
+            continue
         if kind == "beam":
             W = _matmul(beam.transfer_matrix(par["lam"], par["l"], par["EI"]), W)
             continue

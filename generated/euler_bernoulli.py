@@ -20,7 +20,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "68b2e1c3c05f0e799786096d621ac960c728df49"
+DIGEST = "3ca60a1bd554e0051ffb49aeb3947357e86ea2f7"
 
 
 @njit(cache=True, inline="always")

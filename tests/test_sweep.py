@@ -29,12 +29,12 @@ def test_sweep_matches_reference_at_every_point():
 
 def wu_chou_vector(x, k, m):
     """The parameter vector of the paper's scene written out by hand (docs/components.md,
-    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar, eta), the
-    event rows (tag, x, offset) sorted by x, then each spring-mass's (k, m, c) in scene
-    order (no dashpot given: c = 0)."""
+    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar, eta,
+    kappa_GA, rho_I, P, k_w, k_G: Euler-Bernoulli, all 0), the event rows (tag, x, offset)
+    sorted by x, then each spring-mass's (k, m, c) in scene order (no dashpot given: c = 0)."""
     ei, mbar = 63476.125002707834, 15.3875
-    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar, 0.0]
-    offsets = [18.0, 21.0, 24.0]  # 5 + 4 + 3 * 3 = 18: after the event table
+    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar, 0.0] + [0.0] * 5
+    offsets = [23.0, 26.0, 29.0]  # 5 + 9 + 3 * 3 = 23: after the event table
     rows = sorted(zip(x, range(3)), key=lambda r: r[0])  # stable, by x
     events = [v for xi, i in rows for v in (0.0, xi, offsets[i])]
     return np.array(head + events + [v for i in range(3) for v in (k[i], m[i], 0.0)])

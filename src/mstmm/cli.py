@@ -672,6 +672,14 @@ def _show(args) -> int:
     for title, matrix in component_matrices():
         print(f"{title} =")
         print(render(matrix))
+    from mstmm.derive.assemble import general_field, general_segments
+
+    for s in general_segments(scene):
+        print(
+            f"segment {s} (Timoshenko, axial force, foundation: derive/segments/general.py):"
+            f" Z' = A Z, its transfer E{s}(l) = exp(A l) in place of U_B(l), A ="
+        )
+        print(render(general_field(scene, s)))
     der = symbolic(scene, evaluate=False)  # sizes and zero pattern only: fast for any n
     print("chain (x = 0 to L):")
     print(textwrap.fill(" -> ".join(der.chain()), 100, subsequent_indent="  "))
