@@ -70,20 +70,24 @@ every term integrated exactly.  No shear locking: the space holds ``psi = w'`` w
 ``kappa_GA -> infinity``.  The cleaner-looking interdependent interpolation element
 (Reddy 1997: 4 DOFs, the exact static shape functions, shear strain constant on an
 element) was measured (a scratch implementation, pinned-pinned, consistent mass) to
-converge only as ``h**2`` in frequency (error ratio 4.0 between meshes n and 2 n for
-kGA L^2 / EI = 10 to 1e4): the piecewise constant shear strain cannot approximate a
-varying shear force better than O(h).  A segment's ``loss_factor`` eta multiplies its
-``EI``, ``kGA``, ``k_w``, ``k_G`` terms by ``1 + i eta`` but not the axial force (a
-load).
+converge only as ``h**2`` in frequency (error ratio between meshes n and 2 n of 8 to 64
+elements: 4.00 - 4.06 for kGA L^2 / EI = 10 and 100; 8.7 falling to 4.5 for 1e4, where
+the h**2 term is small but wins on fine meshes): the piecewise constant shear strain
+cannot approximate a varying shear force better than O(h).  A segment's
+``loss_factor`` eta multiplies its ``EI``, ``kGA``, ``k_w``, ``k_G`` terms by
+``1 + i eta`` but not the axial force (a load).
 
 Measured convergence (pinned-pinned L = 2, EI = 3, mbar = 1.5, the six lowest
 frequencies, tests/test_fem_general.py): the error ratio between meshes 16 and 32 and
-between 32 and 64 elements is 15.4 - 16.1 for the Euler-Bernoulli element with a
-tension, a compression, a Winkler or Pasternak foundation or rotary inertia, and 15.8 -
-16.0 for the Timoshenko element with and without ``rho_I`` and with every term at once
-(the thickness-shear mode ``w = 0``, ``psi`` constant, is exact on any mesh): ``O(h**4)``
-for both, ``O(h**6)`` after :func:`richardson` (ratio 57 - 68), which reaches the closed
-forms within 1e-9 at 64 elements (measured <= 9.3e-10).
+between 32 and 64 elements is 15.36 - 16.05 for the Euler-Bernoulli element with a
+tension, a compression, a Winkler or Pasternak foundation or rotary inertia, and 15.77 -
+16.03 for the Timoshenko element (kGA L^2 / EI = 80) with and without ``rho_I`` and with
+every term at once (the thickness-shear mode ``w = 0``, ``psi`` constant, is exact on any
+mesh): ``O(h**4)`` for both, ``O(h**6)`` after :func:`richardson` (error ratio 39 - 68
+between 16 and 32 elements, ~64 asymptotically), which reaches the closed forms within
+1e-9 at 64 elements (measured <= 9.3e-10 over the six modes; stepped beams mixing both
+elements and the terms: the same rates, tests/test_fem_general.py).  A Timoshenko
+element has about 2.5 times the DOFs of a Hermite one (5 per element against 2).
 
 Compression.  ``K = G^T diag(sign) G``: the rows ``sqrt(|P|) w'`` of a compression
 ``P < 0`` carry ``sign = -1`` (all other rows +1), so ``K`` is indefinite once the beam
@@ -91,12 +95,13 @@ buckles.  The solvers keep the shift ``sigma = -scale``: not buckled, every eige
 >= 0 > sigma and ``K - sigma M`` is positive definite (banded Cholesky, the residual of
 the refinement through ``G^T (sign G y)``).  Buckled: either the Cholesky factorization
 of ``K - sigma M`` fails (an eigenvalue below sigma) or an eigenvalue in ``(sigma, 0)``
-comes out; both raise ValueError ("... buckled ...") from every function (and
-:func:`count_below` first checks the lowest eigenvalue, with a compression).  A
+comes out; both raise ValueError ("... buckled ...") from every function but
+:func:`assemble` and :func:`damped_assemble` (:func:`count_below` and :func:`frf` first
+compute the lowest eigenvalue when there is a compression).  A
 Timoshenko segment with ``kappa_GA + P + k_G <= 0`` buckles in shear (on any mesh fine
 enough).  Round-off: the Timoshenko element's shear rows scale with ``kGA``; the
-smallest relative error reached (``solver="sparse"``, 4096 elements) is ~1e-13 for
-``kGA L^2 / EI = 1e5`` and ~1e-10 for 1e7 (an almost Euler-Bernoulli beam: give
+smallest relative error reached (``solver="sparse"``, 4096 elements) is 3e-13 for
+``kGA L^2 / EI = 1e5`` and 8e-11 for 1e7 (an almost Euler-Bernoulli beam: give
 ``kappa_GA = 0`` there).
 
 Singular mass.  A Timoshenko element with ``rho_I = 0`` gives ``psi`` and ``b`` no
@@ -516,9 +521,10 @@ def _hermite(xi: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _element_rows(h: np.ndarray, timoshenko: bool) -> dict[str, np.ndarray]:
-    """Rows ``r`` (elements, points, DOFs) with ``integral f v^2 dx = sum_g |sqrt(f W_g h) r_g
-    v|^2`` for each field ``v``: ``w`` (4 Gauss points), ``dw`` (``w'``), ``psi`` (the section
-    rotation) and ``shear`` (``w' - psi``), 3 points each, times ``sqrt(W_g h)``.
+    """For each field ``v``, the rows ``r`` (elements, Gauss points, element DOFs) giving
+    ``sqrt(W_g h) v(xi_g)`` from the element's DOFs ``d``, so that ``integral f v^2 dx =
+    f |r d|^2`` exactly for a constant ``f``: ``w`` (4 points), ``dw`` (``w'``), ``psi``
+    (the section rotation) and, on a Timoshenko element, ``shear`` (``w' - psi``), 3 points.
 
     Euler-Bernoulli element: DOFs ``Y_i, theta_i, Y_j, theta_j``, ``w`` cubic Hermite,
     ``psi = w'``.  Timoshenko element: DOFs ``Y_i, psi_i, Y_j, psi_j, s_i, s_j, b``: ``w``
@@ -533,7 +539,7 @@ def _element_rows(h: np.ndarray, timoshenko: bool) -> dict[str, np.ndarray]:
     r4 = np.sqrt(w4[None, :, None] * h[:, None, None])
     r3 = np.sqrt(w3[None, :, None] * h[:, None, None])
     if not timoshenko:
-        return {"w": r4 * N4, "dw": r3 * dN3, "psi": r3 * dN3, "shear": 0 * dN3}
+        return {"w": r4 * N4, "dw": r3 * dN3, "psi": r3 * dN3}
     ne = h.size
     order = [0, 4, 2, 5]  # Hermite DOFs Y_i, s_i, Y_j, s_j in the element's 7
     w, dw = np.zeros((ne, 4, 7)), np.zeros((ne, 3, 7))
@@ -1235,6 +1241,8 @@ def frf(scene: Any, input: tuple, output: tuple, omegas, n_elements: int) -> np.
                 raise ValueError(f"{quantity} position {x} outside [0, L]")
     nodes = _nodes(model, n_elements, tuple(extra))
     system = _system(model, nodes, scale=model.length / (nodes.size - 1))
+    if model.compressed:
+        _omega(_eigenvalues(system, 1, "sparse", model), model)  # ValueError if buckled
     dofs, factors = [], []
     points = iter(extra)
     for quantity, where, at in specs:

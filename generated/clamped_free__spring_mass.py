@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "120c3cb3b37bad20d4c26e23e49faeb909eb2793"
+SIGNATURE = "1cf30f1e10dad07f5348cf48552362f2493c1589"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +42,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "f84073fdbc821ae21f66bd59cdb3ce55b6c5d2f9"
+NUMERICS = "ce98ddd7c481f4f2d97f095bc0bd373d8b5a4ea9"
 
 
 @njit(cache=True)
@@ -194,6 +194,11 @@ def delta_stable(omega, p):
     pos = 0.0
     seg = 0
     general = any_general(p)
+    F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
+    ready = -1
+    U = np.empty((4, 4))  # work space of its steps
+    E = np.empty((6, 6))
+    w = np.empty(6)
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
@@ -211,8 +216,9 @@ def delta_stable(omega, p):
                 after = seg + 1
             rho = (target - pos) / L
             if rho > 0.0:
-                if general and is_general(p, seg):  # exp(A2 h) of its field matrix
-                    log += segment_compound(v, p, seg, b4, 1.0, rho)
+                if general and is_general(p, seg):  # exp(A h) of its field matrix
+                    step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
+                    log += step
                 elif n_seg == 1:
                     log += beam_compound_step(v, beta, rho)
                 else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
@@ -282,6 +288,8 @@ def count_below(omega, p):
     S = np.zeros((2, 2))
     U = np.zeros((4, 4))
     Zc = np.zeros(6)
+    F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
+    ready = -1
     Zc[0] = 1.0  # the free end: Y and theta admitted
     for d in LEFT_KNOWN:
         if d == 0:
@@ -309,7 +317,8 @@ def count_below(omega, p):
                 after = seg + 1
             rho = (target - pos) / L
             if rho > MERGE_LENGTH and is_general(p, seg):
-                count += field_count(Zc, p, seg, b4, rho)  # pieces of J0 = 0
+                n_field, ready = field_count(Zc, p, seg, b4, rho, F, ready)  # pieces of J0 = 0
+                count += n_field
                 pos = target
             elif rho > MERGE_LENGTH:
                 # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's

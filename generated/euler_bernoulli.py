@@ -20,7 +20,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "3ca60a1bd554e0051ffb49aeb3947357e86ea2f7"
+DIGEST = "ef936a039c9abfb5179cd1394531942d71817b43"
 
 
 @njit(cache=True, inline="always")

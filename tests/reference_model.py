@@ -669,6 +669,59 @@ def _field_matrix(gen: _General, e, mu, eta, b4):
     return A
 
 
+def _expm(A, h) -> list:
+    """``exp(A h)`` of a 4x4 matrix (nested lists) at the current precision: the Taylor series
+    reduced by Cayley-Hamilton, ``A^n = a0 I + a1 A + a2 A^2 + a3 A^3`` with the coefficients'
+    recurrence from the characteristic polynomial (Newton's identities on the traces of the
+    powers), summed with 10 guard digits until the terms are below 2^-prec of the sum.  Used
+    with ``|lambda| h <= _PIECE_REACH`` (terms up to ~e^3 of the result: no real loss); checked
+    against ``mpmath.expm`` in the tests."""
+    with mp.workdps(mp.dps + 10):
+        n = 4
+        a = [[A[i, j] * h for j in range(n)] for i in range(n)]
+
+        def mul(x, y):
+            return [
+                [mpmath.fsum(x[i][k] * y[k][j] for k in range(n)) for j in range(n)]
+                for i in range(n)
+            ]
+
+        a2 = mul(a, a)
+        a3 = mul(a2, a)
+        powers = [None, a, a2, a3]
+        s1 = mpmath.fsum(a[i][i] for i in range(n))
+        s2 = mpmath.fsum(a2[i][i] for i in range(n))
+        s3 = mpmath.fsum(a3[i][i] for i in range(n))
+        s4 = mpmath.fsum(a2[i][k] * a2[k][i] for i in range(n) for k in range(n))
+        p1 = -s1
+        p2 = -(s2 + p1 * s1) / 2
+        p3 = -(s3 + p1 * s2 + p2 * s1) / 3
+        p4 = -(s4 + p1 * s3 + p2 * s2 + p3 * s1) / 4
+        norms = [1.0] + [float(max(abs(v) for row in x for v in row)) for x in powers[1:]]
+        coef = [mpf(1), mpf(0), mpf(0), mpf(0)]  # of A^n (n = 0)
+        total = list(coef)
+        eps = 2.0 ** (-mp.prec)
+        factor, small, k = mpf(1), 0, 0
+        while small < 4:
+            k += 1
+            c0, c1, c2, c3 = coef
+            coef = [-p4 * c3, c0 - p3 * c3, c1 - p2 * c3, c2 - p1 * c3]
+            factor /= k
+            for i in range(n):
+                total[i] += factor * coef[i]
+            size = float(factor) * sum(float(abs(c)) * m for c, m in zip(coef, norms, strict=True))
+            scale = sum(float(abs(c)) * m for c, m in zip(total, norms, strict=True))
+            small = small + 1 if size <= eps * scale else 0
+            if k > 100000:  # pragma: no cover - defensive
+                raise RuntimeError("exp(A h) series does not converge")
+        out = [[total[0] * (i == j) for j in range(n)] for i in range(n)]
+        for p in range(1, n):
+            for i in range(n):
+                for j in range(n):
+                    out[i][j] += total[p] * powers[p][i][j]
+    return [[+v for v in row] for row in out]
+
+
 def _wavenumber_bound(gen: _General, e, mu, eta, b4) -> float:
     """Upper bound of |lambda| over the eigenvalues of A: det(lambda - A) is a quadratic in
     lambda^2, z^2 + B z + C (B, C below, by SymPy), and |z| <= |B| + sqrt |C|."""
@@ -778,10 +831,10 @@ def _general_stiffness_matrix(gen: _General, e, mu, b4, h) -> list:
     DOFs (y0, psi0, y1, psi1), the nodal forces e (q0, -m0, -q1, m1) (the boundary terms
     [e m dpsi - e q dy] of the energy), from T = exp(A h): with d = (y, psi), f = (m, q),
     d1 = T11 d0 + T12 f0, f1 = T21 d0 + T22 f0."""
-    T = mpmath.expm(_field_matrix(gen, e, mu, 0, b4) * h)
+    T = _expm(_field_matrix(gen, e, mu, 0, b4), h)
 
     def block(r, c):
-        return [[T[r + i, c + j] for j in range(2)] for i in range(2)]
+        return [[T[r + i][c + j] for j in range(2)] for i in range(2)]
 
     def mul(a, b):
         return [[a[i][0] * b[0][j] + a[i][1] * b[1][j] for j in range(2)] for i in range(2)]
@@ -856,8 +909,7 @@ class _GeneralRows:
             self.e[s] = model.seg_e[s]
             key = (gen, model.seg_e[s], model.seg_mu[s], model.seg_eta[s], model.seg[s])
             if key not in cache:
-                A = _field_matrix(gen, *key[1:4], b4)
-                cache[key] = mpmath.expm(A * model.seg[s])
+                cache[key] = _expm(_field_matrix(gen, *key[1:4], b4), model.seg[s])
             self.T[s] = cache[key]
 
     def row(self, side, order: int, cols: list) -> dict:
@@ -868,7 +920,7 @@ class _GeneralRows:
         base = cols[seg]
         if not at_end:
             return {base + order: mpf(1)}
-        return {base + i: T[order, i] for i in range(4) if T[order, i] != 0}
+        return {base + i: v for i, v in enumerate(T[order]) if v != 0}
 
     def stiffness(self, k, c):
         return self.base.stiffness(k, c)
@@ -1819,8 +1871,7 @@ def eigenspace(scene, w, m: int, xs, dps: int = 40):
             gen = model.seg_gen[j]
             if gen is not None:  # y(s) = row 0 of exp(A s) times the state at the piece's start
                 A = _field_matrix(gen, model.seg_e[j], model.seg_mu[j], 0, beta**4)
-                E = mpmath.expm(A * sloc)
-                funcs = tuple(E[0, i] for i in range(4))
+                funcs = tuple(_expm(A, sloc)[0])
             else:
                 funcs = (
                     mpmath.cos(b * sloc),

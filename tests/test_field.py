@@ -119,6 +119,52 @@ def test_complex_field_is_the_same_code():
     assert _rel(_expm(A, h), want) < 1e-13
 
 
+def _field_exp(A, h):
+    """``segment.field_exp`` (the Cayley-Hamilton series the walks use) of A over h."""
+    from mstmm.numerics import segment
+
+    F = np.zeros((4, 4, 4), dtype=A.dtype)
+    F[0] = A
+    F[1] = A @ A
+    F[2] = F[1] @ A
+    a = -0.5 * np.trace(F[1])
+    b = np.linalg.det(A)
+    F[3, 0, :3] = a, b, max(math.sqrt(abs(a) + math.sqrt(abs(b))), 1.0)
+    U = np.zeros((4, 4), dtype=A.dtype)
+    segment.field_exp(F, h, U)
+    E = np.zeros((6, 6), dtype=A.dtype)
+    segment.second_compound(U, E)
+    return U, E
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize("kh", [1e-7, 0.05, 0.5, 1.0])
+def test_walk_exponential_against_mpmath(name, kh):
+    """The walks' ``exp(A h)`` (``segment.field_exp``: no eigenvalue, no squaring) and its
+    second compound against mpmath's ``expm`` and its minors, on every branch, for the
+    pieces the walks form (k h <= 1)."""
+    args = CASES[name]
+    A = general_A(*args)
+    h = kh / max(field.wavenumber(A), 1.0)
+    want = mpmath.expm(general_A(*args, mp=True) * h)
+    U, E = _field_exp(A, h)
+    assert _rel(U, want) < 1e-14
+    minors = mpmath.matrix(6, 6)
+    for a, (i, j) in enumerate(PAIRS):
+        for b, (r, s) in enumerate(PAIRS):
+            minors[a, b] = want[i, r] * want[j, s] - want[i, s] * want[j, r]
+    assert _rel(E, minors) < 1e-14
+
+
+def test_walk_exponential_complex():
+    args = CASES["everything"]
+    A = general_A(*args).astype(complex)
+    A[1, 2] = 1.0 / (args[0] * (1.0 + 0.02j))  # a loss factor on the bending stiffness
+    h = 0.9 / field.wavenumber(A)
+    want = mpmath.expm(mpmath.matrix(A.tolist()) * h)
+    assert _rel(_field_exp(A, h)[0], want) < 1e-14
+
+
 def _first_clamped_clamped(args, h) -> float:
     """The lowest omega^2 at which the piece clamped at both ends has a mode: the first
     sign change (real part) of det of exp(A h)'s block from [M, Q] to [Y, psi], bracketed

@@ -35,6 +35,10 @@ COST_PER_MODE = 2.5e-3
 COST_PER_MODE_PER_ATTACHMENT = 0.25e-3
 #: An interpreted mode shape costs about this many modes of ``lowest`` (``estimated_cost``).
 SHAPE_COST_FACTOR = 4
+#: A scene with a Timoshenko, axial-force or foundation segment costs the interpreted
+#: ``lowest`` up to this many times more (its ``exp(A h)`` per piece; measured 1.1 - 4x on
+#: the examples, 1 .. 8 attachments).
+GENERAL_SEGMENT_FACTOR = 5
 
 
 def _budget_from_env() -> float:
@@ -74,11 +78,12 @@ def estimated_cost(modes: int, attachments: int) -> float:
     return modes * (COST_PER_MODE + COST_PER_MODE_PER_ATTACHMENT * attachments)
 
 
-def worthwhile(modes: int, attachments: int) -> bool:
+def worthwhile(modes: int, attachments: int, general: bool = False) -> bool:
     """Whether ``lowest`` should run as Python: no machine code yet and it fits the budget."""
     if _Process.compiled:
         return False
-    return _Process.spent + estimated_cost(modes, attachments) <= _Process.budget
+    cost = estimated_cost(modes, attachments) * (GENERAL_SEGMENT_FACTOR if general else 1)
+    return _Process.spent + cost <= _Process.budget
 
 
 def python_copy(module: ModuleType) -> dict:

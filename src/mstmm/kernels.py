@@ -31,7 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mstmm.catalog import EVENT_WIDTH, event_rows
+from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, event_rows
 from mstmm.sign import signature
 
 from . import interpret, progress
@@ -308,7 +308,9 @@ class Kernel:
     def interprets(self, p: np.ndarray, modes: int, what: str = "stable") -> bool:
         """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`); for
         another entry point ``what``, ``modes`` is its cost in modes of ``lowest``."""
-        return what not in self.warmed and interpret.worthwhile(modes, self.attachments(p))
+        return what not in self.warmed and interpret.worthwhile(
+            modes, self.attachments(p), _general_segments(p)
+        )
 
     def _python_function(self, name: str):
         """The kernel's (or the shared numerics') function ``name`` as plain Python
@@ -551,6 +553,14 @@ def _ieee(f):
             return f(*args)
 
     return quiet
+
+
+def _general_segments(p: np.ndarray) -> bool:
+    """Whether a segment of p has a term beyond Euler-Bernoulli (its ``exp(A h)`` per piece
+    makes the interpreted search dearer: ``interpret.GENERAL_SEGMENT_FACTOR``)."""
+    n = int(p[3])
+    rows = np.asarray(p[HEAD : HEAD + SEGMENT_WIDTH * n]).reshape(n, SEGMENT_WIDTH)
+    return bool(np.any(rows[:, 4:] != 0.0))
 
 
 def _params(p) -> np.ndarray:

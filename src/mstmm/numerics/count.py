@@ -9,14 +9,11 @@ from mstmm.generated.euler_bernoulli import (
     beam_transfer_scaled,
 )
 
-from .field import (
-    additive_compound,
-    expm_short,
-)
 from .segment import (
-    balance,
     count_pieces,
-    segment_field,
+    field_exp,
+    field_prepare,
+    second_compound,
 )
 from .walk import (
     renormalise,
@@ -89,21 +86,19 @@ def pivot_negatives(U, a, b, w00, w10, w01, w11):
 
 
 @njit(cache=True)
-def field_count(Zc, p, seg, w2, rho):
+def field_count(Zc, p, seg, w2, rho, F, ready):
     """The count across rho of a general segment (``derive/segments/general.py``): in
     pieces whose J0 is proved 0 (``segment.count_pieces``), each its near node's negative
-    pivots (``pair_count`` with the piece's ``exp(A h)`` and the minors' ``exp(A2 h)``)."""
-    A = np.empty((4, 4))
-    segment_field(p, seg, w2, 1.0, A)
-    pieces = count_pieces(p, seg, A, w2, rho)
-    h = rho / pieces
-    k = balance(A)
+    pivots (``pair_count`` with the piece's ``exp(A h)`` and its second compound). F holds
+    (A, A^2, A^3) of segment ``ready`` (prepared again when seg differs). Returns (the
+    count, seg)."""
+    if ready != seg:
+        field_prepare(p, seg, w2, 1.0, F)
+    pieces = count_pieces(p, seg, F, w2, rho)
     U = np.empty((4, 4))
-    expm_short(A, h, k, U)
-    A2 = np.empty((6, 6))
-    additive_compound(A, A2)
+    field_exp(F, rho / pieces, U)
     E = np.empty((6, 6))
-    expm_short(A2, h, k, E)
+    second_compound(U, E)
     v = np.empty(6)
     n = 0
     for _ in range(pieces):
@@ -118,7 +113,7 @@ def field_count(Zc, p, seg, w2, rho):
             Zc[i] = v[i]
         renormalise(Zc)
         n += pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
-    return n
+    return n, seg
 
 
 @njit(cache=True, inline="always")

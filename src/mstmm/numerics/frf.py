@@ -7,18 +7,16 @@ import math
 import numpy as np
 from numba import njit
 
-from .field import (
-    expm_short,
-)
 from .layout import (
     HEAD,
     SEGMENT_WIDTH,
 )
 from .segment import (
-    balance,
+    field_balance,
+    field_exp,
+    field_prepare,
     is_general,
     piece_transfer_c,
-    segment_field,
 )
 from .shapes import (
     DEGENERATE,
@@ -414,7 +412,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     SS = np.zeros((4, nb + 2), dtype=np.complex128)
     xp = np.zeros(nb + 2, dtype=np.complex128)
     U = np.zeros((4, 4), dtype=np.complex128)
-    Af = np.zeros((4, 4), dtype=np.complex128)
+    Ff = np.zeros((4, 4, 4), dtype=np.complex128)
     S = np.zeros((4, 2), dtype=np.complex128)
     zz = np.zeros(4, dtype=np.complex128)
     W = np.zeros((4, 2), dtype=np.complex128)
@@ -494,10 +492,9 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     pieces = max(1, int(math.ceil(abs(bs) * rho / MARCH_STEP)))
                     general = is_general(p, seg)
                     if general:  # exp(A h) of its field matrix, stiffnesses times 1 + i eta
-                        segment_field(p, seg, w1 * w1, e / (p[i + 1] / EI), Af)
-                        kf = balance(Af)
-                        pieces = max(1, int(math.ceil(kf * rho / MARCH_STEP)))
-                        expm_short(Af, rho / pieces, kf, U)
+                        field_prepare(p, seg, w1 * w1, e / (p[i + 1] / EI), Ff)
+                        pieces = max(1, int(math.ceil(field_balance(Ff) * rho / MARCH_STEP)))
+                        field_exp(Ff, rho / pieces, U)
                     for _ in range(pieces):
                         if not general:
                             piece_transfer_c(bs, e, rho / pieces, U)

@@ -22,8 +22,10 @@ from mstmm.generated.euler_bernoulli import (
 )
 
 from .field import (
-    additive_compound,
+    PAIR_I,
+    PAIR_J,
     clamped_clamped_bound,
+    det4,
     expm_short,
     wavenumber,
 )
@@ -95,26 +97,27 @@ def segment_field(p, seg, w2, stiff, A):
     general_field(e * stiff, m, w2, kGA * stiff, rhoI, P, k_w * stiff, k_G * stiff, A)
 
 
-@njit(cache=True)
-def field_compound(v, A, rho):
+@njit(cache=True, inline="always")
+def field_compound(v, F, rho, U, E, w):
     """v <- C2(exp(A rho)) v (the stable chain's step across a piece of a general
-    segment), in equal pieces of k h <= FIELD_STEP, renormalised after each; returns the
-    log taken out. One ``exp(A2 h)`` per call (A2 the additive compound): no 2 x 2 minor of
-    the transfer matrix is formed."""
-    k = balance(A)
+    segment; F of ``field_prepare`` from ``field_prepare``), in equal pieces of k h <=
+    FIELD_STEP, renormalised after each; returns the log taken out. One ``field_exp`` and
+    one ``second_compound`` per call; U (4 x 4), E (6 x 6) and w (6) are work space."""
+    k = field_balance(F)
     pieces = max(1, int(math.ceil(k * rho / FIELD_STEP)))
-    A2 = np.empty((6, 6), dtype=A.dtype)
-    additive_compound(A, A2)
-    E = np.empty((6, 6), dtype=A.dtype)
-    expm_short(A2, rho / pieces, k, E)
-    w = np.empty(6, dtype=v.dtype)
+    field_exp(F, rho / pieces, U)
+    second_compound(U, E)
     log = 0.0
     for _ in range(pieces):
         for a in range(6):
-            acc = v[0] * 0.0
-            for b in range(6):
-                acc += E[a, b] * v[b]
-            w[a] = acc
+            w[a] = (
+                E[a, 0] * v[0]
+                + E[a, 1] * v[1]
+                + E[a, 2] * v[2]
+                + E[a, 3] * v[3]
+                + E[a, 4] * v[4]
+                + E[a, 5] * v[5]
+            )
         for a in range(6):
             v[a] = w[a]
         log += renormalise(v)
@@ -122,22 +125,23 @@ def field_compound(v, A, rho):
 
 
 @njit(cache=True)
-def segment_compound(v, p, seg, w2, stiff, rho):
+def segment_compound(v, p, seg, w2, stiff, rho, F, ready, U, E, w):
     """``field_compound`` across rho of general segment seg at the squared frequency w2
-    (real, or complex with ``stiff`` = 1 + i eta); returns the log taken out."""
-    A = np.empty((4, 4), dtype=v.dtype)
-    segment_field(p, seg, w2, stiff, A)
-    return field_compound(v, A, rho)
+    (real, or complex with ``stiff`` = 1 + i eta); F holds (A, A^2, A^3) of segment
+    ``ready`` (prepared again when seg differs); U, E, w: work space. Returns (the log
+    taken out, seg)."""
+    if ready != seg:
+        field_prepare(p, seg, w2, stiff, F)
+    return field_compound(v, F, rho, U, E, w), seg
 
 
 @njit(cache=True)
-def count_pieces(p, seg, A, w2, rho):
-    """Pieces of equal length for the count across rho of general segment seg: k h <=
-    FIELD_STEP, and each piece's proved clamped-clamped bound (``clamped_clamped_bound``)
-    above w2, so that its J0 is 0."""
+def count_pieces(p, seg, F, w2, rho):
+    """Pieces of equal length for the count across rho of general segment seg (F from
+    ``field_prepare``): k h <= FIELD_STEP, and each piece's proved clamped-clamped bound
+    (``clamped_clamped_bound``) above w2, so that its J0 is 0."""
     e, m, kGA, rhoI, P, k_w, k_G = segment_values(p, seg)
-    k = balance(A)
-    pieces = max(1, int(math.ceil(k * rho / FIELD_STEP)))
+    pieces = max(1, int(math.ceil(field_balance(F) * rho / FIELD_STEP)))
     shear = math.inf if kGA == 0.0 else kGA
     for _ in range(200):
         if clamped_clamped_bound(e, shear, rhoI, m, P + k_G, rho / pieces) > w2:
@@ -172,9 +176,9 @@ def segment_pieces(p, seg, beta, rho, step):
     """Pieces of equal length across rho of segment seg for a march whose pieces keep
     k h <= step (beta: lam_0 L, real)."""
     if is_general(p, seg):
-        A = np.empty((4, 4))
-        segment_field(p, seg, beta**4, 1.0, A)
-        k = balance(A)
+        F = np.empty((4, 4, 4))
+        field_prepare(p, seg, beta**4, 1.0, F)
+        k = field_balance(F)
     else:
         e, a = segment_scale(p, seg)
         k = beta * a
@@ -183,11 +187,12 @@ def segment_pieces(p, seg, beta, rho, step):
 
 @njit(cache=True)
 def piece_matrix(p, seg, beta, h, U):
-    """U <- the transfer across a short piece h of segment seg (real, beta = lam_0 L)."""
+    """U <- the transfer across a short piece h of segment seg (real, beta = lam_0 L;
+    k h <= 1, as ``segment_pieces`` cuts them)."""
     if is_general(p, seg):
-        A = np.empty((4, 4))
-        segment_field(p, seg, beta**4, 1.0, A)
-        expm_short(A, h, balance(A), U)
+        F = np.empty((4, 4, 4))
+        field_prepare(p, seg, beta**4, 1.0, F)
+        field_exp(F, h, U)
     else:
         e, a = segment_scale(p, seg)
         piece_transfer(beta * a, e, h, U)
@@ -260,3 +265,102 @@ def segment_constraints(p, knots, h, cx, ct, n):
             ct[n] = 2
             n += 1
     return n
+
+
+#: Terms of the series of ``field_exp`` (|w| <= 2 (k h)^2 <= 2: the last term is below
+#: 4^16 / 32! ~ 1.6e-26 of the first).
+SERIES_TERMS = 16
+#: A term of ``field_exp``'s series below this ends it: ``f0`` and ``g0`` are about 1 on
+#: a piece with k h <= 1, and the remaining terms fall by more than 1/12 each.
+SERIES_TAIL = 1e-19
+
+
+@njit(cache=True)
+def field_prepare(p, seg, w2, stiff, F):
+    """F[0] <- A of segment seg (``segment_field``), F[1] <- A^2, F[2] <- A^3, and in
+    F[3, 0, :3] the coefficients ``a = -tr(A^2)/2``, ``b = det A`` of its characteristic
+    polynomial ``l^4 + a l^2 + b`` and its balancing wavenumber ``sqrt(|a| + sqrt|b|)``
+    (at least 1): what ``field_exp`` needs, once per segment and frequency. F is 4 x 4 x 4."""
+    A = F[0]
+    segment_field(p, seg, w2, stiff, A)
+    for r in range(4):
+        for c in range(4):
+            acc = A[r, 0] * A[0, c] + A[r, 1] * A[1, c] + A[r, 2] * A[2, c] + A[r, 3] * A[3, c]
+            F[1, r, c] = acc
+    for r in range(4):
+        for c in range(4):
+            acc = F[1, r, 0] * A[0, c] + F[1, r, 1] * A[1, c] + F[1, r, 2] * A[2, c]
+            F[2, r, c] = acc + F[1, r, 3] * A[3, c]
+    a = -0.5 * (F[1, 0, 0] + F[1, 1, 1] + F[1, 2, 2] + F[1, 3, 3])
+    b = det4(A)
+    F[3, 0, 0] = a
+    F[3, 0, 1] = b
+    F[3, 0, 2] = max(math.sqrt(abs(a) + math.sqrt(abs(b))), 1.0)
+
+
+@njit(cache=True, inline="always")
+def field_exp(F, h, U):
+    """U <- exp(A h) from F of ``field_prepare`` (``field_prepare``), for a piece with k h <= 1
+    (k = ``balance(A)``).
+
+    The characteristic polynomial of every field matrix here is even, ``l^4 + a l^2 +
+    b`` (``a = -tr(A^2)/2``, ``b = det A``: the odd coefficients vanish by its zero pattern),
+    so ``M = (A h)^2`` satisfies ``M^2 = -a h^2 M - b h^4 I`` (Cayley-Hamilton) and every
+    power ``M^m = p_m I + q_m M`` by a two-term recurrence. With ``exp(B) = f(B^2) + B
+    g(B^2)``, ``f(w) = sum w^m/(2m)!``, ``g(w) = sum w^m/(2m+1)!``::
+
+        exp(A h) = f0 I + g0 h A + f1 h^2 A^2 + g1 h^3 A^3
+
+    with ``(f0, f1) = sum (p_m, q_m)/(2m)!`` and ``(g0, g1) = sum (p_m, q_m)/(2m+1)!``. No
+    eigenvalue is formed (they coalesce at the foundation's and the shear's cut-offs), no
+    matrix is squared, and on a short piece the series has no cancellation: about 30
+    scalar operations and one 4 x 4 combination per piece (``tests/test_field.py`` checks
+    it against mpmath)."""
+    A = F[0]
+    h2 = h * h
+    a = F[3, 0, 0] * h2
+    b = F[3, 0, 1] * h2 * h2
+    pm = A[0, 0] * 0.0 + 1.0
+    qm = A[0, 0] * 0.0
+    f0 = pm * 0.0
+    f1 = pm * 0.0
+    g0 = pm * 0.0
+    g1 = pm * 0.0
+    even = 1.0  # 1/(2m)!
+    for m in range(SERIES_TERMS):
+        odd = even / (2 * m + 1)  # 1/(2m+1)!
+        f0 += pm * even
+        f1 += qm * even
+        g0 += pm * odd
+        g1 += qm * odd
+        if (abs(pm) + abs(qm)) * even < SERIES_TAIL:  # the rest below rounding of f0 ~ 1
+            break
+        pm, qm = -b * qm, pm - a * qm
+        even = odd / (2 * m + 2)
+    g0 *= h
+    f1 *= h2
+    g1 *= h2 * h
+    for r in range(4):
+        for c in range(4):
+            U[r, c] = g0 * A[r, c] + f1 * F[1, r, c] + g1 * F[2, r, c]
+        U[r, r] += f0
+
+
+@njit(cache=True, inline="always")
+def field_balance(F):
+    """``balance(A)`` from ``field_prepare``'s F: sqrt(|a| + sqrt|b|), at least 1."""
+    return F[3, 0, 2].real
+
+
+@njit(cache=True, inline="always")
+def second_compound(U, E):
+    """E <- the 2 x 2 minors of U over the stable chain's pairs (``field.PAIR_I``, ``PAIR_J``):
+    C2(U), the step of the minors across a short piece (k h <= 1: no growing solution
+    swamps a decaying one within it)."""
+    for x in range(6):
+        i = PAIR_I[x]
+        j = PAIR_J[x]
+        for y in range(6):
+            k = PAIR_I[y]
+            m = PAIR_J[y]
+            E[x, y] = U[i, k] * U[j, m] - U[i, m] * U[j, k]
