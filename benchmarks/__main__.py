@@ -587,6 +587,62 @@ def codebase_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
     ]
 
 
+def segment_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
+    """Issue 22's targets, from what ``benchmarks.segments`` recorded."""
+    g = figs.get("segments")
+    if not g:
+        return []
+    when = f"`{g['measured']['command']}`, {g['measured']['date']}"
+    closed = g["closed_forms"]
+    worst = max(r["error"] for r in closed.values())
+    w, m, f = g["warm_solve"], g["many_modes"], g["first_run"]
+    rows = [
+        (
+            "segment terms against closed forms (simply supported, 8 combinations, 16 modes)",
+            "<= 1e-12",
+            f"worst {worst:.1e}, every count checked",
+            _status(worst <= 1e-12 and all(r["count_checked"] for r in closed.values())),
+            when + "; Timoshenko's two spectra and the thickness-shear mode included",
+        ),
+        (
+            "paper example with every segment term, warm (frequencies only)",
+            "<= 2x Euler-Bernoulli",
+            f"{w['every_term'] * 1e3:.3f} ms against {w['euler_bernoulli'] * 1e3:.3f} ms"
+            f" ({w['ratio']:.2f}x)",
+            _status(w["ratio"] <= 2.0),
+            when + "; one exp(A h) (a Cayley-Hamilton series) and its minors per piece"
+            " between components, against the printed closed forms",
+        ),
+        (
+            f"Timoshenko, lowest {m['modes']} ({m['above_cut_off']} above the cut-off)",
+            "stable, <= 1e-10",
+            f"worst {m['error']:.1e} in {m['seconds']:.2f} s",
+            _status(m["error"] <= 1e-10 and m["count_checked"]),
+            when,
+        ),
+        (
+            "first run of a new topology with segment terms (shared numerics compiled)",
+            "<= 5 s",
+            f"{f['default']['process']:.2f} s as run (kernel as Python); derive + compile"
+            f" {f['compiled']['process']:.2f} s",
+            _status(f["default"]["process"] <= 5.0),
+            when + "; a fresh process with an empty kernel cache",
+        ),
+    ]
+    if "fem" in g:
+        e = g["fem"]
+        rows.append(
+            (
+                "against the finite-element model with these terms (benchmarks/fem.py)",
+                "converging to mstmm",
+                f"{e['error']:.1e} after Richardson ({e['elements']} elements)",
+                _status(e["error"] <= 1e-8),
+                when + "; " + e["scene"],
+            )
+        )
+    return rows
+
+
 def targets_markdown(rows) -> str:
     out = [
         "| target | goal | measured | status | what limits it / remark |",
@@ -703,6 +759,7 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=Non
         + damping_rows(recorded)
         + damped_large_rows(recorded)
         + codebase_rows(recorded)
+        + segment_rows(recorded)
     )
     parts.append(targets_markdown(rows))
     notes = findings(wp, sc)

@@ -206,8 +206,10 @@ EVERY_KIND = {
 def every_kind_vector() -> list[float]:
     """The layout of EVERY_KIND written out by hand (tags: the kinds present, sorted)."""
     # segment rows (x_end, EI, mbar, eta); the chain's dashpots, none given, as zeros
-    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 0.0, 1.0, 1.0e4, 8.0, 0.0]
-    events = [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.7, 42, 1, 1.0, 42, 3, 1.0, 44]
+    # segment rows (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G): Euler-Bernoulli
+    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 0.0, 0, 0, 0, 0, 0]
+    head += [1.0, 1.0e4, 8.0, 0.0, 0, 0, 0, 0, 0]
+    events = [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.7, 52, 1, 1.0, 52, 3, 1.0, 54]
     data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2, 0.0, 0.0, 2.0, 0.1, 3.0]
     return [float(v) for v in head + events + data]
 
@@ -217,16 +219,16 @@ def every_kind_vector() -> list[float]:
     [
         ("beam.segments[0].EI", (1, 6)),  # the kernel's unit EI_0 and the segment's own
         ("beam.segments[0].mass_per_length", (2, 7)),
-        ("beam.segments[1].EI", (10,)),
-        ("beam.segments[1].mass_per_length", (11,)),
-        ("attachments[0].k", (31,)),
-        ("attachments[1].k", (32,)),
-        ("attachments[2].k[0]", (34,)),
-        ("attachments[2].k[1]", (35,)),
-        ("attachments[2].m[1]", (38,)),
-        ("attachments[3].x", (23,)),
-        ("attachments[4].J", (43,)),
-        ("attachments[5].x", (29,)),
+        ("beam.segments[1].EI", (15,)),
+        ("beam.segments[1].mass_per_length", (16,)),
+        ("attachments[0].k", (41,)),
+        ("attachments[1].k", (42,)),
+        ("attachments[2].k[0]", (44,)),
+        ("attachments[2].k[1]", (45,)),
+        ("attachments[2].m[1]", (48,)),
+        ("attachments[3].x", (33,)),
+        ("attachments[4].J", (53,)),
+        ("attachments[5].x", (39,)),
     ],
 )
 def test_columns_of_every_kind(path, cols):
@@ -248,10 +250,10 @@ def test_varying_values_of_every_kind():
     (row,) = parameter_matrix(scene, vary)
     expected = every_kind_vector()
     expected[1] = expected[6] = 3.0e4
-    expected[11] = 9.0
-    expected[35] = 4.0e4
-    expected[43] = 0.0
-    expected[32] = 7.0
+    expected[16] = 9.0
+    expected[45] = 4.0e4
+    expected[53] = 0.0
+    expected[42] = 7.0
     assert row.tolist() == expected
 
 
@@ -261,12 +263,12 @@ def test_moving_a_support_keeps_it_apart_from_the_mass_sharing_its_offset():
     scene = mstmm.scene_from_dict(EVERY_KIND)
     P = parameter_matrix(scene, {"attachments[3].x": [0.7, 0.2, 0.95]})
     rows = [
-        [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.7, 42, 1, 1.0, 42, 3, 1.0, 44],
-        [4, 0.0, 31, 5, 0.2, 42, 0, 0.3, 32, 2, 0.5, 33, 1, 1.0, 42, 3, 1.0, 44],
-        [4, 0.0, 31, 0, 0.3, 32, 2, 0.5, 33, 5, 0.95, 42, 1, 1.0, 42, 3, 1.0, 44],
+        [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.7, 52, 1, 1.0, 52, 3, 1.0, 54],
+        [4, 0.0, 41, 5, 0.2, 52, 0, 0.3, 42, 2, 0.5, 43, 1, 1.0, 52, 3, 1.0, 54],
+        [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.95, 52, 1, 1.0, 52, 3, 1.0, 54],
     ]
     for row, events in zip(P, rows):
-        assert row[13:31].tolist() == [float(v) for v in events]
+        assert row[23:41].tolist() == [float(v) for v in events]
 
 
 @pytest.mark.parametrize(

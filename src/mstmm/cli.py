@@ -54,6 +54,7 @@ FORMULATION_HELP = (
 )
 RANGE_HELP = (
     "PATH=RANGE: a field (beam.length|EI|mass_per_length, beam.segments[s].EI|mass_per_length,"
+    " a beam's or segment's kappa_GA|rho_I|axial_force|foundation_k|foundation_kG,"
     " attachments[i].x or any key of its kind, e.g. attachments[i].k, attachments[i].J,"
     " attachments[i].k[j] of a chain; i in x order)"
     " and its values: LOG:lo:hi:n, LIN:lo:hi:n or a list 1,2,3"
