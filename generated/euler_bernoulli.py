@@ -20,7 +20,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "ef936a039c9abfb5179cd1394531942d71817b43"
+DIGEST = "d10e1cbac952003858110074bbadb2b60b9c2eb8"
 
 
 @njit(cache=True, inline="always")

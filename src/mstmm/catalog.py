@@ -48,7 +48,7 @@ BEAM_PARAMETERS = ("L", "EI", "mbar")
 #: scene key, check, unit. Each defaults to 0, which means the term is absent
 #: (``kappa_GA`` 0: no shear deformation). Tension is a positive ``axial_force``.
 SEGMENT_PHYSICS: tuple[tuple[str, str, str], ...] = (
-    ("kappa_GA", "positive", "N"),
+    ("kappa_GA", "nonnegative", "N"),
     ("rho_I", "nonnegative", "kg m"),
     ("axial_force", "finite", "N"),
     ("foundation_k", "nonnegative", "N/m^2"),

@@ -124,9 +124,16 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     """An upper bound on ``sigma`` of every damped root of ``scene`` with ``|w_d| <=
     w_top`` (rad/s), proved as in the module's docstring; None when the proof does not
     apply (a damper the proof does not cover: on a rotation or on a massless coordinate,
-    as the kind's energy says; a damping value in a unit other than N s/m)."""
+    as the kind's energy says; a damping value in a unit other than N s/m; a segment in
+    compression, whose geometric stiffness is negative and takes no loss factor; a point
+    damper on a beam with a Timoshenko segment, whose ``k_R`` bounds ``EI ||psi'||^2``,
+    not ``EI ||u''||^2``). A tension, a foundation and a rotary inertia only add to
+    ``k_R`` (with their loss factor) or to ``m``: the proof holds."""
     beam = scene.beam
     segs = beam.segments or (beam,)
+    if any(getattr(s, "axial_force", 0.0) < 0.0 for s in segs):
+        return None  # a compression: k_R may exceed EI ||u''||^2 and k_I its eta share
+    shear = any(getattr(s, "kappa_GA", 0.0) > 0.0 for s in segs)
     EI = min(s.EI for s in segs)
     mbar = min(s.mass_per_length for s in segs)
     eta = max(float(getattr(s, "loss_factor", 0.0) or 0.0) for s in segs)
@@ -165,6 +172,8 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
         gamma += 2.0 * total
         where.append((float(a.x), 2.0 * total))
         rate = max(rate, 2.0 * total / min(ms))
+    if shear and where:  # a Timoshenko segment's k_R does not hold EI ||u''||^2
+        return None
     points = sorted(breaks)
     piece = float(beam.length)
     reach = 0.0
