@@ -27,11 +27,13 @@ import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import mstmm
+from benchmarks.segments import simply_supported
 from mstmm.scene import SceneError, scene_from_dict
 
 L, EI, MBAR = 2.0, 3.0, 1.5
@@ -53,22 +55,8 @@ def _terms(extra: dict) -> dict:
 
 def _pinned_modes(kGA, rhoI, t, kw, n_max=400):
     """(omega^2, n, Psi / W) of every simply supported mode with n <= n_max (n = 0: the
-    thickness-shear mode, W = 0)."""
-    out = []
-    if kGA > 0.0 and rhoI > 0.0:
-        out.append((kGA / rhoI, 0, math.inf))
-    for n in range(1, n_max + 1):
-        k = n * math.pi / L
-        if kGA == 0.0:  # psi = w'
-            out.append(((EI * k**4 + t * k**2 + kw) / (MBAR + rhoI * k**2), n, k))
-            continue
-        X = kGA * k**2 + t * k**2 + kw
-        Y = EI * k**2 + kGA
-        a, b, c = MBAR * rhoI, -(MBAR * Y + rhoI * X), X * Y - kGA**2 * k**2
-        roots = [-c / b] if a == 0.0 else np.roots([a, b, c]).real.tolist()
-        for w2 in roots:
-            out.append((w2, n, (X - MBAR * w2) / (kGA * k)))  # row 1: Psi / W
-    return sorted(out)
+    thickness-shear mode, W = 0): ``benchmarks.segments.simply_supported`` for this beam."""
+    return simply_supported(L, EI, MBAR, kGA, rhoI, t, kw, n_max)
 
 
 CASES = {
@@ -296,3 +284,33 @@ def test_damped_roots_with_a_dashpot_against_the_finite_element_model(extra, pro
     if not proved:
         assert any("no proved bound on the decay rate" in w for w in sol.warnings)
         assert not any("disagree" in w for w in sol.warnings)
+
+
+@pytest.mark.parametrize(
+    "key, values",
+    [
+        ("kappa_GA", [20.0, 300.0]),
+        ("rho_I", [0.01, 0.04]),
+        ("axial_force", [-4.0, 6.0]),
+        ("foundation_k", [5.0, 60.0]),
+        ("foundation_kG", [0.5, 9.0]),
+    ],
+)
+def test_sweep_over_every_segment_key(key, values):
+    base = dict(kappa_GA=30.0, rho_I=0.02, axial_force=1.0, foundation_k=10.0, foundation_kG=1.0)
+    out = mstmm.sweep(_scene(base), {f"beam.{key}": np.array(values)}, modes=6)
+    for row, value in zip(out, values):
+        exact = np.sqrt([m[0] for m in _pinned_modes(**_terms({**base, key: value}))][:6])
+        assert np.max(np.abs(row - exact) / exact) < 1e-12
+
+
+def test_plot_of_a_timoshenko_scene(tmp_path):
+    out = tmp_path / "deep.png"
+    path = Path(__file__).resolve().parent.parent / "examples" / "deep_beam_tmd.toml"
+    run = subprocess.run(
+        [sys.executable, "-m", "mstmm", "plot", str(path), "-o", str(out), "--modes", "4"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    assert out.stat().st_size > 10_000
