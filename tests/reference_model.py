@@ -126,11 +126,43 @@ receptance by a direct solve with the load in the right-hand side.  The undamped
 functions refuse a scene with c > 0 or eta > 0 (ValueError) instead of dropping the
 damping; with c = 0 and eta = 0 the damped functions reduce to them (same roots, real).
 
+General segments
+----------------
+Optional keys on a uniform ``beam`` or on each of its ``segments`` (:data:`GENERAL_KEYS`,
+SI, default 0 = absent): ``kappa_GA`` (Timoshenko shear stiffness, N; 0: no shear
+deformation), ``rho_I`` (rotary inertia per length, kg m), ``axial_force`` (N, tension
+positive), ``foundation_k`` (Winkler, N/m^2), ``foundation_kG`` (Pasternak, N).  Energies
+per length, ``psi`` the section rotation, ``t = axial_force + foundation_kG``::
+
+    U = [EI psi'^2 + kappa_GA (W' - psi)^2 + t W'^2 + k_w W^2] / 2
+    T = [mbar W_t^2 + rho_I psi_t^2] / 2
+
+(``psi = W'`` without shear).  A segment with any of them is integrated in its state
+``(W, psi, M, Q)``, ``M = EI psi'``, ``Q = -(kappa_GA (W' - psi) + t W')`` the total
+transverse force (the node conditions above hold with W' -> psi, EI W'' -> M and
+EI W''' -> Q; a free end has M = Q = 0), by ``Z' = A Z`` from the Euler-Lagrange
+equations (see the notes at :func:`_field_matrix`; the tests check A against the energies
+with SymPy).  Its field transfer is ``exp(A h)`` (Taylor series reduced by Cayley-Hamilton,
+:func:`_expm`) over pieces short enough that ``|lambda| h <= 3``: in the global system each
+piece has its own 4 unknowns (multiple shooting; the determinant does not depend on the
+cut), in the Wittrick-Williams count each piece is a member whose exact dynamic stiffness
+comes from exp(A h) and whose clamped-clamped fundamental is proved above the trial
+frequency by an energy bound (:func:`_cc_bound`), so that its J0 is 0.  The other segments
+keep their closed forms.  Rigid-body modes: a foundation holds the whole of its segment
+(between free hinges too), ``t != 0`` the slope on it (shear and rotary inertia hold
+nothing).  With a compression, :func:`frequencies` and :func:`band` first check that the
+count at a tiny frequency is the rigid-body count (else ValueError: buckled).  A loss
+factor multiplies EI, kappa_GA, foundation_k and foundation_kG (not the axial force); the
+damped roots of a scene with general segments are seeded by its undamped roots (no FE
+model of them; an overdamped root, unseeded, makes the certificate fail: RuntimeError).
+:func:`field_matrix` and :func:`general_segment_stiffness_matrix` expose the pieces to tests.
+
 Public API: :func:`frequencies`, :func:`band`, :func:`global_determinant`,
 :func:`count_below`, :func:`rigid_body_mode_count`, :func:`eigenspace`,
 :func:`mode_at_attachments`, :func:`segment_stiffness_matrix`, :data:`KINDS`; damped:
 :func:`damped_frequencies`, :func:`damped_count`, :func:`damped_zero_count`,
-:func:`damped_global_determinant`, :func:`frf`, :data:`DAMPED_KINDS`.
+:func:`damped_global_determinant`, :func:`frf`, :data:`DAMPED_KINDS`; general segments:
+:data:`GENERAL_KEYS`, :func:`field_matrix`, :func:`general_segment_stiffness_matrix`.
 
 Scenes are dicts in the TOML layout or objects with the same attributes:
 ``beam`` with ``left``, ``right`` and either ``length``, ``EI``,
@@ -140,7 +172,7 @@ Scenes are dicts in the TOML layout or objects with the same attributes:
 (spring_mass); ``m``, ``J`` = 0 (mass); ``k`` (spring, rotational_spring);
 nothing (support); ``k`` = 0 (hinge, strictly inside); lists ``k``, ``m``
 (oscillator_chain, beam to tip); ``c`` (dashpot; optional on spring_mass, a list on
-oscillator_chain); ``loss_factor`` (optional, beam or segment).
+oscillator_chain); ``loss_factor`` and :data:`GENERAL_KEYS` (optional, beam or segment).
 """
 
 from __future__ import annotations
@@ -157,6 +189,7 @@ from mpmath import mp, mpc, mpf
 
 __all__ = [
     "DAMPED_KINDS",
+    "GENERAL_KEYS",
     "KINDS",
     "band",
     "count_below",
@@ -165,8 +198,10 @@ __all__ = [
     "damped_global_determinant",
     "damped_zero_count",
     "eigenspace",
+    "field_matrix",
     "frequencies",
     "frf",
+    "general_segment_stiffness_matrix",
     "global_determinant",
     "mode_at_attachments",
     "rigid_body_mode_count",
@@ -768,7 +803,8 @@ def _cc_bound(gen: _General, e, mu, h: float) -> float:
 def _mesh_pieces(model: _Model, b4, count: bool) -> list:
     """Number of pieces of each segment at beta^4 = b4 (1 for an Euler-Bernoulli segment):
     |lambda| h <= _PIECE_REACH, and for the count (real b4) a clamped-clamped bound above
-    _CC_MARGIN b4."""
+    _CC_MARGIN b4, rounded up to a power of 2 (F of the count, interpolated on while a root
+    is polished, jumps where the cut changes; the bracket is the count's anyway)."""
     out = []
     for j, gen in enumerate(model.seg_gen):
         if gen is None:
@@ -781,6 +817,7 @@ def _mesh_pieces(model: _Model, b4, count: bool) -> list:
             target = _CC_MARGIN * float(b4)
             while not _cc_bound(gen, e, mu, ell / n) > target:
                 n = max(n + 1, math.ceil(n * 1.25))
+            n = 1 << (n - 1).bit_length()  # a power of 2: the cut changes seldom with beta
         out.append(n)
     return out
 
@@ -1650,19 +1687,16 @@ class _Solver:
         self.nrigid = rigid_body_mode_count(scene)
         self.dps = dps
         self._cache: dict = {}
-        self._pieces = [1] * len(self.model.seg)
         self._meshes: dict = {}
 
     def mesh(self, beta) -> _Model:
-        """The model, its general segments cut for the count at beta (never into fewer pieces
-        than before: F of the count stays one function while a root is polished)."""
+        """The model, its general segments cut for the count at beta (:func:`_mesh_pieces`;
+        the global determinant does not depend on the cut)."""
         if not self.model.general:
             return self.model
-        need = _mesh_pieces(self.model, beta**4, count=True)
-        self._pieces = [max(a, b) for a, b in zip(self._pieces, need, strict=True)]
-        key = tuple(self._pieces)
+        key = tuple(_mesh_pieces(self.model, beta**4, count=True))
         if key not in self._meshes:
-            self._meshes[key] = _refine(self.model, self._pieces)
+            self._meshes[key] = _refine(self.model, key)
         return self._meshes[key]
 
     def chain(self, beta):
@@ -1743,9 +1777,12 @@ def _lowest(solver: _Solver, n_modes: int) -> list:
         return [mpf(0)] * n_modes
     # an upper bound off the rational multiples of pi, where bare-beam roots sit
     hi = mp.pi * (n_modes + 1) * (1 + mpmath.sqrt(2) / 100)
+    grow = 2
+    if solver.model.general:  # shear lowers the roots, and a count far above them is dear
+        hi, grow = hi / 4, mpf("1.25")
     jhi = solver.count(hi)
     while jhi < n_modes:
-        hi *= 2
+        hi *= grow
         jhi = solver.count(hi)
     return [mpf(0)] * nrigid + solver.solve(mpf(0), nrigid, hi, jhi, nrigid, n_modes)
 
@@ -1848,8 +1885,9 @@ def eigenspace(scene, w, m: int, xs, dps: int = 40):
     each spring-mass and each mass of each oscillator chain in chain order, the attachments
     sorted by x, stable; point masses move with the beam and are not listed; deflections in
     the units of the scene). Floats, arbitrary basis and scale; independent of any transfer
-    matrix. For ``w = 0`` pass the rigid-body count as ``m``: the basis is that of the rigid
-    motions (straight pieces, kinks at free hinges) the ends, supports and springs allow.
+    matrix (but exp(A s) in a general segment). For ``w = 0`` pass the rigid-body count as
+    ``m``: the basis is that of the rigid motions (straight pieces, kinks at free hinges) the
+    ends, supports, springs, foundations and axial forces allow.
     """
     with mp.workdps(dps + _GUARD_DPS):
         model = _undamped_model(scene)

@@ -366,3 +366,22 @@ def test_timoshenko_cantilever_against_huang_1961():
     b = sol.omega
     assert sol.count_checked and len(b) == len(roots) >= 8
     assert np.max(np.abs(b - roots) / b) < 1e-12
+
+
+def test_timoshenko_column_buckles_at_engesser_load():
+    """A pinned-pinned Timoshenko column buckles at ``P_E / (1 + P_E / kappa_GA)``
+    (Engesser; Timoshenko and Gere, Theory of Elastic Stability, 2.17), below its shear
+    limit ``kappa_GA``: the load factor of a stable compression, and the buckled scene
+    beyond it."""
+    kGA, P = 200.0, -30.0
+    euler = math.pi**2 * 100.0
+    engesser = euler / (1.0 + euler / kGA)
+    beam = dict(length=1.0, EI=100.0, mass_per_length=1.0, kappa_GA=kGA, axial_force=P)
+    beam |= dict(left="pinned", right="pinned")
+    sol = mstmm.solve(scene_from_dict({"name": "col", "beam": beam, "attachments": []}), modes=4)
+    assert sol.count_checked and not sol.buckling.buckled
+    assert sol.buckling.load_factor == pytest.approx(engesser / -P, rel=1e-11)
+    beam["axial_force"] = -1.05 * engesser
+    sol = mstmm.solve(scene_from_dict({"name": "col", "beam": beam, "attachments": []}), modes=4)
+    assert sol.buckling.buckled
+    assert sol.buckling.load_factor == pytest.approx(1 / 1.05, rel=1e-11)

@@ -66,6 +66,19 @@ def axial_columns(p: np.ndarray) -> np.ndarray:
     return HEAD + SEGMENT_WIDTH * np.arange(int(p[3])) + AXIAL
 
 
+def shear_limit(p: np.ndarray) -> float:
+    """The largest load factor short of a Timoshenko segment's shear limit ``kappa_GA + lam
+    P + k_G = 0`` (where its field matrix has no meaning), times ``1 - 1e-9``; inf when no
+    compressed segment has a shear stiffness. A Timoshenko column buckles below it
+    (``P_E / (1 + P_E / kappa_GA) < kappa_GA``), so the search never needs to go past."""
+    rows = np.asarray(p[HEAD : HEAD + SEGMENT_WIDTH * int(p[3])]).reshape(-1, SEGMENT_WIDTH)
+    kGA, P, kG = rows[:, 4], rows[:, AXIAL], rows[:, 8]
+    shear = (kGA > 0.0) & (P < 0.0)
+    if not shear.any():
+        return math.inf
+    return float(np.min((kGA[shear] + kG[shear]) / -P[shear])) * (1.0 - 1e-9)
+
+
 def compressed(p: np.ndarray) -> bool:
     """Whether any segment of p is under compression."""
     return bool(np.any(np.asarray(p)[axial_columns(p)] < 0.0))
@@ -102,12 +115,15 @@ def buckling(kernel: Kernel, p: np.ndarray) -> Buckling | None:
         return unstable_modes(kernel, q, probe)
 
     n = negatives(1.0)
+    cap = shear_limit(p)
     if n > 0:
         lo, hi = 0.0, 1.0
     else:
-        lo, hi = 1.0, 2.0
+        lo, hi = 1.0, min(2.0, cap)
         while negatives(hi) == 0:
-            lo, hi = hi, 2.0 * hi
+            if hi >= cap:  # up to where kappa_GA + P + k_G reaches 0: no static equilibrium
+                return Buckling(False, cap, 0)
+            lo, hi = hi, min(2.0 * hi, cap)
             if hi > LOAD_FACTOR_MAX:
                 return Buckling(False, math.inf, 0)
     for _ in range(BISECTIONS):
