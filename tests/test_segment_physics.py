@@ -385,3 +385,17 @@ def test_timoshenko_column_buckles_at_engesser_load():
     sol = mstmm.solve(scene_from_dict({"name": "col", "beam": beam, "attachments": []}), modes=4)
     assert sol.buckling.buckled
     assert sol.buckling.load_factor == pytest.approx(1 / 1.05, rel=1e-11)
+
+
+def test_a_sweep_past_the_shear_limit_is_one_clear_error():
+    """A study point where a Timoshenko segment's kappa_GA + axial_force + foundation_kG
+    reaches 0 is refused with the field and the point, as the scene file refuses it (the
+    kernel would divide by it)."""
+    scene = _scene(dict(kappa_GA=30.0, axial_force=-3.0))
+    for vary, field in (
+        ({"beam.kappa_GA": np.array([30.0, 3.0])}, "beam.kappa_GA"),
+        ({"beam.axial_force": np.array([-3.0, -40.0])}, "beam.axial_force"),
+    ):
+        with pytest.raises(SceneError, match="at point 1, .* buckles the segment in shear") as e:
+            mstmm.sweep(scene, vary, modes=2)
+        assert e.value.field == field

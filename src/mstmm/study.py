@@ -165,10 +165,34 @@ def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray
                 raise SceneError(SOURCE, path, problem_at, float(v[i]))
     if "beam.length" in values:
         _check_positions(scene, P)
+    _check_shear_limit(scene, values, P)
     check_placement(P, SOURCE, scene, point="point")
     check_representable(P, SOURCE, scene, point="point")
     sort_events(P)
     return P
+
+
+def _check_shear_limit(scene: Scene, values: Mapping[str, np.ndarray], P: np.ndarray) -> None:
+    """Every Timoshenko segment short of its shear limit ``kappa_GA + axial_force +
+    foundation_kG > 0`` at every point (as the scene file requires of its own values)."""
+    n_seg = int(P[0, 3])
+    rows = P[:, catalog.HEAD : catalog.HEAD + catalog.SEGMENT_WIDTH * n_seg]
+    rows = rows.reshape(len(P), n_seg, catalog.SEGMENT_WIDTH)
+    kGA, g = rows[:, :, 4], rows[:, :, 4] + rows[:, :, 6] + rows[:, :, 8]
+    bad = (kGA > 0.0) & (g <= 0.0)
+    if not bad.any():
+        return
+    i, seg = (int(v) for v in np.argwhere(bad)[0])
+    prefix = f"beam.segments[{seg}]" if scene.beam.segments else "beam"
+    names = [f"{prefix}.{key}" for key in ("axial_force", "kappa_GA", "foundation_kG")]
+    path = next((name for name in names if name in values), names[0])
+    raise SceneError(
+        SOURCE,
+        path,
+        f"at point {i}, a compression of kappa_GA + foundation_kG or more buckles the segment"
+        " in shear (kappa_GA + axial_force + foundation_kG must be > 0)",
+        float(values[path][i]) if path in values else float(rows[i, seg, 6]),
+    )
 
 
 def _check_positions(scene: Scene, P: np.ndarray) -> None:
