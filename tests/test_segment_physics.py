@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 import mstmm
-from benchmarks.segments import simply_supported
+from benchmarks.segments import CASES, simply_supported, terms
 from mstmm.scene import SceneError, scene_from_dict
 
 L, EI, MBAR = 2.0, 3.0, 1.5
@@ -44,40 +44,17 @@ def _scene(extra: dict, left: str = "pinned", right: str = "pinned", attachments
     return scene_from_dict({"name": "seg", "beam": beam, "attachments": list(attachments)})
 
 
-def _terms(extra: dict) -> dict:
-    return dict(
-        kGA=extra.get("kappa_GA", 0.0),
-        rhoI=extra.get("rho_I", 0.0),
-        t=extra.get("axial_force", 0.0) + extra.get("foundation_kG", 0.0),
-        kw=extra.get("foundation_k", 0.0),
-    )
-
-
 def _pinned_modes(kGA, rhoI, t, kw, n_max=400):
     """(omega^2, n, Psi / W) of every simply supported mode with n <= n_max (n = 0: the
     thickness-shear mode, W = 0): ``benchmarks.segments.simply_supported`` for this beam."""
     return simply_supported(L, EI, MBAR, kGA, rhoI, t, kw, n_max)
 
 
-CASES = {
-    "tension": dict(axial_force=5.0),
-    "compression": dict(axial_force=-5.0),
-    "winkler": dict(foundation_k=40.0),
-    "pasternak": dict(foundation_kG=7.0),
-    "rayleigh": dict(rho_I=0.05),
-    "shear": dict(kappa_GA=30.0),
-    "timoshenko": dict(kappa_GA=30.0, rho_I=0.02),
-    "everything": dict(
-        kappa_GA=300.0, rho_I=0.01, axial_force=-3.0, foundation_k=20.0, foundation_kG=2.0
-    ),
-}
-
-
 @pytest.mark.parametrize("name", CASES)
 def test_simply_supported_closed_form(name):
     extra = CASES[name]
     sol = mstmm.solve(_scene(extra), modes=16)
-    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:16])
+    exact = np.sqrt([m[0] for m in _pinned_modes(**terms(extra))][:16])
     assert sol.count_checked and sol.converged.all()
     assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
     # the paper's formulation, exp(A l) of each segment in its determinant: the same roots,
@@ -92,7 +69,7 @@ def test_timoshenko_second_spectrum_far_above_the_cut_off():
     spectra interleave above it."""
     extra = dict(kappa_GA=30.0, rho_I=0.02)
     sol = mstmm.solve(_scene(extra), modes=100, shapes=False)
-    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:100])
+    exact = np.sqrt([m[0] for m in _pinned_modes(**terms(extra))][:100])
     assert exact[-1] > 5 * math.sqrt(30.0 / 0.02)
     assert sol.count_checked
     assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
@@ -113,7 +90,7 @@ def test_stepped_beam_with_the_same_terms_in_two_segments_is_the_uniform_beam():
         }
     )
     sol = mstmm.solve(stepped, modes=10)
-    exact = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:10])
+    exact = np.sqrt([m[0] for m in _pinned_modes(**terms(extra))][:10])
     assert sol.count_checked
     assert np.max(np.abs(sol.omega - exact) / exact) < 1e-12
 
@@ -123,7 +100,7 @@ def test_mode_shapes_and_modal_mass_with_rotary_inertia():
     rhoI psi^2 = (L/2)(mbar W^2 + rhoI Psi^2) at max |Y| = 1."""
     extra = dict(kappa_GA=30.0, rho_I=0.02, foundation_k=10.0)
     sol = mstmm.solve(_scene(extra), modes=8)
-    modes = _pinned_modes(**_terms(extra))[:8]
+    modes = _pinned_modes(**terms(extra))[:8]
     for shape, (w2, n, ratio) in zip(sol.shapes, modes):
         assert shape.omega == pytest.approx(math.sqrt(w2), rel=1e-12)
         if n == 0:  # the thickness-shear mode: no displacement, psi constant
@@ -213,7 +190,7 @@ def test_the_command_line_says_buckled(tmp_path):
 def test_hysteretic_loss_factor_on_every_stiffness():
     extra = dict(kappa_GA=30.0, rho_I=0.02, foundation_k=10.0, foundation_kG=2.0)
     eta = 0.05
-    undamped = np.sqrt([m[0] for m in _pinned_modes(**_terms(extra))][:6])
+    undamped = np.sqrt([m[0] for m in _pinned_modes(**terms(extra))][:6])
     sol = mstmm.solve(_scene(dict(extra, loss_factor=eta)), modes=6)
     exact = undamped * np.sqrt(1 + 1j * eta)
     assert sol.count_checked
@@ -230,7 +207,7 @@ def test_receptance_is_the_sum_over_the_exact_modes():
 
 
 def _modal_sum(extra, x0, x1, w, n_max=20000):
-    t = _terms(extra)
+    t = terms(extra)
     kGA, rhoI, tt, kw = t["kGA"], t["rhoI"], t["t"], t["kw"]
     n = np.arange(1, n_max + 1)
     k = n * math.pi / L
@@ -300,7 +277,7 @@ def test_sweep_over_every_segment_key(key, values):
     base = dict(kappa_GA=30.0, rho_I=0.02, axial_force=1.0, foundation_k=10.0, foundation_kG=1.0)
     out = mstmm.sweep(_scene(base), {f"beam.{key}": np.array(values)}, modes=6)
     for row, value in zip(out, values):
-        exact = np.sqrt([m[0] for m in _pinned_modes(**_terms({**base, key: value}))][:6])
+        exact = np.sqrt([m[0] for m in _pinned_modes(**terms({**base, key: value}))][:6])
         assert np.max(np.abs(row - exact) / exact) < 1e-12
 
 

@@ -10,6 +10,7 @@ from mstmm.generated.euler_bernoulli import (
 )
 
 from .segment import (
+    compound_step,
     count_pieces,
     field_exp,
     field_prepare,
@@ -104,13 +105,7 @@ def field_count(Zc, p, seg, w2, rho, F, ready):
     for _ in range(pieces):
         a = Zc[0]
         w00, w10, w01, w11 = pivot_products(Zc, U)
-        for i in range(6):
-            acc = 0.0
-            for j in range(6):
-                acc += E[i, j] * Zc[j]
-            v[i] = acc
-        for i in range(6):
-            Zc[i] = v[i]
+        compound_step(E, Zc, v)
         renormalise(Zc)
         n += pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
     return n, seg

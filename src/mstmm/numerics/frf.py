@@ -487,14 +487,18 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                 rho = (stop - pos) / L
                 if rho > 0.0:
                     i = HEAD + SEGMENT_WIDTH * seg
-                    e = p[i + 1] / EI * (1.0 + 1j * (p[i + 3] if damped else 0.0))
-                    bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar / e))
-                    pieces = max(1, int(math.ceil(abs(bs) * rho / MARCH_STEP)))
+                    stiff = 1.0 + 1j * (p[i + 3] if damped else 0.0)
+                    e = stiff
+                    bs = beta
                     general = is_general(p, seg)
                     if general:  # exp(A h) of its field matrix, stiffnesses times 1 + i eta
-                        field_prepare(p, seg, w1 * w1, e / (p[i + 1] / EI), Ff)
+                        field_prepare(p, seg, w1 * w1, stiff, Ff)
                         pieces = max(1, int(math.ceil(field_balance(Ff) * rho / MARCH_STEP)))
                         field_exp(Ff, rho / pieces, U)
+                    else:
+                        e = p[i + 1] / EI * stiff
+                        bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar / e))
+                        pieces = max(1, int(math.ceil(abs(bs) * rho / MARCH_STEP)))
                     for _ in range(pieces):
                         if not general:
                             piece_transfer_c(bs, e, rho / pieces, U)

@@ -5,14 +5,13 @@ issue 22) by ``exp(A h)`` of its printed field matrix (``general_field``,
 ``mstmm.numerics.field``). Every walk along the beam (the stable chain, the count, the
 paper's determinant, the mode shapes, the frequency response) asks here.
 
-Units are the kernel's, L = EI_0 = mbar_0 = 1; ``w2 = (lam_0 L)^4`` the squared frequency (complex
-in damped kernels), ``stiff = 1 + i eta`` the segment's loss factor on its stiffnesses
+Units are the kernel's, L = EI_0 = mbar_0 = 1; ``w2 = (lam_0 L)^4`` the squared frequency
+(complex in damped kernels), ``stiff = 1 + i eta`` the segment's loss factor on its stiffnesses
 (EI, kappa_GA, foundation_k, foundation_kG; not on the axial force, a load).
 """
 
 import math
 
-import numpy as np
 from numba import njit
 
 from mstmm.generated.euler_bernoulli import (
@@ -26,7 +25,6 @@ from .field import (
     PAIR_J,
     clamped_clamped_bound,
     det4,
-    expm_short,
     wavenumber,
 )
 from .layout import (
@@ -100,7 +98,7 @@ def segment_field(p, seg, w2, stiff, A):
 @njit(cache=True, inline="always")
 def field_compound(v, F, rho, U, E, w):
     """v <- C2(exp(A rho)) v (the stable chain's step across a piece of a general
-    segment; F of ``field_prepare`` from ``field_prepare``), in equal pieces of k h <=
+    segment; F from ``field_prepare``), in equal pieces of k h <=
     FIELD_STEP, renormalised after each; returns the log taken out. One ``field_exp`` and
     one ``second_compound`` per call; U (4 x 4), E (6 x 6) and w (6) are work space."""
     k = field_balance(F)
@@ -109,19 +107,25 @@ def field_compound(v, F, rho, U, E, w):
     second_compound(U, E)
     log = 0.0
     for _ in range(pieces):
-        for a in range(6):
-            w[a] = (
-                E[a, 0] * v[0]
-                + E[a, 1] * v[1]
-                + E[a, 2] * v[2]
-                + E[a, 3] * v[3]
-                + E[a, 4] * v[4]
-                + E[a, 5] * v[5]
-            )
-        for a in range(6):
-            v[a] = w[a]
+        compound_step(E, v, w)
         log += renormalise(v)
     return log
+
+
+@njit(cache=True, inline="always")
+def compound_step(E, v, w):
+    """v <- E v, the minors carried across a piece by its second compound E (w: work space)."""
+    for a in range(6):
+        w[a] = (
+            E[a, 0] * v[0]
+            + E[a, 1] * v[1]
+            + E[a, 2] * v[2]
+            + E[a, 3] * v[3]
+            + E[a, 4] * v[4]
+            + E[a, 5] * v[5]
+        )
+    for a in range(6):
+        v[a] = w[a]
 
 
 @njit(cache=True)
@@ -172,47 +176,35 @@ def piece_transfer_c(bs, e, rho, U):
 
 
 @njit(cache=True)
-def segment_pieces(p, seg, beta, rho, step):
+def segment_pieces(p, seg, beta, rho, step, F, ready):
     """Pieces of equal length across rho of segment seg for a march whose pieces keep
-    k h <= step (beta: lam_0 L, real)."""
+    k h <= step (beta: lam_0 L, real). F holds ``field_prepare`` of segment ``ready``
+    (prepared again when a general seg differs). Returns (pieces, the segment F holds)."""
     if is_general(p, seg):
-        F = np.empty((4, 4, 4))
-        field_prepare(p, seg, beta**4, 1.0, F)
+        if ready != seg:
+            field_prepare(p, seg, beta**4, 1.0, F)
+            ready = seg
         k = field_balance(F)
     else:
         e, a = segment_scale(p, seg)
         k = beta * a
-    return max(1, int(math.ceil(k * rho / step)))
+    return max(1, int(math.ceil(k * rho / step))), ready
 
 
 @njit(cache=True)
-def piece_matrix(p, seg, beta, h, U):
+def piece_matrix(p, seg, beta, h, U, F, ready):
     """U <- the transfer across a short piece h of segment seg (real, beta = lam_0 L;
-    k h <= 1, as ``segment_pieces`` cuts them)."""
+    k h <= 1, as ``segment_pieces`` cuts them). F holds ``field_prepare`` of segment
+    ``ready`` (prepared again when a general seg differs). Returns the segment F holds."""
     if is_general(p, seg):
-        F = np.empty((4, 4, 4))
-        field_prepare(p, seg, beta**4, 1.0, F)
+        if ready != seg:
+            field_prepare(p, seg, beta**4, 1.0, F)
+            ready = seg
         field_exp(F, h, U)
     else:
         e, a = segment_scale(p, seg)
         piece_transfer(beta * a, e, h, U)
-
-
-@njit(cache=True)
-def long_transfer(p, seg, beta, rho, U):
-    """U <- the transfer across rho of segment seg, unscaled (the paper's formulation,
-    ``u_bar_paper``: growing and decaying solutions together, as the paper forms them)."""
-    if is_general(p, seg):
-        A = np.empty((4, 4))
-        segment_field(p, seg, beta**4, 1.0, A)
-        expm_short(A, rho, balance(A), U)
-    else:
-        e, a = segment_scale(p, seg)
-        shift = beam_transfer_scaled(beta * a, rho, U)
-        f = math.exp(shift)
-        for r in range(4):
-            for c in range(4):
-                U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+    return ready
 
 
 @njit(cache=True)
@@ -300,8 +292,8 @@ def field_prepare(p, seg, w2, stiff, F):
 
 @njit(cache=True, inline="always")
 def field_exp(F, h, U):
-    """U <- exp(A h) from F of ``field_prepare`` (``field_prepare``), for a piece with k h <= 1
-    (k = ``balance(A)``).
+    """U <- exp(A h) from F of ``field_prepare``, for a piece with k h <= 1 (k =
+    ``field_balance(F)``).
 
     The characteristic polynomial of every field matrix here is even, ``l^4 + a l^2 +
     b`` (``a = -tr(A^2)/2``, ``b = det A``: the odd coefficients vanish by its zero pattern),

@@ -237,13 +237,16 @@ def shape_steps(p, beta, rows):
     steps = n_ev
     pos = 0.0
     seg = 0
+    F = np.empty((4, 4, 4))  # a general segment's field_prepare (of segment ``ready``)
+    ready = -1
     for r in range(n_ev + 1):
         x = p[rows[r] + 1] if r < n_ev else L
         while True:
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                steps += segment_pieces(p, seg, beta, rho, MARCH_STEP)
+                pieces, ready = segment_pieces(p, seg, beta, rho, MARCH_STEP, F, ready)
+                steps += pieces
                 pos = target
             if after == seg:
                 break
@@ -290,6 +293,8 @@ def mode_shapes(
     r_s = np.ones(n_steps)
     rot_s = np.zeros(n_steps)
     U = np.empty((4, 4))
+    F = np.empty((4, 4, 4))  # a general segment's field_prepare (of segment ``ready``)
+    ready = -1
     x_s = np.zeros(n_steps + 1)
     nq_s = np.zeros(n_steps, dtype=np.int64)
     nf_s = np.zeros(n_steps, dtype=np.int64)
@@ -324,8 +329,8 @@ def mode_shapes(
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                pieces = segment_pieces(p, seg, beta, rho, MARCH_STEP)
-                piece_matrix(p, seg, beta, rho / pieces, U)
+                pieces, ready = segment_pieces(p, seg, beta, rho, MARCH_STEP, F, ready)
+                ready = piece_matrix(p, seg, beta, rho / pieces, U, F, ready)
                 for _ in range(pieces):
                     piece_step(W, G, U)
                     kind[s] = 0
@@ -443,7 +448,7 @@ def mode_shapes(
         x1 = x0 + rho_s[t]
         while j < ns and xs[j] / L < x1:
             d = max(xs[j] / L - x0, 0.0)
-            piece_matrix(p, seg_s[t], beta, d, U)
+            ready = piece_matrix(p, seg_s[t], beta, d, U, F, ready)
             for k in range(m):
                 for r in range(4):
                     Z_out[k, j, r] = (
@@ -454,7 +459,7 @@ def mode_shapes(
                     )
             j += 1
         for g in range(GAUSS_X.shape[0]):
-            piece_matrix(p, seg_s[t], beta, rho_s[t] * GAUSS_X[g], U)
+            ready = piece_matrix(p, seg_s[t], beta, rho_s[t] * GAUSS_X[g], U, F, ready)
             w = rho_s[t] * GAUSS_W[g] * r_s[t]
             wr = rho_s[t] * GAUSS_W[g] * rot_s[t]  # rho_I psi^2: a section's rotary inertia
             for k in range(m):
