@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "c2ff6f0783c831871bf612cd2db2ab03155bd352"
+SIGNATURE = "b80664a1fe282405b780ee9d47dc7887acb6597e"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +42,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "510c3d07eb82cff6da5b8e78dff030266fad611b"
+NUMERICS = "4b20b6393ed3e00829d1a5e937bd5ad7f2b67ddf"
 
 
 @njit(cache=True)

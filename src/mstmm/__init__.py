@@ -12,6 +12,7 @@ never imported on this path).
 """
 
 from . import interpret
+from .bands import Bands, bands
 from .kernels import Kernel, load_kernel
 from .response import frf
 from .scene import Scene, SceneError, load_scene, scene_from_dict
@@ -21,11 +22,13 @@ from .study import sweep
 from .topology import Topology, parameter_vector, topology_of
 
 __all__ = [
+    "Bands",
     "Kernel",
     "Scene",
     "SceneError",
     "Solution",
     "Topology",
+    "bands",
     "example_path",
     "frf",
     "interpret",

@@ -200,6 +200,46 @@ def build_parser() -> argparse.ArgumentParser:
         " or a table (default: %(default)s)",
     )
     f.add_argument("--out", type=Path, help="file to write (default: standard output)")
+    b = command(
+        "bands",
+        "dispersion of a periodic beam (the scene is its unit cell) and certified band gaps",
+    )
+    b.add_argument(
+        "scene",
+        metavar="CELL",
+        help="scene file (TOML): its beam and components make one cell (a scene with"
+        " repeat = N: its cell); the end conditions play no part",
+    )
+    b.add_argument(
+        "--band",
+        nargs=2,
+        type=_frequency,
+        metavar=("LO", "HI"),
+        help="frequencies from LO to HI rad/s (Hz with --hz) (default: 0 to where the bare"
+        " beam's k L = 3 pi)",
+    )
+    b.add_argument(
+        "--points",
+        type=_positive_int,
+        default=1000,
+        metavar="N",
+        help="frequencies of the dispersion curves (default: %(default)s)",
+    )
+    b.add_argument(
+        "--format",
+        choices=("table", "json", "csv"),
+        default="table",
+        help="the edges and gaps as a table, everything as one JSON object, or the"
+        " dispersion as CSV (omega, f, propagating pairs, Re k and Im k of both pairs in"
+        " 1/m) (default: %(default)s)",
+    )
+    b.add_argument("--hz", action="store_true", help="--band in Hz (default: rad/s)")
+    b.add_argument(
+        "--plot",
+        type=Path,
+        metavar="FILE",
+        help="also draw the dispersion (Re k, Im k) with the gaps shaded (needs matplotlib)",
+    )
     d = command("derive", "write the kernel of a scene's topology, print where")
     d.add_argument("scene", metavar="SCENE", help="scene file (TOML)")
     d.add_argument("--out", type=Path, help="directory (default: the kernel cache)")
@@ -523,6 +563,44 @@ def _plot(args) -> int:
     return 0
 
 
+def _bands(args) -> int:
+    from . import output
+    from .bands import bands, cell_of
+
+    if args.plot is not None:
+        _check_out_dir(args.plot, "--plot")
+        try:
+            from . import plot
+        except ModuleNotFoundError as exc:
+            if (exc.name or "").split(".")[0] != "matplotlib":
+                raise
+            raise SceneError(
+                COMMAND_LINE, "--plot", 'needs matplotlib: pip install "mstmm[plot]"'
+            ) from None
+    cell = cell_of(_scene(args.scene))
+    band = None
+    if args.band is not None:
+        band = tuple(float(v) for v in args.band)
+        if args.hz:
+            band = tuple(v * 2.0 * math.pi for v in band)
+        if band[1] <= band[0]:
+            raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
+    result = bands(cell, band=band, points=args.points)
+    if args.format == "json":
+        print(output.dumps(output.bands_dict(result))[0])
+    elif args.format == "csv":
+        sys.stdout.write(output.bands_csv(result))
+    else:
+        sys.stdout.write(output.bands_table(result))
+    if args.plot is not None:
+        plot.dispersion(result, path=args.plot, hz=args.hz)
+        print(args.plot, file=sys.stderr)
+    _phase(args, "bands", **result.timings)
+    for note in result.notes:
+        _warn(note)
+    return 0 if result.count_checked else EXIT_UNTRUSTED
+
+
 def _frf_request(args, scene: Scene):
     """The frequencies and the parsed --input / --output of ``frf`` and ``plot --frf``,
     checked: the band as ``solve --band`` checks it, at most
@@ -739,6 +817,7 @@ def _main(argv: list[str] | None) -> int:
         commands = {
             "solve": _solve,
             "frf": _frf,
+            "bands": _bands,
             "sweep": _sweep,
             "plot": _plot,
             "derive": _derive,

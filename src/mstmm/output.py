@@ -606,3 +606,79 @@ def damped_shapes_csv(sol) -> str:
             rows.append(row)
         out += "\n" + _csv(rows)
     return out
+
+
+# ------------------------------------------------------------------ periodic cells
+
+
+def bands_table(b) -> str:
+    """``mstmm bands``: every band edge and every stop band in the band asked for."""
+    lo, hi = b.band
+    lines = [
+        f"{b.cell.name}: periodic cell of length {b.length:.17g} m,"
+        f" band [{lo:.6g}, {hi:.6g}] rad/s",
+    ]
+    if b.damped:
+        lines.append("damped cell: every wave decays; no sharp band edge (see --format csv)")
+    else:
+        lines.append(f"{'edge':>4}  {'omega [rad/s]':>24}  {'f [Hz]':>24}  {'k L':>12}  mult")
+        for i, e in enumerate(b.edges, start=1):
+            kL = {"periodic": "0", "antiperiodic": "pi"}.get(e.kind, "in (0, pi)")
+            flag = "" if e.certified else "  NOT CERTIFIED"
+            lines.append(
+                f"{i:>4}  {_fmt(e.omega, '>24.17g')}  {_fmt(e.hz, '>24.17g')}  {kL:>12}"
+                f"  {e.multiplicity:>4}{flag}"
+            )
+        lines.append(f"{len(b.gaps)} stop band(s):")
+        for a, c in b.gaps:
+            width = (c - a) / (0.5 * (a + c)) if a + c > 0 else 0.0
+            lines.append(
+                f"  [{a:.12g}, {c:.12g}] rad/s"
+                f" = [{a / (2 * math.pi):.12g}, {c / (2 * math.pi):.12g}] Hz"
+                f" (relative width {width:.4g})"
+            )
+    t = b.timings
+    lines.append(
+        f"time: dispersion at {b.omega.size} frequencies {t.get('dispersion', 0.0) * 1e3:.2f} ms,"
+        f" edges {t.get('edges', 0.0) * 1e3:.2f} ms, count checked: {b.count_checked}"
+    )
+    return "\n".join(lines) + "\n"
+
+
+def bands_csv(b) -> str:
+    """The dispersion: omega, f, propagating pairs, Re k and Im k (1/m) of both pairs (the
+    more attenuated first)."""
+    out = io.StringIO()
+    out.write("omega,f,propagating,re_k1,im_k1,re_k2,im_k2\n")
+    for w, n, k in zip(b.omega, b.propagating, b.k):
+        row = [w, w / (2 * math.pi), n, k[0].real, k[0].imag, k[1].real, k[1].imag]
+        out.write(",".join(repr(float(v)) if not isinstance(v, (int, np.integer)) else str(v)
+                           for v in row) + "\n")
+    return out.getvalue()
+
+
+def bands_dict(b) -> dict:
+    """``mstmm bands --format json``: the cell, the edges, the gaps and the dispersion."""
+    return {
+        "cell": b.cell.name,
+        "length": b.length,
+        "band": list(b.band),
+        "damped": b.damped,
+        "count_checked": b.count_checked,
+        "edges": [
+            {
+                "omega": e.omega,
+                "hz": e.hz,
+                "kind": e.kind,
+                "multiplicity": e.multiplicity,
+                "certified": e.certified,
+            }
+            for e in b.edges
+        ],
+        "gaps": [list(g) for g in b.gaps],
+        "omega": b.omega.tolist(),
+        "propagating": b.propagating.tolist(),
+        "k": [[[float(k.real), float(k.imag)] for k in row] for row in b.k],
+        "notes": list(b.notes),
+        "timings": dict(b.timings),
+    }

@@ -621,3 +621,48 @@ def _frf_unit(quantity: str, response: str, load: str) -> str:
     top += {"receptance": "", "mobility": "/s", "accelerance": "/s^2"}[quantity]
     bottom = _LOAD_UNITS.get(load.lower(), "?")
     return f"{top}/({bottom})" if " " in bottom else f"{top}/{bottom}"
+
+
+def dispersion(
+    bands,
+    path: PathLike | None = None,
+    hz: bool = False,
+    ax: tuple[Axes, Axes] | None = None,
+) -> Figure:
+    """Dispersion of a periodic cell (``mstmm.bands``): Re k L / pi of the propagating
+    pairs (left) and the attenuation Im k L per cell of both pairs (right, log scale)
+    against frequency (rad/s, or Hz with ``hz``), the stop bands shaded and the edges
+    marked."""
+    if ax is None:
+        fig = Figure(figsize=(9.0, 5.0), layout="constrained")
+        ax_re, ax_im = fig.subplots(1, 2, sharey=True)
+    else:
+        ax_re, ax_im = ax
+        fig = ax_re.get_figure()
+    from .bands import propagating_pairs
+
+    scale = 1.0 / _TWO_PI if hz else 1.0
+    f = bands.omega * scale
+    kL = bands.k * bands.length
+    moving = propagating_pairs(bands.mu)
+    for j, style in ((1, "-"), (0, "--")):
+        re = np.abs(kL[:, j].real) / np.pi
+        if not bands.damped:
+            re = np.where(moving[:, j], re, np.nan)
+        ax_re.plot(re, f, style, color=f"C{j}", lw=1.2, gid="dispersion")
+        ax_im.semilogx(np.abs(kL[:, j].imag), f, style, color=f"C{j}", lw=1.2, gid="attenuation")
+    for lo, hi in bands.gaps:
+        for a in (ax_re, ax_im):
+            a.axhspan(lo * scale, hi * scale, color="0.85", zorder=0, gid="gap")
+    for e in bands.edges:
+        ax_re.axhline(e.omega * scale, color="0.5", lw=0.5, ls=":", gid="edge")
+    ax_re.set_xlim(0.0, 1.0)
+    ax_re.set_xlabel("Re k L / pi")
+    ax_im.set_xlabel("Im k L (attenuation per cell, Np)")
+    ax_re.set_ylabel("f [Hz]" if hz else "omega [rad/s]")
+    ax_re.set_ylim(f[0], f[-1])
+    title = f"{bands.cell.name}: dispersion"
+    if bands.gaps:
+        title += f", {len(bands.gaps)} stop band(s) shaded"
+    ax_re.set_title(title, loc="left")
+    return _finish(fig, path)

@@ -9,12 +9,14 @@ table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``
 field matrix from its differential equation), ``segment`` (a piece's transfer, whichever
 the segment's kind), ``paper``
 (the paper's determinant), ``search`` (the certified scan), ``shapes`` (mode shapes),
-``frf`` (frequency response), ``entries`` (the drivers called from Python).
+``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch conditions), ``entries``
+(the drivers called from Python).
 """
 
 from mstmm.generated.euler_bernoulli import *  # noqa: F403
 
 from . import cache  # noqa: F401  (numba's cache of these modules follows all of them)
+from .bloch import *  # noqa: F403
 from .chain import *  # noqa: F403
 from .count import *  # noqa: F403
 from .entries import *  # noqa: F403

@@ -2,12 +2,20 @@
 compiled code, turned into first-class function values (one compiled driver serves every
 topology; numba caches it on disk)."""
 
+import math
+
 import numpy as np
 from numba import njit, prange, types
 from numba.core import cgutils
 from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
+from .bloch import (
+    bloch_mu,
+    cell_subspace,
+    closed_stiffness,
+    pencil_det,
+)
 from .count import (
     counts,
 )
@@ -227,3 +235,41 @@ def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
     frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular)
+
+
+@njit(cache=True, parallel=True)
+def entry_bloch_mu(fa, damped, ws, p, out):
+    """``bloch_mu`` of the cell at every frequency ws[k] (complex, rad/s), in parallel:
+    out[k] = (mu_1, mu_2, c0, c1, c2 - 2 c0, log scale)."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    for k in prange(ws.shape[0]):
+        X = cell_subspace(event, sizes, ws[k], p, damped)
+        if X.shape[0] == 8:
+            bloch_mu(X, out[k])
+        else:
+            out[k, :] = complex(math.nan, math.nan)
+
+
+@njit(cache=True)
+def entry_closed(fa, w, p, s, K):
+    """At the real frequency w: (det M(s) as (sign, log)) and K <- the closed cell's joint
+    stiffness (``closed_stiffness``; s = +1 periodic, -1 antiperiodic); returns (sign,
+    log, whether K exists)."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    X = cell_subspace(event, sizes, complex(w, 0.0), p, False)
+    if X.shape[0] != 8:
+        return 0.0, 0.0, False
+    ok = closed_stiffness(X, s, K)
+    phase, log = pencil_det(X, s)
+    return phase.real, log, ok
+
+
+@njit(cache=True)
+def entry_subspace(fa, damped, w, p):
+    """The cell's end-state subspace [X0; XL] at the complex frequency w
+    (``cell_subspace``)."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    return cell_subspace(event, sizes, w, p, damped)

@@ -7,16 +7,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .layout import (
-    HEAD,
-    SEGMENT_WIDTH,
-)
 from .segment import (
-    field_balance,
-    field_exp,
-    field_prepare,
-    is_general,
-    piece_transfer_c,
+    segment_piece_c,
 )
 from .shapes import (
     DEGENERATE,
@@ -486,22 +478,8 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     stop = outputs[bo[bptr], 1]
                 rho = (stop - pos) / L
                 if rho > 0.0:
-                    i = HEAD + SEGMENT_WIDTH * seg
-                    stiff = 1.0 + 1j * (p[i + 3] if damped else 0.0)
-                    e = stiff
-                    bs = beta
-                    general = is_general(p, seg)
-                    if general:  # exp(A h) of its field matrix, stiffnesses times 1 + i eta
-                        field_prepare(p, seg, w1 * w1, stiff, Ff)
-                        pieces = max(1, int(math.ceil(field_balance(Ff) * rho / MARCH_STEP)))
-                        field_exp(Ff, rho / pieces, U)
-                    else:
-                        e = p[i + 1] / EI * stiff
-                        bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar / e))
-                        pieces = max(1, int(math.ceil(abs(bs) * rho / MARCH_STEP)))
+                    pieces = segment_piece_c(p, seg, w1, beta, damped, rho, MARCH_STEP, U, Ff)
                     for _ in range(pieces):
-                        if not general:
-                            piece_transfer_c(bs, e, rho / pieces, U)
                         for a in range(4):
                             zz[a] = (
                                 U[a, 0] * z[0] + U[a, 1] * z[1] + U[a, 2] * z[2] + U[a, 3] * z[3]

@@ -10,6 +10,7 @@ Units are the kernel's, L = EI_0 = mbar_0 = 1; ``w2 = (lam_0 L)^4`` the squared 
 (EI, kappa_GA, foundation_k, foundation_kG; not on the axial force, a load).
 """
 
+import cmath
 import math
 
 from numba import njit
@@ -173,6 +174,26 @@ def piece_transfer_c(bs, e, rho, U):
     for r in range(4):
         for c in range(4):
             U[r, c] *= (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+
+
+@njit(cache=True)
+def segment_piece_c(p, seg, w1, beta, damped, rho, step, U, F):
+    """U <- the transfer across rho / pieces of segment seg in complex arithmetic (w1 =
+    (lam_0 L)^2, beta = sqrt(w1); ``damped``: its stiffnesses times 1 + i eta), the
+    pieces of equal length keeping k h <= step; F is scratch for a general segment's
+    powers of A. Returns the number of pieces."""
+    i = HEAD + SEGMENT_WIDTH * seg
+    stiff = 1.0 + 1j * (p[i + 3] if damped else 0.0)
+    if is_general(p, seg):
+        field_prepare(p, seg, w1 * w1, stiff, F)
+        pieces = max(1, int(math.ceil(field_balance(F) * rho / step)))
+        field_exp(F, rho / pieces, U)
+        return pieces
+    e = p[i + 1] / p[1] * stiff
+    bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / p[2] / e))
+    pieces = max(1, int(math.ceil(abs(bs) * rho / step)))
+    piece_transfer_c(bs, e, rho / pieces, U)
+    return pieces
 
 
 @njit(cache=True)

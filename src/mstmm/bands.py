@@ -1,0 +1,450 @@
+"""Periodic structures: the Bloch-Floquet dispersion of a unit cell and its certified
+band-gap edges (issue 23; ``mstmm.numerics.bloch``, docs/periodic.md).
+
+A cell is a scene: its beam (uniform or stepped, any segment physics) and its components
+at 0 <= x < L; its end conditions play no part. The infinite structure repeats it. At
+each frequency the cell's end-state subspace gives the two roots mu = 2 cos(k L) of the
+palindromic characteristic polynomial of its transfer matrix, so the two wave pairs +-k
+(real k: propagating; imaginary or complex: evanescent, Im k the attenuation per metre).
+
+Band edges are the frequencies where a pair turns propagating at k L = 0 or pi: the
+eigenvalues of the cell closed on itself periodically or antiperiodically. Each is found
+with its multiplicity by bisection on a Wittrick-Williams count (the cell clamped at
+both ends, ``Kernel.count_below``, plus the negative eigenvalues of the closed cell's
+2x2 joint stiffness) and polished by Brent on det(X_L -+ X_0): none is missed. A pass band
+can also end where two propagating pairs meet at an interior k (the pairs turn complex;
+possible when two pairs propagate, e.g. a Timoshenko segment above its cut-off): such an
+edge is found from the dispersion grid only and marked uncertified.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .kernels import Kernel, load_kernel, numerics
+from .scene import Scene, SceneError, load_scene, scene_from_dict, scene_to_dict
+from .topology import parameter_vector, topology_of
+
+__all__ = ["Bands", "Edge", "bands", "cell_of"]
+
+#: Nodes of the edge search per pi of the cell's lam L (the count splits what they miss).
+EDGE_NODES_PER_PI = 8
+#: Bisection on the count stops at this relative width: the roots left there are one
+#: multiple root (or a cluster closer than this) with the count's jump as multiplicity.
+CLUSTER_RTOL = 1e-15
+#: Relative offsets of the extra dispersion points around each edge (the curves are
+#: steep there: k L - pi ~ sqrt(omega - edge)).
+_NEAR_EDGE = (0.0, *(sgn * 10.0**-j for j in range(2, 8) for sgn in (-1.0, 1.0)))
+#: mu within this of the real interval [-2, 2] counts as propagating.
+MU_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A band edge: ``omega`` (rad/s) where a wave pair turns propagating or evanescent at
+    k L = 0 (``kind`` "periodic") or pi ("antiperiodic"), with its ``multiplicity`` (2
+    where two branches meet and no gap opens); "coalescence" where two pairs meet at an
+    interior k (found on the dispersion grid, ``certified`` False)."""
+
+    omega: float
+    kind: str
+    multiplicity: int
+    certified: bool = True
+
+    @property
+    def hz(self) -> float:
+        return self.omega / (2.0 * math.pi)
+
+
+@dataclass
+class Bands:
+    """Dispersion of a periodic cell (SI; omega in rad/s).
+
+    ``k`` (n, 2): the two wavenumbers (1/m) at each ``omega``, one per pair +-k, with
+    Im k >= 0 (the wave decaying towards +x) and, undamped, 0 <= Re k <= pi / L; the
+    first column is the more attenuated pair. ``mu`` (n, 2) = 2 cos(k L).
+    ``propagating`` (n,): how many pairs propagate (undamped; -1 for damped cells,
+    where every wave decays). ``edges``: every band edge in ``band`` (undamped cells),
+    ``gaps``: the stop bands in ``band`` as (lo, hi) pairs (a gap reaching an end of
+    ``band`` is cut there). ``count_checked``: the count proved every edge found
+    (none missed, multiplicities exact)."""
+
+    cell: Scene
+    omega: np.ndarray
+    k: np.ndarray
+    mu: np.ndarray
+    propagating: np.ndarray
+    band: tuple[float, float]
+    edges: tuple[Edge, ...] = ()
+    gaps: tuple[tuple[float, float], ...] = ()
+    count_checked: bool = True
+    damped: bool = False
+    notes: list[str] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def length(self) -> float:
+        """The cell's length L (m)."""
+        return self.cell.beam.length
+
+    @property
+    def hz(self) -> np.ndarray:
+        return self.omega / (2.0 * math.pi)
+
+    @property
+    def attenuation(self) -> np.ndarray:
+        """Im k L of the least attenuated pair at each omega: the decay of the slowest wave
+        per cell (nepers; 0 in a pass band). A finite structure of N cells driven at one
+        end transmits ~exp(-N attenuation) in a gap."""
+        return self.length * np.min(self.k.imag, axis=1)
+
+
+def cell_of(scene: Scene | str | Path) -> Scene:
+    """The unit cell of ``scene``: a repeated scene's cell (``repeat = N``), or the scene
+    itself (a path is loaded). Components at x = L are refused: the next cell's x = 0 is
+    the same point."""
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    cell = getattr(scene, "cell", None) or scene
+    L = cell.beam.length
+    for i, a in enumerate(cell.attachments):
+        if a.x >= L:
+            raise SceneError(
+                cell.source,
+                f"attachments[{i}].x",
+                "a cell's component must lie in 0 <= x < length (x = length is the next"
+                " cell's x = 0)",
+                a.x,
+            )
+    return cell
+
+
+def _joint(cell: Scene) -> float:
+    """Where to cut the ring of cells: the middle of the longest stretch without a
+    component (0 for a cell without components)."""
+    xs = sorted(a.x for a in cell.attachments)
+    if not xs:
+        return 0.0
+    L = cell.beam.length
+    best, at = xs[0] + L - xs[-1], 0.5 * (xs[-1] + xs[0] + L)
+    for a, b in zip(xs, xs[1:]):
+        if b - a > best:
+            best, at = b - a, 0.5 * (a + b)
+    return math.fmod(at, L)
+
+
+def closed_cell(cell: Scene) -> Scene:
+    """The cell cut at its joint (``_joint``) with both ends clamped: the same periodic
+    structure (the spectrum of a ring does not depend on where it is cut), no component at
+    an end, and the scene whose count is the Wittrick-Williams J0 of the closed cell."""
+    d = scene_to_dict(cell)
+    beam = d["beam"]
+    beam["left"] = beam["right"] = "clamped"
+    L = cell.beam.length
+    xj = _joint(cell)
+    if xj > 0.0:
+        for a in d["attachments"]:
+            a["x"] = (a["x"] - xj) % L if a["x"] != xj else 0.0
+        if "segments" in beam:
+            beam["segments"] = _rotated_segments(beam["segments"], xj)
+    d["name"] = f"{cell.name}_closed"
+    return scene_from_dict(d, source=cell.source)
+
+
+def _rotated_segments(segments: list[dict], xj: float) -> list[dict]:
+    """Segments of a stepped cell starting at xj (the one holding xj split there)."""
+    after, before = [], []
+    x = 0.0
+    for s in segments:
+        a, b = x, x + s["length"]
+        if b <= xj:
+            before.append(s)
+        elif a >= xj:
+            after.append(s)
+        else:
+            before.append(s | {"length": xj - a})
+            after.append(s | {"length": b - xj})
+        x = b
+    return after + before
+
+
+def default_band(cell: Scene) -> tuple[float, float]:
+    """0 up to where the first segment's bare beam has k L = 3 pi (its third Bragg
+    frequency): the first few pass bands and gaps."""
+    b = cell.beam
+    EI = b.segments[0].EI if b.segments else b.EI
+    mbar = b.segments[0].mass_per_length if b.segments else b.mass_per_length
+    return 0.0, (3.0 * math.pi / b.length) ** 2 * math.sqrt(EI / mbar)
+
+
+class _Cell:
+    """The closed cell's kernel and parameters, and its functions at one frequency."""
+
+    def __init__(self, cell: Scene):
+        self.cell = cell
+        self.closed = closed_cell(cell)
+        self.kernel: Kernel = load_kernel(topology_of(self.closed))
+        self.p = np.ascontiguousarray(parameter_vector(self.closed), dtype=np.float64)
+        self.fa = self.kernel._addresses("shape_event_c", "shape_sizes", "count_below")
+        self.damped = bool(self.kernel.topology.damped)
+        self._K = np.zeros((2, 2))
+        self.n = numerics()
+
+    def mu(self, omegas: np.ndarray) -> np.ndarray:
+        ws = np.ascontiguousarray(omegas, dtype=np.complex128)
+        out = np.zeros((ws.size, 6), dtype=np.complex128)
+        self.n.entry_bloch_mu(self.fa, self.damped, ws, self.p, out)
+        return out[:, :2]
+
+    def edge_function(
+        self, w: float, s: float, count: bool = True
+    ) -> tuple[float, float, int | None]:
+        """(sign, log) of det(X_L - s X_0) and the count of the closed cell below w (None
+        exactly at a frequency of the clamped cell, where the joint stiffness is not
+        defined)."""
+        sign, log, ok = self.n.entry_closed(self.fa, float(w), self.p, float(s), self._K)
+        if not ok or not count:
+            return sign, log, None
+        K = self._K
+        a, c = K[0, 0], K[1, 1]
+        off = 0.5 * (K[0, 1] + K[1, 0])
+        det = a * c - off * off
+        neg = 1 if det < 0.0 else (2 if a + c < 0.0 and det > 0.0 else 0)
+        if det == 0.0:
+            neg = int(a < 0.0) + int(c < 0.0)
+        j0 = int(self.kernel.count_below(np.array([float(w)]), self.p)[0])
+        return sign, log, j0 + neg
+
+    def count(self, w: float, s: float) -> int | None:
+        return self.edge_function(w, s)[2]
+
+
+def propagating_pairs(mu: np.ndarray) -> np.ndarray:
+    """Whether each pair (entry of mu) propagates: undamped, mu real within [-2, 2]."""
+    real = np.abs(mu.imag) <= MU_TOL * np.maximum(1.0, np.abs(mu.real))
+    inside = np.abs(mu.real) <= 2.0 + MU_TOL
+    return real & inside & np.isfinite(mu.real)
+
+
+def _propagating(mu: np.ndarray) -> np.ndarray:
+    """Pairs propagating at each row of mu."""
+    return np.sum(propagating_pairs(mu), axis=1)
+
+
+def wavenumbers(mu: np.ndarray, L: float) -> np.ndarray:
+    """k (1/m) from mu = 2 cos(k L), entry by entry: Im k >= 0, Re k in [-pi/L, pi/L] (in
+    [0, pi/L] when undamped)."""
+    with np.errstate(all="ignore"):
+        kL = np.arccos(mu / 2.0 + 0.0j)
+    kL = np.where(kL.imag < 0.0, -kL, kL)
+    kL = np.where(np.isfinite(mu), kL, complex(math.pi, math.inf))
+    return kL / L
+
+
+def bands(
+    cell: Scene | str | Path,
+    band: tuple[float, float] | None = None,
+    points: int = 1000,
+    omegas: np.ndarray | None = None,
+    edges: bool = True,
+) -> Bands:
+    """Dispersion of the periodic structure made of ``cell`` repeated (a :class:`Scene`,
+    a repeated scene's cell, or a path) at ``points`` frequencies uniform in ``band``
+    (rad/s; default :func:`default_band`) or at the given ``omegas``; with ``edges``,
+    every band edge in ``band`` found and certified, and the gaps.
+
+    >>> import mstmm
+    >>> b = mstmm.bands(mstmm.example_path("metamaterial"))  # doctest: +SKIP
+    >>> b.gaps  # doctest: +SKIP
+    """
+    t0 = time.perf_counter()
+    cell = cell_of(cell)
+    lo, hi = default_band(cell) if band is None else (float(band[0]), float(band[1]))
+    if not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0.0 or hi <= lo:
+        raise SceneError(cell.source, "band", "must be finite with 0 <= lo < hi (rad/s)", [lo, hi])
+    given = omegas is not None
+    if omegas is None:
+        if int(points) < 2:
+            raise SceneError(cell.source, "points", "must be a whole number >= 2", points)
+        omegas = np.linspace(lo, hi, int(points))
+    omegas = np.asarray(omegas, dtype=np.float64)
+    c = _Cell(cell)
+    t1 = time.perf_counter()
+    out = _dispersion(c, omegas, (lo, hi))
+    out.timings = {"kernel": t1 - t0, "dispersion": time.perf_counter() - t1}
+    if edges and not c.damped:
+        t3 = time.perf_counter()
+        found, checked, notes = find_edges(c, lo, hi)
+        found, gaps, more = _gaps(c, found, lo, hi)
+        out.edges = tuple(found)
+        out.gaps = tuple(gaps)
+        out.count_checked = checked
+        out.notes = notes + more
+        out.timings["edges"] = time.perf_counter() - t3
+        if not given:  # the curves reach every edge and resolve every gap
+            extra = [e.omega * (1.0 + d) for e in found for d in _NEAR_EDGE]
+            for a, b in gaps:
+                extra += list(a + (b - a) * (0.5 - 0.5 * np.cos(np.linspace(0, np.pi, 41))))
+            fine = _dispersion(c, np.unique(np.concatenate((omegas, extra))), (lo, hi))
+            out.omega, out.k, out.mu = fine.omega, fine.k, fine.mu
+            out.propagating = fine.propagating
+    elif edges:
+        out.count_checked = False
+        out.notes = ["damped cell: every wave decays, no sharp band edge (k is complex)"]
+    return out
+
+
+def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Bands:
+    """Bands with the wavenumbers at ``omegas`` only (no edges)."""
+    mu = c.mu(omegas)
+    k = wavenumbers(mu, c.cell.beam.length) + 0.0  # no -0.0
+    order = np.argsort(-k.imag, axis=1, kind="stable")  # the more attenuated pair first
+    k = np.take_along_axis(k, order, axis=1)
+    mu = np.take_along_axis(mu, order, axis=1)
+    prop = np.full(omegas.shape, -1, dtype=np.int64) if c.damped else _propagating(mu)
+    return Bands(c.cell, omegas, k, mu, prop, band, damped=c.damped)
+
+
+def _scaled(c: _Cell, s: float, ref: list[float]):
+    def f(w: float) -> float:
+        sign, log, _ = c.edge_function(w, s, count=False)
+        if not ref:
+            ref.append(log)
+        return sign * math.exp(min(log - ref[0], 700.0))
+
+    return f
+
+
+def find_edges(c: _Cell, lo: float, hi: float) -> tuple[list[Edge], bool, list[str]]:
+    """Every zero of det(X_L -+ X_0) in [lo, hi] with its multiplicity, proved by the count
+    of the closed cell (periodic and antiperiodic)."""
+    L = c.cell.beam.length
+    b = c.cell.beam
+    EI = min(s.EI for s in b.segments) if b.segments else b.EI
+    mbar = max(s.mass_per_length for s in b.segments) if b.segments else b.mass_per_length
+    lam_hi = (hi * hi * mbar / EI) ** 0.25 * L
+    nodes = max(16, int(math.ceil(lam_hi / math.pi * EDGE_NODES_PER_PI)) + 1)
+    beta = np.linspace(0.0, math.sqrt(hi), nodes) ** 2
+    grid = np.unique(np.concatenate(([lo, hi], beta[(beta > lo) & (beta < hi)])))
+    own = c.kernel.oscillator_frequencies(c.p)
+    side = 1e-7
+    extra = np.concatenate((own * (1 - side), own * (1 + side)))
+    grid = np.unique(np.concatenate((grid, extra[(extra > lo) & (extra < hi)])))
+    if grid[0] == 0.0:
+        grid[0] = hi * 1e-12  # the rigid motions sit at 0: count them as edges there
+    edges: list[Edge] = []
+    checked = True
+    notes: list[str] = []
+    for s, kind in ((1.0, "periodic"), (-1.0, "antiperiodic")):
+        ref: list[float] = []
+        f = _scaled(c, s, ref)
+        counts = [c.count(w, s) for w in grid]
+        values = [f(w) for w in grid]
+        if lo == 0.0 and counts[0]:
+            edges.append(Edge(0.0, kind, counts[0]))
+        for i in range(len(grid) - 1):
+            roots, ok = _isolate(
+                c, s, f, grid[i], grid[i + 1], counts[i], counts[i + 1], values[i], values[i + 1]
+            )
+            checked = checked and ok
+            edges += [Edge(w, kind, m, ok) for w, m in roots]
+        if not checked:
+            notes.append(f"{kind} edges: the count is not monotone somewhere (see edges)")
+    edges.sort(key=lambda e: e.omega)
+    return edges, checked, notes
+
+
+def _isolate(c: _Cell, s: float, f, a, b, na, nb, fa, fb) -> tuple[list, bool]:
+    """Roots of f in (a, b] with the count rising from na to nb: bisection on the count,
+    Brent on a single sign change, a multiple root where the bracket shrinks to
+    CLUSTER_RTOL. Returns ([(omega, multiplicity)], whether the count was consistent)."""
+    if na is None or nb is None:  # a frequency of the clamped cell on a node: step off it
+        return _isolate_nudged(c, s, f, a, b, na, nb, fa, fb)
+    d = nb - na
+    if d == 0:
+        return [], True
+    if d < 0:
+        return [], False
+    if d == 1 and (fa > 0.0) != (fb > 0.0):
+        return [(brentq(f, a, b, xtol=1e-300, rtol=1e-15, maxiter=200), 1)], True
+    if b - a <= CLUSTER_RTOL * b:
+        return [(0.5 * (a + b), d)], True
+    m = 0.5 * (a + b)
+    nm = c.count(m, s)
+    if nm is None:
+        m = a + 0.499 * (b - a)
+        nm = c.count(m, s)
+    fm = f(m)
+    left, ok1 = _isolate(c, s, f, a, m, na, nm, fa, fm)
+    right, ok2 = _isolate(c, s, f, m, b, nm, nb, fm, fb)
+    return left + right, ok1 and ok2
+
+
+def _isolate_nudged(c: _Cell, s, f, a, b, na, nb, fa, fb):
+    eps = 1e-12 * b
+    if na is None:
+        a = a + eps
+        na, fa = c.count(a, s), f(a)
+    if nb is None:
+        b = b - eps
+        nb, fb = c.count(b, s), f(b)
+    if na is None or nb is None:
+        return [], False
+    return _isolate(c, s, f, a, b, na, nb, fa, fb)
+
+
+def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
+    """Stop bands in [lo, hi] from the edges: between consecutive edges the number of
+    propagating pairs is constant unless two pairs meet at an interior k; it is read at
+    the middle of each stretch and at a few more points, and a change inside a stretch is
+    located (an uncertified "coalescence" edge)."""
+    cuts = sorted({lo, hi, *(e.omega for e in edges if lo <= e.omega <= hi)})
+    found = list(edges)
+    notes: list[str] = []
+    spans: list[tuple[float, float, int]] = []
+    for a, b in zip(cuts, cuts[1:]):
+        if b <= a:
+            continue
+        probe = a + (b - a) * np.array([0.05, 0.25, 0.5, 0.75, 0.95])
+        n = _propagating(c.mu(probe))
+        if np.all(n == n[0]):
+            spans.append((a, b, int(n[0])))
+            continue
+        # two pairs meet inside: split at each change, found by bisection on the pattern
+        xs = [a]
+        for i in range(len(probe) - 1):
+            if n[i] != n[i + 1]:
+                x = _bisect_change(c, probe[i], probe[i + 1], int(n[i]))
+                found.append(Edge(x, "coalescence", 1, certified=False))
+                notes.append(f"a pass band ends inside k L in (0, pi) at {x:.12g} rad/s")
+                xs.append(x)
+        xs.append(b)
+        for u, v in zip(xs, xs[1:]):
+            spans.append((u, v, int(_propagating(c.mu(np.array([0.5 * (u + v)])))[0])))
+    gaps: list[tuple[float, float]] = []
+    for a, b, n in spans:
+        if n == 0:
+            if gaps and gaps[-1][1] == a:
+                gaps[-1] = (gaps[-1][0], b)
+            else:
+                gaps.append((a, b))
+    found.sort(key=lambda e: e.omega)
+    return found, gaps, notes
+
+
+def _bisect_change(c: _Cell, a: float, b: float, na: int) -> float:
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        if m <= a or m >= b:
+            break
+        if int(_propagating(c.mu(np.array([m])))[0]) == na:
+            a = m
+        else:
+            b = m
+    return 0.5 * (a + b)

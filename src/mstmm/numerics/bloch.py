@@ -1,0 +1,325 @@
+"""A periodic cell's Bloch conditions (issue 23): the cell's transfer relation as one
+descriptor pencil, its characteristic polynomial in the Bloch multiplier, and the
+condensed dynamic stiffness of the cell closed on itself.
+
+The cell [0, L] is marched like the paper's overall transfer equation (Eqs. (2)-(4)),
+keeping every unknown: u = [Z_0, q_1 .. q_n] (the state at x = 0 and the components'
+unknowns, in x order), the state at x = L is Z_L = Phi u, and each component adds its
+constraint rows Cz Z + Cq q = 0. A Bloch wave Z_L = lam Z_0 is a null vector of
+
+    M(lam) = [[C], [Phi - lam [I 0]]]      ((n + 4)-square),
+
+and det M(lam) = g det(T - lam I) for the cell's transfer matrix T (when it exists; a
+support makes T singular and M stays regular): T is symplectic (reciprocity: the dynamic
+stiffness is symmetric, complex symmetric when damped), so det M is palindromic,
+c0 + c1 lam + c2 lam^2 + c1 lam^3 + c0 lam^4 = lam^2 P(mu) with mu = lam + 1/lam and
+
+    P(mu) = c0 mu^2 + c1 mu + (c2 - 2 c0).
+
+Three determinants give it: c0 = det M(0), P(2) = det M(1), P(-2) = det M(-1). Each root
+mu = 2 cos(k L) of P is a pair of waves +-k. The frequencies where a wave pair turns
+propagating or evanescent at k L = 0 or pi are the zeros of P(+-2) = det M(+-1): the
+eigenvalues of the cell closed on itself periodically (Z_L = Z_0) or antiperiodically
+(Z_L = -Z_0), whose Wittrick-Williams count is the count of the cell clamped at both
+ends plus the negative eigenvalues of the 2x2 dynamic stiffness K of the closed cell at
+its joint (``closed_stiffness``).
+
+Units are the kernel's (L = EI_0 = mbar_0 = 1 in the parameter vector's first segment);
+mu, lam and k L do not depend on them.
+"""
+
+import cmath
+import math
+
+import numpy as np
+from numba import njit
+
+from .frf import (
+    eliminate_c,
+)
+from .segment import (
+    segment_piece_c,
+)
+from .walk import (
+    event_order,
+    next_piece,
+)
+
+#: Pieces (lam h <= 1 each) between two re-orthonormalisations of the subspace: across
+#: them a decaying solution loses at most exp(2 BLOCH_STEP) eps against a growing one.
+BLOCH_STEP = 3.0
+
+
+@njit(cache=True)
+def lu_logdet_c(A):
+    """Determinant of the complex square A by LU with partial pivoting, as (phase, log|det|)
+    with |phase| = 1 (phase 0 for a singular A); A is overwritten."""
+    n = A.shape[0]
+    phase = 1.0 + 0.0j
+    log = 0.0
+    for k in range(n):
+        piv = k
+        big = abs(A[k, k])
+        for r in range(k + 1, n):
+            if abs(A[r, k]) > big:
+                big = abs(A[r, k])
+                piv = r
+        if big == 0.0:
+            return 0.0j, 0.0
+        if piv != k:
+            phase = -phase
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[piv, j]
+                A[piv, j] = tmp
+        d = A[k, k]
+        phase *= d / abs(d)
+        log += math.log(abs(d))
+        for r in range(k + 1, n):
+            f = A[r, k] / d
+            if f != 0.0:
+                for j in range(k + 1, n):
+                    A[r, j] -= f * A[k, j]
+    return phase, log
+
+
+@njit(cache=True)
+def orthonormalise8(X):
+    """The columns of X (8 x 4) made orthonormal (complex Gram-Schmidt, twice): the same
+    subspace, of states whose growth across the cell no longer swamps the others."""
+    for c in range(4):
+        for _ in range(2):
+            for k in range(c):
+                d = 0.0j
+                for r in range(8):
+                    d += X[r, k].conjugate() * X[r, c]
+                for r in range(8):
+                    X[r, c] -= d * X[r, k]
+        nrm = 0.0
+        for r in range(8):
+            nrm += abs(X[r, c]) ** 2
+        nrm = math.sqrt(nrm)
+        if nrm > 0.0:
+            for r in range(8):
+                X[r, c] /= nrm
+
+
+@njit(cache=True)
+def cell_subspace(event, sizes, w, p, damped):
+    """The pairs (Z_0, Z_L) of states at the cell's ends that its beam and components admit,
+    at the complex frequency w (rad/s): a 4-dimensional subspace of C^8, returned as an
+    orthonormal basis X = [X0; XL] (8 x 4). Pieces carry XL by their transfer (lam h <= 1),
+    a component's constraints Cz Z + Cq q = 0 are solved for the free parameters
+    (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised after every component
+    and every BLOCH_STEP pieces, so the
+    growing solutions never swamp the decaying ones (a long cell, a high frequency).
+    ``event``/``sizes`` are the kernel's complex descriptors (``shape_event_c``,
+    ``shape_sizes``); ``damped``: the segments' loss factors count."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    w1 = w * L * L * math.sqrt(mbar / EI)
+    beta = cmath.sqrt(w1)
+    rows = event_order(p)
+    n_ev = rows.shape[0]
+    nq_all, max_q = sizes(p)
+    nb = max(1, max_q)
+    X = np.zeros((8, 4), dtype=np.complex128)
+    S = np.zeros((4, 4), dtype=np.complex128)
+    for a in range(4):
+        X[a, a] = 1.0
+        X[4 + a, a] = 1.0
+    orthonormalise8(X)
+    Cz = np.zeros((nb, 4), dtype=np.complex128)
+    Cq = np.zeros((nb, nb), dtype=np.complex128)
+    Ad = np.zeros((4, 4), dtype=np.complex128)
+    B = np.zeros((4, nb), dtype=np.complex128)
+    ev_mass = np.zeros((3, nb))
+    C = np.zeros((nb, nb + 4), dtype=np.complex128)
+    rhs = np.zeros(nb, dtype=np.complex128)
+    row_scale = np.ones(nb)
+    N = np.zeros((nb + 4, nb + 4), dtype=np.complex128)
+    xp = np.zeros(nb + 4, dtype=np.complex128)
+    Y = np.zeros((8, 4), dtype=np.complex128)
+    U = np.zeros((4, 4), dtype=np.complex128)
+    Ff = np.zeros((4, 4, 4), dtype=np.complex128)
+    pos = 0.0
+    seg = 0
+    grown = 0.0  # pieces (lam h <= 1 each) since the last re-orthonormalisation
+    for r in range(n_ev + 1):
+        x = p[rows[r] + 1] if r < n_ev else L
+        while True:
+            target, after = next_piece(p, seg, x)
+            rho = (target - pos) / L
+            if rho > 0.0:
+                pieces = segment_piece_c(p, seg, w1, beta, damped, rho, 1.0, U, Ff)
+                for _ in range(pieces):
+                    for a in range(4):
+                        for c in range(4):
+                            S[a, c] = (
+                                U[a, 0] * X[4, c]
+                                + U[a, 1] * X[5, c]
+                                + U[a, 2] * X[6, c]
+                                + U[a, 3] * X[7, c]
+                            )
+                    for a in range(4):
+                        for c in range(4):
+                            X[4 + a, c] = S[a, c]
+                    grown += 1.0
+                    if grown >= BLOCH_STEP:
+                        orthonormalise8(X)
+                        grown = 0.0
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        nc, nq = event(p, rows[r], w1, Cz, Cq, Ad, B, ev_mass)
+        n = 4 + nq
+        for a in range(nc):
+            sc = 0.0
+            for c in range(4):
+                C[a, c] = (
+                    Cz[a, 0] * X[4, c]
+                    + Cz[a, 1] * X[5, c]
+                    + Cz[a, 2] * X[6, c]
+                    + Cz[a, 3] * X[7, c]
+                )
+                sc = max(sc, abs(Cz[a, c]))
+            for j in range(nq):
+                C[a, 4 + j] = Cq[a, j]
+                sc = max(sc, abs(Cq[a, j]))
+            rhs[a] = 0.0
+            row_scale[a] = sc if sc > 0.0 else 1.0
+        if nc > 0:
+            free = eliminate_c(C, rhs, row_scale, nc, n, N, xp)
+        else:
+            free = n
+            for j in range(n):
+                for c in range(n):
+                    N[j, c] = 1.0 if j == c else 0.0
+        # (Z_0, Z+) of the free parameters (a, q) = N c: Z+ = A XL a + B q; four of them
+        # (more only exactly at a component's own frequency with the beam held)
+        for c in range(4):
+            for a in range(4):
+                z0 = 0.0j
+                zl = 0.0j
+                for j in range(4):
+                    z0 += X[a, j] * N[j, c]
+                    zl += (
+                        Ad[a, 0] * X[4, j]
+                        + Ad[a, 1] * X[5, j]
+                        + Ad[a, 2] * X[6, j]
+                        + Ad[a, 3] * X[7, j]
+                    ) * N[j, c]
+                for j in range(nq):
+                    zl += B[a, j] * N[4 + j, c]
+                Y[a, c] = z0
+                Y[4 + a, c] = zl
+        if free < 4:
+            return np.zeros((0, 0), dtype=np.complex128)
+        X[:, :] = Y
+        orthonormalise8(X)
+        grown = 0.0
+    if grown > 0.0:
+        orthonormalise8(X)
+    return X
+
+
+@njit(cache=True)
+def pencil_det(X, lam):
+    """det(XL - lam X0) as (phase, log|det|): g det(T - lam I), T the cell's transfer."""
+    A = np.empty((4, 4), dtype=np.complex128)
+    for a in range(4):
+        for c in range(4):
+            A[a, c] = X[4 + a, c] - lam * X[a, c]
+    return lu_logdet_c(A)
+
+
+@njit(cache=True)
+def bloch_mu(M0, out):
+    """out[0:2] <- the roots mu = 2 cos(k L) of P (the evanescent pair's, the larger in
+    modulus, first; inf when P is linear: a constrained cell has one pair); out[2:5] <- the
+    coefficients (c0, c1, c2 - 2 c0) of P over a common scale, out[5] its log."""
+    ph0, l0 = pencil_det(M0, 0.0)
+    ph1, l1 = pencil_det(M0, 1.0)
+    ph2, l2 = pencil_det(M0, -1.0)
+    ref = max(l0, max(l1, l2))
+    c0 = ph0 * math.exp(l0 - ref)
+    pp = ph1 * math.exp(l1 - ref)  # P(2)
+    pm = ph2 * math.exp(l2 - ref)  # P(-2)
+    c1 = 0.25 * (pp - pm)
+    c2 = 0.5 * (pp + pm) - 4.0 * c0  # c2 - 2 c0 of the docstring
+    out[2] = c0
+    out[3] = c1
+    out[4] = c2
+    out[5] = ref
+    disc = cmath.sqrt(c1 * c1 - 4.0 * c0 * c2)
+    if (c1.conjugate() * disc).real < 0.0:
+        disc = -disc
+    qq = -0.5 * (c1 + disc)
+    if qq == 0.0:
+        out[0] = complex(math.inf, 0.0)
+        out[1] = complex(math.inf, 0.0)
+        return
+    out[0] = qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)
+    out[1] = c2 / qq
+
+
+@njit(cache=True)
+def closed_stiffness(X, s, K):
+    """K <- the 2x2 dynamic stiffness (symmetric) of the cell closed on itself at its joint
+    (Z_L = s Z_0 for the displacements Y, theta; s = +1 periodic, -1 antiperiodic): the
+    pairs of X = [X0; XL] with (Y, theta) = d at x = 0 and s d at x = L need the joint
+    forces F = (M, Q)_L - s (M, Q)_0; K pairs them with d by virtual work (rows -Q, M,
+    times s; units of the kernel). Undamped (real) X. Returns False where no pair has a
+    given d: a frequency of the cell clamped at both ends (the count's J0 jumps there)."""
+    A = np.zeros((4, 4))
+    R = np.zeros((4, 2))
+    for c in range(4):
+        for a in range(2):
+            A[a, c] = X[4 + a, c].real - s * X[a, c].real
+            A[2 + a, c] = X[a, c].real
+    R[2, 0] = 1.0
+    R[3, 1] = 1.0
+    for k in range(4):  # Gaussian elimination with partial pivoting, two right-hand sides
+        piv = k
+        big = abs(A[k, k])
+        for r in range(k + 1, 4):
+            if abs(A[r, k]) > big:
+                big = abs(A[r, k])
+                piv = r
+        if big == 0.0:
+            return False
+        if piv != k:
+            for j in range(4):
+                tmp = A[k, j]
+                A[k, j] = A[piv, j]
+                A[piv, j] = tmp
+            for j in range(2):
+                tmp = R[k, j]
+                R[k, j] = R[piv, j]
+                R[piv, j] = tmp
+        for r in range(k + 1, 4):
+            f = A[r, k] / A[k, k]
+            if f != 0.0:
+                for j in range(k + 1, 4):
+                    A[r, j] -= f * A[k, j]
+                for j in range(2):
+                    R[r, j] -= f * R[k, j]
+    for j in range(2):
+        for k in range(3, -1, -1):
+            acc = R[k, j]
+            for c in range(k + 1, 4):
+                acc -= A[k, c] * R[c, j]
+            R[k, j] = acc / A[k, k]
+    for j in range(2):
+        fm = 0.0
+        fq = 0.0
+        for c in range(4):
+            fm += (X[6, c].real - s * X[2, c].real) * R[c, j]
+            fq += (X[7, c].real - s * X[3, c].real) * R[c, j]
+        K[0, j] = -s * fq
+        K[1, j] = s * fm
+    return True
