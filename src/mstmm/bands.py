@@ -41,6 +41,9 @@ CLUSTER_RTOL = 1e-15
 #: Relative offsets of the extra dispersion points around each edge (the curves are
 #: steep there: k L - pi ~ sqrt(omega - edge)).
 _NEAR_EDGE = (0.0, *(sgn * 10.0**-j for j in range(2, 8) for sgn in (-1.0, 1.0)))
+#: Roots of one edge function closer than this (relative) are one multiple root: a
+#: double root's count can step twice by one within round-off of it.
+MERGE_RTOL = 1e-12
 #: mu within this of the real interval [-2, 2] counts as propagating.
 MU_TOL = 1e-9
 
@@ -191,8 +194,9 @@ class _Cell:
         self.closed = closed_cell(cell)
         self.kernel: Kernel = load_kernel(topology_of(self.closed))
         self.p = np.ascontiguousarray(parameter_vector(self.closed), dtype=np.float64)
-        self.fa = self.kernel._addresses("shape_event_c", "shape_sizes", "count_below")
         self.damped = bool(self.kernel.topology.damped)
+        names = ("shape_event_c", "shape_sizes") + (() if self.damped else ("count_below",))
+        self.fa = self.kernel._addresses(*names)
         self._K = np.zeros((2, 2))
         self.n = numerics()
 
@@ -244,7 +248,10 @@ def wavenumbers(mu: np.ndarray, L: float) -> np.ndarray:
         kL = np.arccos(mu / 2.0 + 0.0j)
     kL = np.where(kL.imag < 0.0, -kL, kL)
     kL = np.where(np.isfinite(mu), kL, complex(math.pi, math.inf))
-    return kL / L
+    k = np.empty_like(kL)
+    k.real = kL.real / L
+    k.imag = kL.imag / L
+    return k
 
 
 def bands(
@@ -353,7 +360,11 @@ def find_edges(c: _Cell, lo: float, hi: float) -> tuple[list[Edge], bool, list[s
                 c, s, f, grid[i], grid[i + 1], counts[i], counts[i + 1], values[i], values[i + 1]
             )
             checked = checked and ok
-            edges += [Edge(w, kind, m, ok) for w, m in roots]
+            for w, m in roots:  # a multiple root the count split in round-off: one edge
+                if edges and edges[-1].kind == kind and w - edges[-1].omega <= MERGE_RTOL * w:
+                    e = edges.pop()
+                    w, m, ok = e.omega, e.multiplicity + m, e.certified and ok
+                edges.append(Edge(w, kind, m, ok))
         if not checked:
             notes.append(f"{kind} edges: the count is not monotone somewhere (see edges)")
     edges.sort(key=lambda e: e.omega)
