@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "1cbc6ba8fbde88ca6fb85eef0d08ea7bff83a5fa"
+SIGNATURE = "4800a58e0f29495c6d0b179554720d406900a9bc"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +42,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "4b20b6393ed3e00829d1a5e937bd5ad7f2b67ddf"
+NUMERICS = "00d8c3aac4fcb1d32e8014c1748dcf87f7582d83"
 
 
 @njit(cache=True)

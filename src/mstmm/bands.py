@@ -200,11 +200,15 @@ class _Cell:
         self._K = np.zeros((2, 2))
         self.n = numerics()
 
-    def mu(self, omegas: np.ndarray) -> np.ndarray:
+    def waves(self, omegas: np.ndarray) -> np.ndarray:
+        """(mu_1, mu_2, k_1 L, k_2 L) at each omega, the more attenuated pair first."""
         ws = np.ascontiguousarray(omegas, dtype=np.complex128)
-        out = np.zeros((ws.size, 6), dtype=np.complex128)
-        self.n.entry_bloch_mu(self.fa, self.damped, ws, self.p, out)
-        return out[:, :2]
+        out = np.zeros((ws.size, 4), dtype=np.complex128)
+        self.n.entry_bloch_waves(self.fa, self.damped, ws, self.p, out)
+        return out
+
+    def mu(self, omegas: np.ndarray) -> np.ndarray:
+        return self.waves(omegas)[:, :2]
 
     def edge_function(
         self, w: float, s: float, count: bool = True
@@ -239,19 +243,6 @@ def propagating_pairs(mu: np.ndarray) -> np.ndarray:
 def _propagating(mu: np.ndarray) -> np.ndarray:
     """Pairs propagating at each row of mu."""
     return np.sum(propagating_pairs(mu), axis=1)
-
-
-def wavenumbers(mu: np.ndarray, L: float) -> np.ndarray:
-    """k (1/m) from mu = 2 cos(k L), entry by entry: Im k >= 0, Re k in [-pi/L, pi/L] (in
-    [0, pi/L] when undamped)."""
-    with np.errstate(all="ignore"):
-        kL = np.arccos(mu / 2.0 + 0.0j)
-    kL = np.where(kL.imag < 0.0, -kL, kL)
-    kL = np.where(np.isfinite(mu), kL, complex(math.pi, math.inf))
-    k = np.empty_like(kL)
-    k.real = kL.real / L
-    k.imag = kL.imag / L
-    return k
 
 
 def bands(
@@ -309,11 +300,11 @@ def bands(
 
 def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Bands:
     """Bands with the wavenumbers at ``omegas`` only (no edges)."""
-    mu = c.mu(omegas)
-    k = wavenumbers(mu, c.cell.beam.length) + 0.0  # no -0.0
-    order = np.argsort(-k.imag, axis=1, kind="stable")  # the more attenuated pair first
-    k = np.take_along_axis(k, order, axis=1)
-    mu = np.take_along_axis(mu, order, axis=1)
+    waves = c.waves(omegas)
+    mu = waves[:, :2]
+    k = np.empty_like(mu)  # part by part: (pi + i inf) / L stays finite in its real part
+    k.real = waves[:, 2:].real / c.cell.beam.length + 0.0  # no -0.0
+    k.imag = waves[:, 2:].imag / c.cell.beam.length + 0.0
     prop = np.full(omegas.shape, -1, dtype=np.int64) if c.damped else _propagating(mu)
     return Bands(c.cell, omegas, k, mu, prop, band, damped=c.damped)
 

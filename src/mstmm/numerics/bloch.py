@@ -45,9 +45,9 @@ from .walk import (
     next_piece,
 )
 
-#: Pieces (lam h <= 1 each) between two re-orthonormalisations of the subspace: across
-#: them a decaying solution loses at most exp(2 BLOCH_STEP) eps against a growing one.
-BLOCH_STEP = 3.0
+#: Longest piece (in lam h) between two re-orthonormalisations of the subspace: across
+#: it a decaying solution loses at most exp(2 BLOCH_STEP) eps against a growing one.
+BLOCH_STEP = 2.0
 
 
 @njit(cache=True)
@@ -108,10 +108,11 @@ def orthonormalise8(X):
 def cell_subspace(event, sizes, w, p, damped):
     """The pairs (Z_0, Z_L) of states at the cell's ends that its beam and components admit,
     at the complex frequency w (rad/s): a 4-dimensional subspace of C^8, returned as an
-    orthonormal basis X = [X0; XL] (8 x 4). Pieces carry XL by their transfer (lam h <= 1),
+    orthonormal basis X = [X0; XL] (8 x 4). Pieces carry XL by their transfer (lam h <=
+    BLOCH_STEP),
     a component's constraints Cz Z + Cq q = 0 are solved for the free parameters
     (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised after every component
-    and every BLOCH_STEP pieces, so the
+    and every piece, so the
     growing solutions never swamp the decaying ones (a long cell, a high frequency).
     ``event``/``sizes`` are the kernel's complex descriptors (``shape_event_c``,
     ``shape_sizes``); ``damped``: the segments' loss factors count."""
@@ -145,14 +146,13 @@ def cell_subspace(event, sizes, w, p, damped):
     Ff = np.zeros((4, 4, 4), dtype=np.complex128)
     pos = 0.0
     seg = 0
-    grown = 0.0  # pieces (lam h <= 1 each) since the last re-orthonormalisation
     for r in range(n_ev + 1):
         x = p[rows[r] + 1] if r < n_ev else L
         while True:
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                pieces = segment_piece_c(p, seg, w1, beta, damped, rho, 1.0, U, Ff)
+                pieces = segment_piece_c(p, seg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
                 for _ in range(pieces):
                     for a in range(4):
                         for c in range(4):
@@ -165,10 +165,7 @@ def cell_subspace(event, sizes, w, p, damped):
                     for a in range(4):
                         for c in range(4):
                             X[4 + a, c] = S[a, c]
-                    grown += 1.0
-                    if grown >= BLOCH_STEP:
-                        orthonormalise8(X)
-                        grown = 0.0
+                    orthonormalise8(X)
                 pos = target
             if after == seg:
                 break
@@ -221,9 +218,6 @@ def cell_subspace(event, sizes, w, p, damped):
             return np.zeros((0, 0), dtype=np.complex128)
         X[:, :] = Y
         orthonormalise8(X)
-        grown = 0.0
-    if grown > 0.0:
-        orthonormalise8(X)
     return X
 
 
@@ -265,6 +259,38 @@ def bloch_mu(M0, out):
         return
     out[0] = qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)
     out[1] = c2 / qq
+
+
+@njit(cache=True)
+def bloch_k(mu):
+    """k L from mu = 2 cos(k L) with Im k L >= 0 (the wave decaying towards +x), Re k L
+    in [0, pi] when mu is real; pi + i inf for an infinite mu."""
+    if not (math.isfinite(mu.real) and math.isfinite(mu.imag)):
+        return complex(math.pi, math.inf)
+    kL = cmath.acos(0.5 * mu)
+    if kL.imag < 0.0:
+        kL = -kL
+    return kL
+
+
+@njit(cache=True)
+def bloch_waves(X, out):
+    """out <- (mu_1, mu_2, k_1 L, k_2 L): ``bloch_mu`` and ``bloch_k``, the more attenuated
+    pair first."""
+    tmp = np.zeros(6, dtype=np.complex128)
+    bloch_mu(X, tmp)
+    k1 = bloch_k(tmp[0])
+    k2 = bloch_k(tmp[1])
+    if k2.imag > k1.imag:
+        out[0] = tmp[1]
+        out[1] = tmp[0]
+        out[2] = k2
+        out[3] = k1
+    else:
+        out[0] = tmp[0]
+        out[1] = tmp[1]
+        out[2] = k1
+        out[3] = k2
 
 
 @njit(cache=True)

@@ -11,7 +11,7 @@ from numba.core.types import FunctionType
 from numba.extending import intrinsic
 
 from .bloch import (
-    bloch_mu,
+    bloch_waves,
     cell_subspace,
     closed_stiffness,
     pencil_det,
@@ -238,15 +238,15 @@ def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
 
 
 @njit(cache=True, parallel=True)
-def entry_bloch_mu(fa, damped, ws, p, out):
-    """``bloch_mu`` of the cell at every frequency ws[k] (complex, rad/s), in parallel:
-    out[k] = (mu_1, mu_2, c0, c1, c2 - 2 c0, log scale)."""
+def entry_bloch_waves(fa, damped, ws, p, out):
+    """``bloch_waves`` of the cell at every frequency ws[k] (complex, rad/s), in parallel:
+    out[k] = (mu_1, mu_2, k_1 L, k_2 L), the more attenuated pair first."""
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
     for k in prange(ws.shape[0]):
         X = cell_subspace(event, sizes, ws[k], p, damped)
         if X.shape[0] == 8:
-            bloch_mu(X, out[k])
+            bloch_waves(X, out[k])
         else:
             out[k, :] = complex(math.nan, math.nan)
 

@@ -169,11 +169,13 @@ def piece_transfer(bs, e, rho, U):
 @njit(cache=True)
 def piece_transfer_c(bs, e, rho, U):
     """U <- D U(bs rho) D^-1 for a complex bs and segment factor e (its EI, with its loss
-    factor, over the first's), bs*rho <= MARCH_STEP (no scaling)."""
-    beam_transfer_scaled_c(bs, rho, U)
+    factor, over the first's), unscaled (the printed functions take exp(bs rho) out beyond
+    |bs rho| = 1.5: it is put back)."""
+    shift = beam_transfer_scaled_c(bs, rho, U)
+    f = cmath.exp(shift) if shift != 0.0 else 1.0
     for r in range(4):
         for c in range(4):
-            U[r, c] *= (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+            U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
 
 
 @njit(cache=True)
