@@ -110,10 +110,18 @@ class Bands:
 
 def cell_of(scene: Scene | str | Path) -> Scene:
     """The unit cell of ``scene``: a repeated scene's cell (``repeat = N``), or the scene
-    itself (a path is loaded). Components at x = L are refused: the next cell's x = 0 is
-    the same point."""
+    itself (a path is loaded). A graded scene has none; components at x = L are refused:
+    the next cell's x = 0 is the same point."""
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
+    if getattr(scene, "graded", False):
+        raise SceneError(
+            scene.source,
+            "repeat",
+            "a graded structure has no single cell to repeat (give the cell's values as"
+            " plain numbers for its bands)",
+            scene.repeat,
+        )
     cell = getattr(scene, "cell", None) or scene
     L = cell.beam.length
     for i, a in enumerate(cell.attachments):

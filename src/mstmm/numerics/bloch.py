@@ -198,18 +198,21 @@ def cell_subspace(event, sizes, w, p, damped):
                     N[j, c] = 1.0 if j == c else 0.0
         # (Z_0, Z+) of the free parameters (a, q) = N c: Z+ = A XL a + B q; four of them
         # (more only exactly at a component's own frequency with the beam held)
+        for a in range(4):
+            for j in range(4):
+                S[a, j] = (
+                    Ad[a, 0] * X[4, j]
+                    + Ad[a, 1] * X[5, j]
+                    + Ad[a, 2] * X[6, j]
+                    + Ad[a, 3] * X[7, j]
+                )
         for c in range(4):
             for a in range(4):
                 z0 = 0.0j
                 zl = 0.0j
                 for j in range(4):
                     z0 += X[a, j] * N[j, c]
-                    zl += (
-                        Ad[a, 0] * X[4, j]
-                        + Ad[a, 1] * X[5, j]
-                        + Ad[a, 2] * X[6, j]
-                        + Ad[a, 3] * X[7, j]
-                    ) * N[j, c]
+                    zl += S[a, j] * N[j, c]
                 for j in range(nq):
                     zl += B[a, j] * N[4 + j, c]
                 Y[a, c] = z0
