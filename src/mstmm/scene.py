@@ -32,6 +32,31 @@ one x; a component
 that acts on the rotation (a key in N m/rad or kg m^2 with a value > 0) may not sit
 at exactly the x of a hinge (``RELEASES``), whose two sides rotate apart.
 
+A finite periodic structure (a metamaterial beam of N cells) is one cell and a count::
+
+    repeat = 100                   # optional: N cells end to end (an integer, 1 to 10_000_000)
+    [beam]                         # ONE cell (uniform or [[beam.segments]]); left and
+    left = "clamped"               # right are the ends of the whole structure
+    right = "free"
+    length = 0.1
+    EI = 63.5
+    mass_per_length = 1.5
+    [[attachments]]                # the attachments of ONE cell, 0 <= x < cell length
+    type = "spring_mass"           # (x = cell length would be x = 0 of the next cell)
+    x = 0.05
+    k = {linear = [1e3, 2e3]}      # graded: cell j gets first + (last - first) j / (N - 1)
+    m = {each = [0.01, 0.02, ...]} # or one value per cell (exactly N numbers)
+
+The scene built is the expanded one, which every solver reads: a uniform beam of length
+``N * length`` (or the cell's segments N times), cell ``j``'s attachments at ``x + j *
+length`` (sorted by x as ever). Any scalar value of an attachment but ``x`` may be graded
+(``linear``: the last cell gets exactly ``last``; one cell: ``first``); every graded value
+passes the key's check (a failure names ``attachments[i].k (cell
+j)``); placement and what float64 can carry are checked on the whole structure.
+``Scene.repeat`` and ``Scene.cell`` (the validated cell, graded values at cell 0;
+``Scene.graded`` says whether any value is graded) keep the cell; they take no part in
+``==``.
+
 Every problem found in a scene raises :class:`SceneError`, whose message is a
 single line ``{source}: {field}: {problem} (got {value!r})``, where ``field`` is
 the TOML path of the offending entry (``beam.EI``, ``beam.segments[1].EI``,
@@ -45,6 +70,8 @@ This module only reads; it writes nothing anywhere.
 from __future__ import annotations
 
 import dataclasses
+import gc
+import itertools
 import math
 import numbers
 import os
@@ -59,8 +86,7 @@ import numpy as np
 
 from mstmm import catalog
 
-from .events import read_events
-from .topology import parameter_vector, topology_of
+from .topology import field_index, parameter_vector, topology_of
 
 __all__ = [
     "ATTACHMENT_TYPES",  # noqa: F822 (module __getattr__: read from the registry)
@@ -96,7 +122,11 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-_TOP_KEYS: tuple[str, ...] = ("name", "beam", "attachments")
+_TOP_KEYS: tuple[str, ...] = ("name", "repeat", "beam", "attachments")
+#: Most cells ``repeat`` may ask for.
+REPEAT_MAX = 10_000_000
+#: The keys of a grading table (``k = {linear = [first, last]}``, ``{each = [...]}``).
+_GRADINGS: tuple[str, ...] = ("linear", "each")
 _UNIFORM_KEYS: tuple[str, ...] = ("length", "EI", "mass_per_length")
 #: Optional keys of a uniform beam or of a segment: its loss factor and its beam physics
 #: beyond Euler-Bernoulli (``catalog.SEGMENT_PHYSICS``), each with its check.
@@ -282,20 +312,31 @@ class Scene:
     file order).  ``source`` is the file the scene was read from, or
     ``"<dict>"``; it only labels error messages and takes no part in ``==``.
     Build scenes with :func:`load_scene`, :func:`scene_from_dict` or
-    :meth:`Scene.replace`, which validate; the constructor does not.
+    :meth:`Scene.replace`, which validate; the constructor does not. A scene read with
+    ``repeat`` is the expanded structure; ``repeat``, ``cell`` and ``graded`` keep its
+    cell and take no part in ``==`` (the content decides).
     """
 
     name: str
     beam: Beam
     attachments: tuple[Attachment, ...]
     source: str = field(default=_DICT_SOURCE, compare=False)
+    #: The number of cells of a scene read with ``repeat`` (1 otherwise).
+    repeat: int = field(default=1, compare=False)
+    #: The validated cell of a scene read with ``repeat`` (its beam, its attachments
+    #: sorted by x, graded values at cell 0), else None. Its values passed their keys'
+    #: checks; placement and float64 range were checked on the whole structure.
+    cell: Scene | None = field(default=None, compare=False, repr=False)
+    #: Whether a value of the cell is graded (differs from cell to cell).
+    graded: bool = field(default=False, compare=False)
 
     def replace(self, **changes: Any) -> Scene:
         """Return a copy with ``changes`` applied (as ``dataclasses.replace``), re-validated.
 
         ``beam`` may be given as a :class:`Beam` or as a ``[beam]`` mapping;
         ``attachments`` as any sequence of :class:`Attachment` or attachment
-        mappings; they are sorted again.  Raises :class:`SceneError`.
+        mappings; they are sorted again.  A repeated scene gives its expanded form
+        (explicit attachments, no ``cell``).  Raises :class:`SceneError`.
         """
         new = dataclasses.replace(self, **changes)
         return scene_from_dict(_loose_dict(new), source=new.source)
@@ -358,20 +399,15 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
     else:
         name = _default_name(source)
 
+    if "repeat" in data:
+        return _repeated(data, name, _repeat(data["repeat"], source), source)
     if "beam" not in data:
         raise SceneError(source, "beam", "missing")
     beam = _beam(data["beam"], source)
 
-    raw_attachments = data.get("attachments", [])
-    if isinstance(raw_attachments, (str, bytes, Mapping)) or not isinstance(
-        raw_attachments, (list, tuple)
-    ):
-        raise SceneError(
-            source, "attachments", "must be an array of tables ([[attachments]])", raw_attachments
-        )
     attachments = [
         _attachment(item, f"attachments[{i}]", beam, source)
-        for i, item in enumerate(raw_attachments)
+        for i, item in enumerate(_attachment_list(data, source))
     ]
     in_file = {id(a): i for i, a in enumerate(attachments)}  # messages name the file's index
     attachments.sort(key=lambda a: a.x)  # list.sort is stable
@@ -381,6 +417,334 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
     check_placement(P, source, scene, labels=labels)
     check_representable(P, source, scene, labels=labels)
     return scene
+
+
+def _attachment_list(data: Mapping[str, Any], source: str) -> Sequence[Any]:
+    raw = data.get("attachments", [])
+    if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, (list, tuple)):
+        raise SceneError(source, "attachments", "must be an array of tables ([[attachments]])", raw)
+    return raw
+
+
+# ---------------------------------------------------------------------------
+# Finite periodic structures: repeat = N cells, graded values
+
+
+def _repeat(value: Any, source: str) -> int:
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, numbers.Integral)
+        or not 1 <= value <= REPEAT_MAX
+    ):
+        raise SceneError(
+            source,
+            "repeat",
+            f"must be an integer from 1 to {REPEAT_MAX} (a TOML integer: the number of cells)",
+            value,
+        )
+    return int(value)
+
+
+def _repeated(data: Mapping[str, Any], name: str, n: int, source: str) -> Scene:
+    """The scene of ``n`` cells that ``data`` describes one of (``repeat = n``), expanded.
+
+    The cell's beam and attachments are validated once, each graded value is checked, and
+    the expanded attachments and parameter vector are built from the cell directly (not
+    through :func:`_attachment` and :func:`mstmm.catalog.layout` per cell); placement and
+    what float64 can carry are checked on the whole structure, vectorised."""
+    if "beam" not in data:
+        raise SceneError(source, "beam", "missing")
+    cell_beam = _beam(data["beam"], source)
+    read = [
+        _cell_attachment(item, f"attachments[{i}]", cell_beam, n, source)
+        for i, item in enumerate(_attachment_list(data, source))
+    ]
+    order = sorted(range(len(read)), key=lambda i: read[i][0].x)  # stable
+    cell_attachments = tuple(read[i][0] for i in order)
+    grades = [read[i][1] for i in order]
+    cell = Scene(name=name, beam=cell_beam, attachments=cell_attachments, source=source)
+
+    length = cell_beam.length
+    if cell_beam.segments:
+        segments = cell_beam.segments * n
+        total = float(sum(s.length for s in segments))  # as _beam forms it
+        if not math.isfinite(total):
+            raise SceneError(
+                source, "beam.segments", f"the total length of {n} cells must be finite", total
+            )
+        beam = dataclasses.replace(cell_beam, length=total, segments=segments)
+    else:
+        total = n * length
+        if not math.isfinite(total):
+            raise SceneError(
+                source,
+                "beam.length",
+                f"the total length of {n} cells (repeat * length) must be finite",
+                length,
+            )
+        beam = dataclasses.replace(cell_beam, length=total)
+
+    n_cell = len(cell_attachments)
+    offsets = np.arange(n, dtype=np.float64) * length  # j * length, as Python forms it
+    # (cell, attachment): cell-major, each cell sorted by x
+    x = np.add.outer(offsets, np.array([a.x for a in cell_attachments], dtype=np.float64))
+    for p, a in enumerate(cell_attachments):  # rounding must keep the last cell on the beam
+        passes, problem = CHECKS[catalog.kind(a.kind).KEYS[0].check]
+        bad = ~passes(x[:, p], total)
+        if bad.any():
+            j = int(np.argmax(bad))
+            raise SceneError(
+                source,
+                f"attachments[{order[p]}].x (cell {j})",
+                problem.format(length=_plain(total))
+                + " (x + cell * cell length, rounded): move it off the cell's end",
+                float(x[j, p]),
+            )
+    x = x.ravel()
+    # the explicit scene's order: by x, equal x in file order (cell by cell, the place in
+    # the file within a cell); cell-major is that order unless rounding made a cell's x
+    # equal to (or past) the next one's
+    file_order = (
+        np.arange(n)[:, None] * n_cell + np.asarray(order, dtype=np.int64)[None, :]
+    ).ravel()
+    sorted_ = bool(
+        np.all((x[1:] > x[:-1]) | ((x[1:] == x[:-1]) & (file_order[1:] > file_order[:-1])))
+    )
+
+    was_enabled = gc.isenabled()
+    gc.disable()  # a cycle collection per few hundred new objects would double the cost
+    try:
+        kinds = [a.kind for a in cell_attachments]
+        per_cell = [_cell_values(a, g, n) for a, g in zip(cell_attachments, grades)]
+        xs = x.tolist()
+        attachments = [
+            Attachment(kinds[p], xs[j * n_cell + p], per_cell[p][j])
+            for j in range(n)
+            for p in range(n_cell)
+        ]
+    finally:
+        if was_enabled:
+            gc.enable()
+    perm = None
+    if not sorted_:
+        perm = np.lexsort((file_order, x))
+        attachments = [attachments[k] for k in perm]
+    scene = Scene(
+        name=name,
+        beam=beam,
+        attachments=tuple(attachments),
+        source=source,
+        repeat=n,
+        cell=cell,
+        graded=any(grades),
+    )
+    # the topology of the whole: the cell's kinds, damped if the cell is or a graded
+    # damping value is not zero anywhere (topology_of would read every attachment)
+    damping = any(
+        bool(np.any(values != 0.0))
+        for a, g in zip(cell_attachments, grades)
+        for key in catalog.kind(a.kind).KEYS
+        if key.damping and (values := g.get(key.name)) is not None
+    )
+    topology = topology_of(cell)
+    if damping and not topology.damped:
+        topology = dataclasses.replace(topology, damped=True)
+    object.__setattr__(scene, "_topology", topology)
+
+    P = _repeated_parameters(cell, beam, x, grades, n) if perm is None else None
+    if P is None:
+        P = parameter_vector(scene)
+    names = _CellNames(order, len(cell_beam.segments), perm)
+    check_placement(P, source, scene, labels=names)
+    check_representable(P, source, scene, labels=names)
+    P.flags.writeable = False
+    object.__setattr__(scene, "_parameters", P)  # parameter_vector returns a copy
+    return scene
+
+
+def _cell_values(
+    a: Attachment, graded: Mapping[str, np.ndarray], n: int
+) -> Sequence[tuple[tuple[str, Value], ...]]:
+    """The values of attachment ``a`` in each of the ``n`` cells (one shared tuple when
+    nothing is graded)."""
+    if not graded:
+        return [a.values] * n
+    names = [key for key, _ in a.values]
+    columns = [
+        graded[key].tolist() if key in graded else itertools.repeat(value, n)
+        for key, value in a.values
+    ]
+    return [tuple(zip(names, row)) for row in zip(*columns)]
+
+
+def _cell_attachment(
+    value: Any, prefix: str, beam: Beam, n: int, source: str
+) -> tuple[Attachment, dict[str, np.ndarray]]:
+    """One attachment of a repeated cell: validated at cell 0, and the values of each
+    graded key in every cell (each checked)."""
+    table = _table(value, prefix, source)
+    kind = _choice(
+        _require(table, "type", prefix, source), attachment_types(), f"{prefix}.type", source
+    )
+    module = catalog.kind(kind)
+    _reject_unknown(table, ("type", *(key.name for key in module.KEYS)), prefix, source)
+    plain = dict(table)
+    graded: dict[str, np.ndarray] = {}
+    for key in module.KEYS:
+        raw = table.get(key.name)
+        if isinstance(raw, Mapping):
+            path = f"{prefix}.{key.name}"
+            _gradable(key, raw, path, source)
+            graded[key.name] = _grading(raw, key, path, n, beam.length, source)
+            plain[key.name] = float(graded[key.name][0])
+    if "x" in table:
+        _cell_position(table["x"], module.KEYS[0].check, f"{prefix}.x", beam.length, source)
+    return _attachment(plain, prefix, beam, source), graded
+
+
+def _cell_position(value: Any, check: str, path: str, length: float, source: str) -> None:
+    """With ``repeat``, x lies in one cell: ``0 <= x < length`` (``0 < x`` for a kind that
+    must sit inside the beam: cell 0's x = 0 is the left end)."""
+    x = _number(value, path, source)
+    above = x > 0.0 if check == "interior" else x >= 0.0
+    if above and x < length:
+        return
+    interval = "(0, cell length)" if check == "interior" else "[0, cell length)"
+    if x == length:
+        problem = (
+            f"with repeat, x = the cell length {_plain(length)!r} is x = 0 of the next cell:"
+            f" x must lie in {interval}" + ("; give x = 0" if check != "interior" else "")
+        )
+    else:
+        problem = (
+            f"with repeat, x is measured in one cell and must lie in {interval}, with cell"
+            f" length {_plain(length)!r}"
+        )
+    raise SceneError(source, path, problem, value)
+
+
+def _gradable(key: catalog.Key, raw: Any, path: str, source: str) -> None:
+    """Refuse a grading table on a key that takes none (a position, a list)."""
+    if key.name == "x":
+        raise SceneError(
+            source,
+            path,
+            "a position is not graded: with repeat, x is the place in every cell",
+            raw,
+        )
+    if key.shape == "list":
+        raise SceneError(
+            source,
+            path,
+            "a list value is not graded (a grading table gives one number per cell)",
+            raw,
+        )
+
+
+def _grading(
+    raw: Mapping[str, Any], key: catalog.Key, path: str, n: int, length: float, source: str
+) -> np.ndarray:
+    """The ``n`` values of a graded key, each checked as the plain key would be:
+    ``{linear = [first, last]}`` (cell j: ``first + (last - first) * j / (n - 1)``, the
+    last cell exactly ``last``; ``n`` 1: ``first``) or ``{each = [v_0, ..., v_(n-1)]}``."""
+    _reject_unknown(raw, tuple(_GRADINGS), path, source)
+    if len(raw) != 1:
+        raise SceneError(
+            source,
+            path,
+            "a grading table holds one of linear = [first, last] or each = [one value per cell]",
+            dict(raw),
+        )
+    ((how, spec),) = raw.items()
+    where = f"{path}.{how}"
+    if isinstance(spec, (str, bytes, Mapping)) or not isinstance(spec, (list, tuple)):
+        raise SceneError(source, where, "must be a list of numbers", spec)
+    if how == "linear":
+        if len(spec) != 2:
+            raise SceneError(source, where, "must be [first, last] (two numbers)", spec)
+        first, last = (_number(v, f"{where}[{i}]", source) for i, v in enumerate(spec))
+        values = np.full(n, first)
+        if n > 1:
+            with np.errstate(over="ignore", invalid="ignore"):
+                j = np.arange(n, dtype=np.float64)
+                values = first + (last - first) * j / (n - 1)
+            values[-1] = last
+        if not np.isfinite(values).all():
+            j = int(np.argmax(~np.isfinite(values)))
+            raise SceneError(
+                source, f"{path} (cell {j})", "the grading gives a value that is not finite", spec
+            )
+    else:
+        if len(spec) != n:
+            raise SceneError(
+                source, where, f"must hold one value per cell: {n} (repeat), not {len(spec)}", spec
+            )
+        values = _numbers(spec, path, source)
+    passes, problem = CHECKS[key.check]
+    bad = ~passes(values, length)
+    if bad.any():
+        j = int(np.argmax(bad))
+        raise SceneError(
+            source, f"{path} (cell {j})", problem.format(length=_plain(length)), float(values[j])
+        )
+    return values + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
+def _numbers(spec: Sequence[Any], path: str, source: str) -> np.ndarray:
+    """The numbers of an ``each`` list as floats; the first that is no finite number is
+    refused as ``path (cell j)``."""
+    if all(type(v) is float or type(v) is int for v in spec):
+        try:
+            values = np.array(spec, dtype=np.float64)
+        except OverflowError:
+            pass
+        else:
+            if np.isfinite(values).all():
+                return values
+    return np.array([_number(v, f"{path} (cell {j})", source) for j, v in enumerate(spec)])
+
+
+def _repeated_parameters(
+    cell: Scene, beam: Beam, x: np.ndarray, grades: Sequence[Mapping[str, np.ndarray]], n: int
+) -> np.ndarray:
+    """The parameter vector of the ``n``-cell structure of ``cell`` (whole ``beam``,
+    attachment positions ``x`` cell-major and sorted, ``grades`` the graded values of each
+    of the cell's attachments), equal to :func:`mstmm.topology.parameter_vector` of the
+    expanded scene, built from the cell's vector by tiling."""
+    cp = parameter_vector(cell)
+    fields = field_index(cell)
+    n_seg_c, n_cell = int(cp[3]), int(cp[4])
+    seg_start = catalog.HEAD
+    ev_start = seg_start + catalog.SEGMENT_WIDTH * n_seg_c
+    data_start_c = ev_start + catalog.EVENT_WIDTH * n_cell
+    segments_c = cp[seg_start:ev_start].reshape(n_seg_c, catalog.SEGMENT_WIDTH)
+    events_c = cp[ev_start:data_start_c].reshape(n_cell, catalog.EVENT_WIDTH)
+    data_c = cp[data_start_c:]
+    width = data_c.size
+
+    if beam.segments:
+        segments = np.tile(segments_c, (n, 1))
+        lengths = np.tile([s.length for s in cell.beam.segments], n)
+        segments[:, 0] = np.cumsum(lengths)  # sequential, as catalog.layout adds them
+        segments[-1, 0] = beam.length
+    else:
+        segments = segments_c.copy()
+        segments[0, 0] = beam.length
+    n_seg, n_ev = len(segments), n * n_cell
+    data_start = seg_start + catalog.SEGMENT_WIDTH * n_seg + catalog.EVENT_WIDTH * n_ev
+    events = np.tile(events_c, (n, 1))
+    events[:, 1] = x
+    events[:, 2] = (
+        data_start
+        + width * np.repeat(np.arange(n), n_cell)
+        + np.tile(events_c[:, 2] - data_start_c, n)
+    )
+    data = np.tile(data_c, n)
+    for p, graded in enumerate(grades):
+        for key, values in graded.items():
+            data[fields[f"attachments[{p}].{key}"] - data_start_c :: width] = values
+    head = np.array([beam.length, cp[1], cp[2], n_seg, n_ev], dtype=np.float64)
+    return np.concatenate([head, segments.ravel(), events.ravel(), data])
 
 
 def scene_to_dict(scene: Scene) -> dict[str, Any]:
@@ -446,12 +810,167 @@ _REDUNDANT = (
 )
 
 
+class _Names:
+    """How messages name the components (by event row) and segments of a scene: the
+    component in event row ``r`` is ``attachments[labels[r]]`` (default ``r``), and
+    ``labels`` order them ("the later of two" is the larger label)."""
+
+    #: The field path of a uniform beam's total length.
+    length_path = "beam.length"
+
+    def __init__(self, labels: Sequence[int] | None, n_events: int) -> None:
+        self.labels = range(n_events) if labels is None else labels
+        self._order: np.ndarray | None = None
+
+    def order(self, rows: np.ndarray) -> np.ndarray:
+        """The labels of event rows ``rows``, as integers that order them."""
+        if self._order is None:
+            self._order = np.asarray(self.labels, dtype=np.int64)
+        return self._order[np.asarray(rows, dtype=np.int64)]
+
+    def attachment(self, row: int) -> str:
+        return f"attachments[{self.labels[int(row)]}]"
+
+    def path(self, row: int, rest: str) -> str:
+        return f"attachments[{self.labels[int(row)]}].{rest}"
+
+    def segment(self, s: int, key: str) -> str:
+        return f"beam.segments[{s}].{key}"
+
+
+class _CellNames(_Names):
+    """The names of a repeated scene's components and segments, as the file gives them:
+    ``attachments[i].k (cell j)``, ``beam.segments[s].EI (cell j)``. ``cell_labels[p]`` is
+    the place in the file of the cell's ``p``-th attachment by x; the event rows are
+    cell-major (``perm``: the cell-major index of each row, when rounding re-sorted them)."""
+
+    length_path = "beam.length (times repeat)"
+
+    def __init__(self, cell_labels: Sequence[int], n_seg: int, perm: np.ndarray | None) -> None:
+        self.cell_labels = np.asarray(cell_labels, dtype=np.int64)
+        self.n_cell = len(cell_labels)
+        self.n_seg = n_seg
+        self.perm = perm
+
+    def _cell(self, row: int) -> tuple[int, int]:
+        q = int(row if self.perm is None else self.perm[row])
+        return int(self.cell_labels[q % self.n_cell]), q // self.n_cell
+
+    def order(self, rows: np.ndarray) -> np.ndarray:
+        q = np.asarray(rows, dtype=np.int64)
+        if self.perm is not None:
+            q = self.perm[q]
+        return (q // self.n_cell) * self.n_cell + self.cell_labels[q % self.n_cell]
+
+    def attachment(self, row: int) -> str:
+        i, j = self._cell(row)
+        return f"attachments[{i}] (cell {j})"
+
+    def path(self, row: int, rest: str) -> str:
+        i, j = self._cell(row)
+        return f"attachments[{i}].{rest} (cell {j})"
+
+    def segment(self, s: int, key: str) -> str:
+        return f"beam.segments[{s % self.n_seg}].{key} (cell {s // self.n_seg})"
+
+
+def _names(labels: Sequence[int] | _Names | None, n_events: int) -> _Names:
+    return labels if isinstance(labels, _Names) else _Names(labels, n_events)
+
+
+class _Paths(Sequence[str]):
+    """The field paths of a factor's elements, formed only when a message needs one."""
+
+    def __init__(self, size: int, path: Callable[[int], str]) -> None:
+        self.size = size
+        self.path = path
+
+    def __len__(self) -> int:
+        return self.size
+
+    def __getitem__(self, e):  # type: ignore[override]
+        if isinstance(e, slice):
+            return [self.path(i) for i in range(self.size)[e]]
+        if not -self.size <= e < self.size:
+            raise IndexError(e)
+        return self.path(e % self.size)
+
+
+@dataclass(frozen=True)
+class _KeyColumns:
+    """The columns in a parameter vector of one key of the components of one kind:
+    ``cols`` (every element of a list key, component by component), ``owner`` (the
+    component of each column, an index into the kind's rows), ``element`` (its index in
+    its list; None for a scalar key), ``start`` (each component's first column in
+    ``cols``)."""
+
+    key: catalog.Key
+    cols: np.ndarray
+    owner: np.ndarray
+    element: np.ndarray | None
+    start: np.ndarray
+
+    @property
+    def length(self) -> np.ndarray:
+        """Each component's number of elements."""
+        return np.diff(np.append(self.start, len(self.cols)))
+
+
+@dataclass(frozen=True)
+class _KindColumns:
+    """The components of one kind in parameter vectors: their event ``rows`` (their
+    index in the scene) and the columns of each key after x."""
+
+    kind: str
+    module: Any
+    rows: np.ndarray
+    keys: tuple[_KeyColumns, ...]
+
+
+def _kind_columns(P: np.ndarray, kinds: Sequence[str]) -> list[_KindColumns]:
+    """The components of parameter rows ``P`` (2-D, all of one scene) by kind, in the order
+    of ``kinds`` (the topology's, which the tags index); vectorised over the components
+    of one kind (:func:`mstmm.events.read_events` reads the same, one at a time)."""
+    p = P[0]
+    table = p[catalog.event_rows(p)].reshape(-1, catalog.EVENT_WIDTH)
+    tags = table[:, 0].astype(np.int64)
+    offsets = table[:, 2].astype(np.int64)
+    out = []
+    for tag, kind in enumerate(kinds):
+        rows = np.flatnonzero(tags == tag)
+        if not rows.size:
+            continue
+        module = catalog.kind(kind)
+        j = offsets[rows]
+        everyone = np.arange(rows.size)
+        keys = []
+        for key in module.KEYS[1:]:
+            if key.shape == "list":
+                n = p[j].astype(np.int64)
+                start = np.concatenate([[0], np.cumsum(n)[:-1]]).astype(np.int64)
+                owner = np.repeat(everyone, n)
+                element = np.arange(int(n.sum())) - start[owner]
+                keys.append(_KeyColumns(key, j[owner] + 1 + element, owner, element, start))
+                j = j + 1 + n
+            else:
+                keys.append(_KeyColumns(key, j, everyone, None, everyone))
+                j = j + 1
+        out.append(_KindColumns(kind, module, rows, tuple(keys)))
+    return out
+
+
+def _rows_of(groups: Sequence[_KindColumns], which: Callable[[Any], bool]) -> np.ndarray:
+    """The event rows, ascending, of the components whose kind's module passes ``which``."""
+    rows = [g.rows for g in groups if which(g.module)]
+    return np.sort(np.concatenate(rows)) if rows else np.zeros(0, np.int64)
+
+
 def check_placement(
     P: np.ndarray,
     source: str,
     scene: Scene,
     point: str = "",
-    labels: Sequence[int] | None = None,
+    labels: Sequence[int] | _Names | None = None,
 ) -> None:
     """Reject components placed where the transfer chain is degenerate or ambiguous.
 
@@ -462,79 +981,94 @@ def check_placement(
     (a key in N m/rad or kg m^2 with a value > 0) at exactly the x of a hinge
     (``RELEASES``) is ambiguous, since the two sides of the hinge rotate apart.
     Raises :class:`SceneError` on ``attachments[i].x``; ``P``, ``point`` and ``labels``
-    as for :func:`check_representable`.
+    as for :func:`check_representable`. Vectorised: the cost grows as n log n with the
+    number of components.
     """
     P = np.atleast_2d(np.asarray(P, dtype=float))
     if not scene.attachments:
         return
-    labels = range(len(scene.attachments)) if labels is None else labels
-    events = read_events(P, topology_of(scene).kinds)
+    names = _names(labels, len(scene.attachments))
+    groups = _kind_columns(P, topology_of(scene).kinds)
     where = (lambda row: f"at {point} {row}, ") if point else (lambda row: "")
-    modules = [catalog.kind(b.kind) for b in events.blocks]
-    x = events.positions
+    kind_of = np.empty(len(scene.attachments), dtype=object)
+    for g in groups:
+        kind_of[g.rows] = g.kind
+    ev = catalog.event_rows(P[0])
+    x = P[:, ev][:, 1 :: catalog.EVENT_WIDTH]
 
-    constraints = [c for c, m in enumerate(modules) if "Y" in catalog.constrained(m)]
-    for c in constraints:
-        for end, at_end, fixes in (
-            (scene.beam.left, x[:, c] == 0.0, _fixes_y(scene.beam.left)),
-            (scene.beam.right, x[:, c] == P[:, 0], _fixes_y(scene.beam.right)),
-        ):
-            if fixes and at_end.any():
-                row = int(np.argmax(at_end))
-                kind = events.blocks[c].kind
-                raise SceneError(
-                    source,
-                    f"attachments[{labels[c]}].x",
-                    f"{where(row)}{_REDUNDANT.format(kind=kind, why=f'the {end} end')}",
-                    float(x[row, c]),
-                )
-    if len(constraints) > 1:
+    constraints = _rows_of(groups, lambda m: "Y" in catalog.constrained(m))
+    if constraints.size:
+        xc = x[:, constraints]
+        ends = (scene.beam.left, scene.beam.right)
+        hits = [
+            (xc == at).any(axis=0) if _fixes_y(end) else np.zeros(constraints.size, bool)
+            for end, at in zip(ends, (0.0, P[:, [0]]))
+        ]
+        hit = hits[0] | hits[1]
+        if hit.any():
+            c = int(np.argmax(hit))
+            side = 0 if hits[0][c] else 1
+            at_end = xc[:, c] == (0.0 if side == 0 else P[:, 0])
+            row = int(np.argmax(at_end))
+            why = f"the {ends[side]} end"
+            raise SceneError(
+                source,
+                names.path(constraints[c], "x"),
+                f"{where(row)}{_REDUNDANT.format(kind=kind_of[constraints[c]], why=why)}",
+                float(xc[row, c]),
+            )
+    if constraints.size > 1:
         _no_coincidence(
-            x[:, constraints],
+            x,
+            constraints,
             None,
-            np.ones((len(P), len(constraints)), bool),
-            [labels[c] for c in constraints],
-            [],
+            np.ones((len(P), constraints.size), bool),
+            names,
             lambda other: _REDUNDANT.format(
-                kind="constraint", why=f"the attachments[{other}] constraint at the same x"
+                kind="constraint", why=f"the {other} constraint at the same x"
             ),
             source,
             where,
         )
-    hinges = [c for c, m in enumerate(modules) if catalog.count_rule(m) == "split"]
-    if len(hinges) > 1:
+    hinges = _rows_of(groups, lambda m: catalog.count_rule(m) == "split")
+    if hinges.size > 1:
         _no_coincidence(
-            x[:, hinges],
+            x,
+            hinges,
             None,
-            np.ones((len(P), len(hinges)), bool),
-            [labels[c] for c in hinges],
-            [],
+            np.ones((len(P), hinges.size), bool),
+            names,
             lambda other: (
-                f"at the same x as the hinge attachments[{other}]: two hinges at one point"
+                f"at the same x as the hinge {other}: two hinges at one point"
                 " are one hinge (give one, with the stiffness of the two in series)"
             ),
             source,
             where,
         )
     turning = [
-        c
-        for c, m in enumerate(modules)
-        if catalog.count_rule(m) != "split" and any(_acts_on_rotation(k) for k in m.KEYS)
+        g
+        for g in groups
+        if catalog.count_rule(g.module) != "split"
+        and any(_acts_on_rotation(k) for k in g.module.KEYS)
     ]
-    if hinges and turning:
-        active = np.zeros((len(P), len(turning)), bool)
-        for t, c in enumerate(turning):
-            for key, cols in events.blocks[c].columns:
-                if _acts_on_rotation(key):
-                    active[:, t] |= (P[:, np.atleast_1d(cols)] > 0.0).any(axis=1)
+    if hinges.size and turning:
+        active_all = np.zeros((len(P), len(scene.attachments)), bool)
+        for g in turning:
+            for kc in g.keys:
+                if _acts_on_rotation(kc.key):
+                    positive = P[:, kc.cols] > 0.0
+                    if kc.element is not None:
+                        positive = np.logical_or.reduceat(positive, kc.start, axis=1)
+                    active_all[:, g.rows] |= positive
+        rows = np.sort(np.concatenate([g.rows for g in turning]))
         _no_coincidence(
-            x[:, turning],
-            x[:, hinges],
-            active,
-            [labels[c] for c in turning],
-            [labels[c] for c in hinges],
+            x,
+            rows,
+            hinges,
+            active_all[:, rows],
+            names,
             lambda other: (
-                f"at exactly the x of the hinge attachments[{other}]: which side of"
+                f"at exactly the x of the hinge {other}: which side of"
                 f" the hinge it acts on is ambiguous; move it off the hinge"
             ),
             source,
@@ -543,28 +1077,30 @@ def check_placement(
 
 
 def _no_coincidence(
-    xa: np.ndarray,
-    xb: np.ndarray | None,
+    x_all: np.ndarray,
+    rows_a: np.ndarray,
+    rows_b: np.ndarray | None,
     active: np.ndarray,
-    labels_a: Sequence[int],
-    labels_b: Sequence[int],
-    problem: Callable[[int], str],
+    names: _Names,
+    problem: Callable[[str], str],
     source: str,
     where: Callable[[int], str],
 ) -> None:
-    """Raise on the first row where an active component of ``xa`` sits at the x of a
-    component of ``xb`` (columns named by ``labels``). ``xb`` None: ``xa`` against itself,
-    and the later of two at one x (the larger label) is named. Sorted per row, so the
-    cost grows as n log n with the number of components, not n^2."""
-    n_a = xa.shape[1]
-    if xb is None:
-        x, label, active_all = xa, np.asarray(labels_a), active
+    """Raise on the first row where an active component of event rows ``rows_a`` sits at
+    the x of a component of ``rows_b`` (``x_all``: every component's x in each row;
+    ``problem`` takes the other's name). ``rows_b`` None: ``rows_a`` against itself, and
+    the later of two at one x (the larger label) is named. Sorted per row, so the cost
+    grows as n log n with the number of components, not n^2."""
+    n_a = rows_a.size
+    if rows_b is None:
+        rows, active_all = rows_a, active
         is_b = np.zeros(n_a, bool)
     else:
-        x = np.concatenate([xa, xb], axis=1)
-        label = np.concatenate([np.asarray(labels_a), np.asarray(labels_b)])
-        active_all = np.concatenate([active, np.zeros_like(xb, bool)], axis=1)
-        is_b = np.arange(x.shape[1]) >= n_a
+        rows = np.concatenate([rows_a, rows_b])
+        active_all = np.concatenate([active, np.zeros((len(x_all), rows_b.size), bool)], axis=1)
+        is_b = np.arange(rows.size) >= n_a
+    x = x_all[:, rows]
+    label = names.order(rows)
     # per row: by x, then the b's first, then by label
     rank = np.lexsort((np.broadcast_to(label, x.shape), np.broadcast_to(~is_b, x.shape), x))
     xs = np.take_along_axis(x, rank, axis=1)
@@ -573,7 +1109,7 @@ def _no_coincidence(
     first = np.maximum.accumulate(np.where(starts, np.arange(xs.shape[1]), 0), axis=1)
     head = np.take_along_axis(rank, first, axis=1)  # column of the first of each run
     conflict = np.take_along_axis(active_all, rank, axis=1) & ~starts
-    if xb is not None:
+    if rows_b is not None:
         conflict &= is_b[head]
     if not conflict.any():
         return
@@ -582,8 +1118,8 @@ def _no_coincidence(
     i = int(np.argmin(np.where(conflict[row], named, np.iinfo(np.int64).max)))
     raise SceneError(
         source,
-        f"attachments[{named[i]}].x",
-        where(row) + problem(int(label[head[row, i]])),
+        names.path(rows[rank[row, i]], "x"),
+        where(row) + problem(names.attachment(rows[head[row, i]])),
         float(xs[row, i]),
     )
 
@@ -626,7 +1162,7 @@ class _Factor:
 
     label: str
     values: np.ndarray
-    paths: tuple[str, ...]
+    paths: Sequence[str]
     exponent: float = 1
     zero_ok: bool = False
 
@@ -646,18 +1182,18 @@ def _product_name(factors: Sequence[_Factor]) -> str:
     return f"{top}/{bottom[0]}" if len(bottom) == 1 else f"{top}/({' '.join(bottom)})"
 
 
-def _beam_factors(P: np.ndarray, beam: Beam) -> list[_Factor]:
+def _beam_factors(P: np.ndarray, beam: Beam, names: _Names) -> list[_Factor]:
     """The kernel's units: total length, the first segment's EI and mass per length."""
     paths = (
-        ("beam.segments", "beam.segments[0].EI", "beam.segments[0].mass_per_length")
+        ("beam.segments", names.segment(0, "EI"), names.segment(0, "mass_per_length"))
         if beam.segments
-        else ("beam.length", "beam.EI", "beam.mass_per_length")
+        else (names.length_path, "beam.EI", "beam.mass_per_length")
     )
     return [_Factor(n, P[:, [j]], (p,)) for j, (n, p) in enumerate(zip(_BEAM_LABELS, paths))]
 
 
 def _beam_checks(
-    P: np.ndarray, beam: Beam, head: Sequence[_Factor]
+    P: np.ndarray, beam: Beam, head: Sequence[_Factor], names: _Names
 ) -> list[tuple[str, list[_Factor]]]:
     """The beam's values and products; for a stepped beam each segment's values and
     their ratios to the kernel's units."""
@@ -667,7 +1203,10 @@ def _beam_checks(
     if beam.segments:
         n = len(beam.segments)
         rows = catalog.HEAD + catalog.SEGMENT_WIDTH * np.arange(n)
-        paths = [tuple(f"beam.segments[{s}].{k}" for s in range(n)) for k in _BEAM_LABELS]
+        paths = [
+            _Paths(n, lambda s, k=k: names.segment(s, k))  # type: ignore[misc]
+            for k in _BEAM_LABELS
+        ]
         lengths = np.array([[s.length for s in beam.segments]], dtype=float)
         length = _Factor("length", lengths, paths[0])
         ei = _Factor("EI", P[:, rows + 1], paths[1])
@@ -689,7 +1228,7 @@ def _beam_checks(
 
 
 def _component_checks(
-    P: np.ndarray, scene: Scene, head: Sequence[_Factor], labels: Sequence[int]
+    P: np.ndarray, scene: Scene, head: Sequence[_Factor], names: _Names
 ) -> list[tuple[str, list[_Factor]]]:
     """Each key's value and its dimensionless form (``Key.scale``), the scale itself, and
     each stiffness/inertia ratio within a component with its dimensionless form;
@@ -697,76 +1236,74 @@ def _component_checks(
 
     Positions are left out: the numerics use them only as x/L <= 1 and as differences,
     so a tiny x rounds towards the end it is next to, which is what it means."""
-    kinds = topology_of(scene).kinds
-    events = read_events(P, kinds)
     checks: list[tuple[str, list[_Factor]]] = []
 
     def scaled(exponents) -> list[_Factor]:
         return [h ** float(e) for h, e in zip(head, exponents) if e]
 
-    for kind in kinds:
-        blocks = [b for b in events.blocks if b.kind == kind]
-        keys = catalog.kind(kind).KEYS[1:]
-        for k, key in enumerate(keys):
-            cols, paths = _key_columns(blocks, k, key.name, labels)
-            f = _Factor(key.name, P[:, cols], paths, zero_ok=key.check == "nonnegative")
-            scale = scaled(key.scale)
-            checks += [(key.name, [f])] + ([("", scale), ("", [f, *scale])] if scale else [])
-        for stiff in keys:
-            for inert in keys:
-                if _RATIOS.get(stiff.unit) == inert.unit:
-                    ratio = _ratio(blocks, keys, stiff, inert, P, labels)
-                    scale = scaled([a - b for a, b in zip(stiff.scale, inert.scale)])
+    for g in _kind_columns(P, topology_of(scene).kinds):
+        for kc in g.keys:
+            zero_ok = kc.key.check == "nonnegative"
+            f = _Factor(kc.key.name, P[:, kc.cols], _key_paths(g, kc, names), zero_ok=zero_ok)
+            scale = scaled(kc.key.scale)
+            checks += [(kc.key.name, [f])] + ([("", scale), ("", [f, *scale])] if scale else [])
+        for stiff in g.keys:
+            for inert in g.keys:
+                if _RATIOS.get(stiff.key.unit) == inert.key.unit:
+                    ratio = _ratio(g, stiff, inert, P, names)
+                    scale = scaled([a - b for a, b in zip(stiff.key.scale, inert.key.scale)])
                     checks += [("", ratio), ("", [*ratio, *scale])] if ratio else []
     return checks
 
 
-def _key_columns(
-    blocks, k: int, name: str, labels: Sequence[int]
-) -> tuple[list[int], tuple[str, ...]]:
-    """Columns and field paths of key number ``k`` (after x) of ``blocks``, list
-    elements flattened."""
-    cols: list[int] = []
-    paths: list[str] = []
-    for b in blocks:
-        c = b.columns[k][1]
-        if isinstance(c, tuple):
-            cols += c
-            paths += [f"attachments[{labels[b.label]}].{name}[{j}]" for j in range(len(c))]
-        else:
-            cols.append(c)
-            paths.append(f"attachments[{labels[b.label]}].{name}")
-    return cols, tuple(paths)
+def _key_paths(g: _KindColumns, kc: _KeyColumns, names: _Names) -> _Paths:
+    """The field path of each column of ``kc`` (list elements flattened)."""
+    name, rows, owner, element = kc.key.name, g.rows, kc.owner, kc.element
+    if element is None:
+        return _Paths(len(kc.cols), lambda e: names.path(rows[owner[e]], name))
+    return _Paths(len(kc.cols), lambda e: names.path(rows[owner[e]], f"{name}[{int(element[e])}]"))
 
 
 def _ratio(
-    blocks, keys, stiff: catalog.Key, inert: catalog.Key, P: np.ndarray, labels: Sequence[int]
+    g: _KindColumns, stiff: _KeyColumns, inert: _KeyColumns, P: np.ndarray, names: _Names
 ) -> list[_Factor]:
     """``stiff/inert`` of each component; for list keys, of each inertia with the
     stiffness on either side of it (an oscillator chain's k[j]/m[j], k[j+1]/m[j])."""
-    ks = keys.index(stiff)
-    ms = keys.index(inert)
-    top: list[tuple[int, str]] = []
-    bottom: list[tuple[int, str]] = []
-    for b in blocks:
-        kc, mc = b.columns[ks][1], b.columns[ms][1]
-        if isinstance(kc, tuple) != isinstance(mc, tuple):
-            continue
-        if not isinstance(kc, tuple):
-            kc, mc, fmt = (kc,), (mc,), "attachments[{}].{}"
-        else:
-            fmt = "attachments[{}].{}[{}]"
-        for j, m in enumerate(mc):
-            for i in (j, j + 1):
-                if i < len(kc):
-                    top.append((kc[i], fmt.format(labels[b.label], stiff.name, i)))
-                    bottom.append((m, fmt.format(labels[b.label], inert.name, j)))
-    if not top:
+    if (stiff.element is None) != (inert.element is None):
         return []
-    zero_ok = [k.check == "nonnegative" for k in (stiff, inert)]
-    f_top = _Factor(stiff.name, P[:, [c for c, _ in top]], tuple(p for _, p in top), 1, zero_ok[0])
+    rows = g.rows
+    if stiff.element is None:
+        top, bottom = stiff.cols, inert.cols
+        owner_top = owner_bottom = stiff.owner
+
+        def top_path(e: int) -> str:
+            return names.path(rows[owner_top[e]], stiff.key.name)
+
+        def bottom_path(e: int) -> str:
+            return names.path(rows[owner_bottom[e]], inert.key.name)
+
+    else:
+        # for each inertia element m[j] (component by component), k[j] then k[j + 1]
+        m_flat = np.repeat(np.arange(len(inert.cols)), 2)
+        owner = inert.owner[m_flat]
+        j = inert.element[m_flat]  # type: ignore[index]
+        i = j + np.tile([0, 1], len(inert.cols))
+        keep = i < stiff.length[owner]
+        m_flat, owner, j, i = m_flat[keep], owner[keep], j[keep], i[keep]
+        top, bottom = stiff.cols[stiff.start[owner] + i], inert.cols[m_flat]
+
+        def top_path(e: int) -> str:
+            return names.path(rows[owner[e]], f"{stiff.key.name}[{int(i[e])}]")
+
+        def bottom_path(e: int) -> str:
+            return names.path(rows[owner[e]], f"{inert.key.name}[{int(j[e])}]")
+
+    if not len(top):
+        return []
+    zero_ok = [k.key.check == "nonnegative" for k in (stiff, inert)]
+    f_top = _Factor(stiff.key.name, P[:, top], _Paths(len(top), top_path), 1, zero_ok[0])
     f_bottom = _Factor(
-        inert.name, P[:, [c for c, _ in bottom]], tuple(p for _, p in bottom), -1, zero_ok[1]
+        inert.key.name, P[:, bottom], _Paths(len(bottom), bottom_path), -1, zero_ok[1]
     )
     return [f_top, f_bottom]
 
@@ -776,7 +1313,7 @@ def check_representable(
     source: str,
     scene: Scene,
     point: str = "",
-    labels: Sequence[int] | None = None,
+    labels: Sequence[int] | _Names | None = None,
 ) -> None:
     """Reject parameter vectors whose values or derived products float64 cannot carry.
 
@@ -790,14 +1327,14 @@ def check_representable(
     form must lie in [:data:`REPRESENTABLE_MIN`, :data:`REPRESENTABLE_MAX`]. Raises
     :class:`SceneError` naming the field whose value is the most extreme contributor
     to the first product out of range, with that value; ``point`` (e.g. ``"point"``)
-    makes the message say which row.
+    makes the message say which row. Vectorised over the components of each kind.
     """
     P = np.atleast_2d(np.asarray(P, dtype=float))
-    head = _beam_factors(P, scene.beam)
-    checks = _beam_checks(P, scene.beam, head)
+    names = _names(labels, len(scene.attachments))
+    head = _beam_factors(P, scene.beam, names)
+    checks = _beam_checks(P, scene.beam, head, names)
     if scene.attachments:
-        labels = range(len(scene.attachments)) if labels is None else labels
-        checks += _component_checks(P, scene, head, labels)
+        checks += _component_checks(P, scene, head, names)
     for name, factors in checks:
         _check_product(name, factors, source, point)
 
@@ -1098,6 +1635,8 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
         else:
             raw = key.default
         if key.shape == "list":
+            if isinstance(raw, Mapping):
+                _gradable(key, raw, path, source)
             if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, (list, tuple)):
                 raise SceneError(source, path, "must be a list of numbers", raw)
             if not raw:
@@ -1107,7 +1646,19 @@ def _attachment(value: Any, prefix: str, beam: Beam, source: str) -> Attachment:
                 for j, v in enumerate(raw)
             )
         else:
-            values[key.name] = _checked(raw, key.check, path, source, beam.length)
+            try:
+                values[key.name] = _checked(raw, key.check, path, source, beam.length)
+            except SceneError:
+                if isinstance(raw, Mapping):  # a grading table, read only with repeat
+                    _gradable(key, raw, path, source)
+                    raise SceneError(
+                        source,
+                        path,
+                        "a grading table ({linear = [first, last]} or {each = [...]}) needs"
+                        " a top-level repeat = N (the number of cells)",
+                        raw,
+                    ) from None
+                raise
     for name in same[1:]:
         n = len(values[same[0]])  # type: ignore[arg-type]
         if name in values and len(values[name]) != n:  # type: ignore[arg-type]

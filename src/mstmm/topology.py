@@ -65,7 +65,12 @@ def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
 def parameter_vector(scene) -> np.ndarray:
     """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
     (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G), event rows (tag, x, offset)
-    sorted by x, data...]`` (:func:`mstmm.catalog.layout`)."""
+    sorted by x, data...]`` (:func:`mstmm.catalog.layout`). A scene read with ``repeat``
+    keeps the vector it was checked with (built from its cell, the same values): a copy
+    of it is returned."""
+    known = getattr(scene, "__dict__", {}).get("_parameters")
+    if known is not None:
+        return known.copy()
     return _layout(scene)[0]
 
 
