@@ -48,6 +48,7 @@ from .walk import (
 #: Longest piece (in lam h) between two re-orthonormalisations of the subspace: across
 #: it a decaying solution loses at most exp(2 BLOCH_STEP) eps against a growing one.
 BLOCH_STEP = 2.0
+SQRT_HALF = math.sqrt(0.5)
 
 
 @njit(cache=True)
@@ -85,19 +86,19 @@ def lu_logdet_c(A):
 
 @njit(cache=True)
 def orthonormalise8(X):
-    """The columns of X (8 x 4) made orthonormal (complex Gram-Schmidt, twice): the same
+    """The columns of X (8 x 4) made orthonormal (modified Gram-Schmidt, one pass: the
+    subspace is what counts, orthogonality only keeps it well conditioned): the same
     subspace, of states whose growth across the cell no longer swamps the others."""
     for c in range(4):
-        for _ in range(2):
-            for k in range(c):
-                d = 0.0j
-                for r in range(8):
-                    d += X[r, k].conjugate() * X[r, c]
-                for r in range(8):
-                    X[r, c] -= d * X[r, k]
+        for k in range(c):
+            d = 0.0j
+            for r in range(8):
+                d += X[r, k].conjugate() * X[r, c]
+            for r in range(8):
+                X[r, c] -= d * X[r, k]
         nrm = 0.0
         for r in range(8):
-            nrm += abs(X[r, c]) ** 2
+            nrm += X[r, c].real ** 2 + X[r, c].imag ** 2
         nrm = math.sqrt(nrm)
         if nrm > 0.0:
             for r in range(8):
@@ -105,45 +106,63 @@ def orthonormalise8(X):
 
 
 @njit(cache=True)
+def bloch_work(p, sizes):
+    """Scratch for ``cell_subspace_in`` (allocated once per thread, not per frequency): the
+    event order and the arrays of the march."""
+    nq_all, max_q = sizes(p)
+    nb = max(1, max_q)
+    c = np.complex128
+    return (
+        event_order(p),
+        np.zeros((8, 4), dtype=c),  # X
+        np.zeros((4, 4), dtype=c),  # S
+        np.zeros((nb, 4), dtype=c),  # Cz
+        np.zeros((nb, nb), dtype=c),  # Cq
+        np.zeros((4, 4), dtype=c),  # A
+        np.zeros((4, nb), dtype=c),  # B
+        np.zeros((3, nb)),  # the unknowns' masses
+        np.zeros((nb, nb + 4), dtype=c),  # C
+        np.zeros(nb, dtype=c),  # rhs
+        np.ones(nb),  # row scales
+        np.zeros((nb + 4, nb + 4), dtype=c),  # N
+        np.zeros(nb + 4, dtype=c),  # xp
+        np.zeros((8, 4), dtype=c),  # Y
+        np.zeros((4, 4), dtype=c),  # U
+        np.zeros((4, 4, 4), dtype=c),  # a general segment's powers of A
+    )
+
+
+@njit(cache=True)
 def cell_subspace(event, sizes, w, p, damped):
+    """``cell_subspace_in`` with its own scratch."""
+    return cell_subspace_in(event, w, p, damped, bloch_work(p, sizes))
+
+
+@njit(cache=True)
+def cell_subspace_in(event, w, p, damped, work):
     """The pairs (Z_0, Z_L) of states at the cell's ends that its beam and components admit,
     at the complex frequency w (rad/s): a 4-dimensional subspace of C^8, returned as an
-    orthonormal basis X = [X0; XL] (8 x 4). Pieces carry XL by their transfer (lam h <=
-    BLOCH_STEP),
-    a component's constraints Cz Z + Cq q = 0 are solved for the free parameters
-    (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised after every component
-    and every piece, so the
-    growing solutions never swamp the decaying ones (a long cell, a high frequency).
-    ``event``/``sizes`` are the kernel's complex descriptors (``shape_event_c``,
-    ``shape_sizes``); ``damped``: the segments' loss factors count."""
+    orthonormal basis X = [X0; XL] (8 x 4; ``work``'s array). Pieces carry XL by their
+    transfer (lam h <= BLOCH_STEP), a component's constraints Cz Z + Cq q = 0 are solved
+    for the free parameters (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised
+    after every component and every piece, so the growing solutions never swamp the
+    decaying ones (a long cell, a high frequency). ``event`` is the kernel's complex
+    descriptor (``shape_event_c``), ``work`` from ``bloch_work``; ``damped``: the
+    segments' loss factors count. An empty array where a component leaves fewer than four
+    free parameters."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
     w1 = w * L * L * math.sqrt(mbar / EI)
     beta = cmath.sqrt(w1)
-    rows = event_order(p)
+    rows, X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work
     n_ev = rows.shape[0]
-    nq_all, max_q = sizes(p)
-    nb = max(1, max_q)
-    X = np.zeros((8, 4), dtype=np.complex128)
-    S = np.zeros((4, 4), dtype=np.complex128)
-    for a in range(4):
-        X[a, a] = 1.0
-        X[4 + a, a] = 1.0
-    orthonormalise8(X)
-    Cz = np.zeros((nb, 4), dtype=np.complex128)
-    Cq = np.zeros((nb, nb), dtype=np.complex128)
-    Ad = np.zeros((4, 4), dtype=np.complex128)
-    B = np.zeros((4, nb), dtype=np.complex128)
-    ev_mass = np.zeros((3, nb))
-    C = np.zeros((nb, nb + 4), dtype=np.complex128)
-    rhs = np.zeros(nb, dtype=np.complex128)
-    row_scale = np.ones(nb)
-    N = np.zeros((nb + 4, nb + 4), dtype=np.complex128)
-    xp = np.zeros(nb + 4, dtype=np.complex128)
-    Y = np.zeros((8, 4), dtype=np.complex128)
-    U = np.zeros((4, 4), dtype=np.complex128)
-    Ff = np.zeros((4, 4, 4), dtype=np.complex128)
+    for a in range(8):
+        for c in range(4):
+            X[a, c] = 0.0
+    for a in range(4):  # Z_L = Z_0 before the first piece, orthonormal
+        X[a, a] = SQRT_HALF
+        X[4 + a, a] = SQRT_HALF
     pos = 0.0
     seg = 0
     for r in range(n_ev + 1):
@@ -225,9 +244,9 @@ def cell_subspace(event, sizes, w, p, damped):
 
 
 @njit(cache=True)
-def pencil_det(X, lam):
-    """det(XL - lam X0) as (phase, log|det|): g det(T - lam I), T the cell's transfer."""
-    A = np.empty((4, 4), dtype=np.complex128)
+def pencil_det(X, lam, A):
+    """det(XL - lam X0) as (phase, log|det|): g det(T - lam I), T the cell's transfer (A:
+    4x4 complex scratch)."""
     for a in range(4):
         for c in range(4):
             A[a, c] = X[4 + a, c] - lam * X[a, c]
@@ -235,33 +254,26 @@ def pencil_det(X, lam):
 
 
 @njit(cache=True)
-def bloch_mu(M0, out):
-    """out[0:2] <- the roots mu = 2 cos(k L) of P (the evanescent pair's, the larger in
-    modulus, first; inf when P is linear: a constrained cell has one pair); out[2:5] <- the
-    coefficients (c0, c1, c2 - 2 c0) of P over a common scale, out[5] its log."""
-    ph0, l0 = pencil_det(M0, 0.0)
-    ph1, l1 = pencil_det(M0, 1.0)
-    ph2, l2 = pencil_det(M0, -1.0)
+def bloch_mu(X, A):
+    """The roots mu = 2 cos(k L) of P from det(XL - lam X0) at lam = 0, 1, -1 (A: 4x4
+    complex scratch): the evanescent pair's (the larger in modulus) first; inf when P is
+    linear (a constrained cell has one pair)."""
+    ph0, l0 = pencil_det(X, 0.0, A)
+    ph1, l1 = pencil_det(X, 1.0, A)
+    ph2, l2 = pencil_det(X, -1.0, A)
     ref = max(l0, max(l1, l2))
     c0 = ph0 * math.exp(l0 - ref)
     pp = ph1 * math.exp(l1 - ref)  # P(2)
     pm = ph2 * math.exp(l2 - ref)  # P(-2)
     c1 = 0.25 * (pp - pm)
     c2 = 0.5 * (pp + pm) - 4.0 * c0  # c2 - 2 c0 of the docstring
-    out[2] = c0
-    out[3] = c1
-    out[4] = c2
-    out[5] = ref
     disc = cmath.sqrt(c1 * c1 - 4.0 * c0 * c2)
     if (c1.conjugate() * disc).real < 0.0:
         disc = -disc
     qq = -0.5 * (c1 + disc)
     if qq == 0.0:
-        out[0] = complex(math.inf, 0.0)
-        out[1] = complex(math.inf, 0.0)
-        return
-    out[0] = qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)
-    out[1] = c2 / qq
+        return complex(math.inf, 0.0), complex(math.inf, 0.0)
+    return (qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)), c2 / qq
 
 
 @njit(cache=True)
@@ -277,23 +289,18 @@ def bloch_k(mu):
 
 
 @njit(cache=True)
-def bloch_waves(X, out):
+def bloch_waves(X, A, out):
     """out <- (mu_1, mu_2, k_1 L, k_2 L): ``bloch_mu`` and ``bloch_k``, the more attenuated
-    pair first."""
-    tmp = np.zeros(6, dtype=np.complex128)
-    bloch_mu(X, tmp)
-    k1 = bloch_k(tmp[0])
-    k2 = bloch_k(tmp[1])
+    pair first (A: 4x4 complex scratch)."""
+    mu1, mu2 = bloch_mu(X, A)
+    k1 = bloch_k(mu1)
+    k2 = bloch_k(mu2)
     if k2.imag > k1.imag:
-        out[0] = tmp[1]
-        out[1] = tmp[0]
-        out[2] = k2
-        out[3] = k1
-    else:
-        out[0] = tmp[0]
-        out[1] = tmp[1]
-        out[2] = k1
-        out[3] = k2
+        mu1, mu2, k1, k2 = mu2, mu1, k2, k1
+    out[0] = mu1
+    out[1] = mu2
+    out[2] = k1
+    out[3] = k2
 
 
 @njit(cache=True)

@@ -12,7 +12,9 @@ from numba.extending import intrinsic
 
 from .bloch import (
     bloch_waves,
+    bloch_work,
     cell_subspace,
+    cell_subspace_in,
     closed_stiffness,
     pencil_det,
 )
@@ -239,16 +241,22 @@ def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
 
 @njit(cache=True, parallel=True)
 def entry_bloch_waves(fa, damped, ws, p, out):
-    """``bloch_waves`` of the cell at every frequency ws[k] (complex, rad/s), in parallel:
-    out[k] = (mu_1, mu_2, k_1 L, k_2 L), the more attenuated pair first."""
+    """``bloch_waves`` of the cell at every frequency ws[k] (complex, rad/s), in parallel
+    over chunks (scratch allocated once per chunk): out[k] = (mu_1, mu_2, k_1 L, k_2 L),
+    the more attenuated pair first."""
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
-    for k in prange(ws.shape[0]):
-        X = cell_subspace(event, sizes, ws[k], p, damped)
-        if X.shape[0] == 8:
-            bloch_waves(X, out[k])
-        else:
-            out[k, :] = complex(math.nan, math.nan)
+    n = ws.shape[0]
+    chunks = min(n, 64)
+    for j in prange(chunks):
+        work = bloch_work(p, sizes)
+        A = np.empty((4, 4), dtype=np.complex128)
+        for k in range(j * n // chunks, (j + 1) * n // chunks):
+            X = cell_subspace_in(event, ws[k], p, damped, work)
+            if X.shape[0] == 8:
+                bloch_waves(X, A, out[k])
+            else:
+                out[k, :] = complex(math.nan, math.nan)
 
 
 @njit(cache=True)
@@ -262,7 +270,7 @@ def entry_closed(fa, w, p, s, K):
     if X.shape[0] != 8:
         return 0.0, 0.0, False
     ok = closed_stiffness(X, s, K)
-    phase, log = pencil_det(X, s)
+    phase, log = pencil_det(X, s, np.empty((4, 4), dtype=np.complex128))
     return phase.real, log, ok
 
 
