@@ -190,3 +190,28 @@ def test_plot(tmp_path):
     fig = plot.dispersion(b, path=out)
     assert out.stat().st_size > 1000
     assert any(p.get_gid() == "gap" for p in fig.axes[0].patches)
+
+
+def test_metamaterial_example():
+    """examples/metamaterial.toml: its cell's gap against Sugino's asymptotic one (mu =
+    0.5, omega_t / omega_Bragg ~ 0.011: within 2 mu (omega_t / omega_Bragg)^2), and the
+    transmission through the finite 200-cell beam (mstmm.frf from x = 0 to x = 2 m) in
+    the gap against exp(-200 Im k L): the log agrees to the O(1) of the ends, out of
+    ~30 to ~80 nepers."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parent.parent / "examples" / "metamaterial.toml"
+    scene = mstmm.load_scene(path)
+    cell = scene.cell
+    wt = math.sqrt(5329.586 / 0.00054)
+    frac = wt / ((math.pi / cell.beam.length) ** 2 * math.sqrt(cell.beam.EI / 0.108))
+    b = bands(scene, band=(0.0, 6000.0), points=100)
+    assert b.count_checked and len(b.gaps) == 1
+    lo, hi = b.gaps[0]
+    assert abs(lo / wt - 1.0) <= 2 * 0.5 * frac**2
+    assert abs(hi / (wt * math.sqrt(1.5)) - 1.0) <= 2 * 0.5 * frac**2
+    ws = np.linspace(lo, hi, 7)[1:-1]
+    att = bands(scene, omegas=ws, edges=False).attenuation
+    H = mstmm.frf(scene, "force:x=0", ["displacement:x=0", "displacement:x=2.0"], ws)[:, 0, :]
+    log_t = np.log(np.abs(H[:, 1]) / np.abs(H[:, 0]))
+    assert np.all(np.abs(log_t + scene.repeat * att) < 2.0), (log_t, scene.repeat * att)
