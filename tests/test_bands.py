@@ -215,3 +215,30 @@ def test_metamaterial_example():
     H = mstmm.frf(scene, "force:x=0", ["displacement:x=0", "displacement:x=2.0"], ws)[:, 0, :]
     log_t = np.log(np.abs(H[:, 1]) / np.abs(H[:, 0]))
     assert np.all(np.abs(log_t + scene.repeat * att) < 2.0), (log_t, scene.repeat * att)
+
+
+def test_coalescence_edges_above_a_timoshenko_cut_off():
+    """Above a Timoshenko cell's cut-off two pairs propagate, and a pass band can end where
+    they meet at an interior k (mu_1 = mu_2 inside (-2, 2)) and turn complex: such edges
+    are found on the dispersion grid, printed NOT CERTIFIED, and count_checked is False.
+    At each, the mpmath reference's two mu coincide inside (-2, 2)."""
+    import reference_bloch as ref
+
+    data = {
+        "beam": {
+            "length": L,
+            "EI": EI,
+            "mass_per_length": MBAR,
+            "kappa_GA": 50.0,
+            "rho_I": 0.01,
+            "left": "free",
+            "right": "free",
+        },
+        "attachments": [resonator(0.3, 0.1, 10.0), {"type": "mass", "x": 0.5, "m": 0.3, "J": 1e-3}],
+    }
+    b = bands(mstmm.scene_from_dict(data), band=(100.0, 170.0), points=300)
+    odd = [e for e in b.edges if e.kind == "coalescence"]
+    assert odd and not b.count_checked and all(not e.certified for e in odd)
+    for e in odd:
+        m1, m2 = (complex(v) for v in ref.bloch_mu(data, e.omega, dps=30))
+        assert abs(m1 - m2) < 1e-5 and abs(m1.real) < 2.0, (e.omega, m1, m2)

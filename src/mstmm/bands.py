@@ -76,7 +76,8 @@ class Bands:
     where every wave decays). ``edges``: every band edge in ``band`` (undamped cells),
     ``gaps``: the stop bands in ``band`` as (lo, hi) pairs (a gap reaching an end of
     ``band`` is cut there). ``count_checked``: the count proved every edge found
-    (none missed, multiplicities exact)."""
+    (none missed, multiplicities exact); False too when a pass band ends where two
+    propagating pairs meet (an uncertified "coalescence" edge)."""
 
     cell: Scene
     omega: np.ndarray
@@ -290,7 +291,7 @@ def bands(
         found, gaps, more = _gaps(c, found, lo, hi)
         out.edges = tuple(found)
         out.gaps = tuple(gaps)
-        out.count_checked = checked
+        out.count_checked = checked and not more  # a coalescence is not proved
         out.notes = notes + more
         out.timings["edges"] = time.perf_counter() - t3
         if not given:  # the curves reach every edge and resolve every gap
@@ -300,8 +301,7 @@ def bands(
             fine = _dispersion(c, np.unique(np.concatenate((omegas, extra))), (lo, hi))
             out.omega, out.k, out.mu = fine.omega, fine.k, fine.mu
             out.propagating = fine.propagating
-    elif edges:
-        out.count_checked = False
+    elif edges:  # nothing to certify
         out.notes = ["damped cell: every wave decays, no sharp band edge (k is complex)"]
     return out
 
