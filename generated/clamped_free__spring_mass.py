@@ -27,7 +27,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "35444be711a1dce9def8945268001b01caec7ccb"
+SIGNATURE = "89e38992dadc596a44c0b702fc8dad8c66ade72a"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +42,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "df8f6a1704d9d3b7f9fb234a77247124a29c91cc"
+NUMERICS = "94e36b17dd31951fbaeed5d7ba040ed210027b25"
 
 
 @njit(cache=True)

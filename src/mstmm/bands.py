@@ -210,14 +210,19 @@ class _Cell:
         self.n = numerics()
 
     def waves(self, omegas: np.ndarray) -> np.ndarray:
-        """(mu_1, mu_2, k_1 L, k_2 L) at each omega, the more attenuated pair first."""
+        """(mu_1, mu_2, k_1 L, k_2 L, propagating pairs) at each omega, the more attenuated
+        pair first."""
         ws = np.ascontiguousarray(omegas, dtype=np.complex128)
-        out = np.zeros((ws.size, 4), dtype=np.complex128)
+        out = np.zeros((ws.size, 5), dtype=np.complex128)
         self.n.entry_bloch_waves(self.fa, self.damped, ws, self.p, out)
         return out
 
     def mu(self, omegas: np.ndarray) -> np.ndarray:
         return self.waves(omegas)[:, :2]
+
+    def propagating(self, omegas: np.ndarray) -> np.ndarray:
+        """Pairs that propagate at each omega (``numerics.bloch.propagating_count``)."""
+        return self.waves(omegas)[:, 4].real.astype(np.int64)
 
     def edge_function(
         self, w: float, s: float, count: bool = True
@@ -247,11 +252,6 @@ def propagating_pairs(mu: np.ndarray) -> np.ndarray:
     real = np.abs(mu.imag) <= MU_TOL * np.maximum(1.0, np.abs(mu.real))
     inside = np.abs(mu.real) <= 2.0 + MU_TOL
     return real & inside & np.isfinite(mu.real)
-
-
-def _propagating(mu: np.ndarray) -> np.ndarray:
-    """Pairs propagating at each row of mu."""
-    return np.sum(propagating_pairs(mu), axis=1)
 
 
 def bands(
@@ -311,9 +311,11 @@ def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Band
     waves = c.waves(omegas)
     mu = waves[:, :2]
     k = np.empty_like(mu)  # part by part: (pi + i inf) / L stays finite in its real part
-    k.real = waves[:, 2:].real / c.cell.beam.length + 0.0  # no -0.0
-    k.imag = waves[:, 2:].imag / c.cell.beam.length + 0.0
-    prop = np.full(omegas.shape, -1, dtype=np.int64) if c.damped else _propagating(mu)
+    k.real = waves[:, 2:4].real / c.cell.beam.length + 0.0  # no -0.0
+    k.imag = waves[:, 2:4].imag / c.cell.beam.length + 0.0
+    prop = waves[:, 4].real.astype(np.int64)
+    if c.damped:
+        prop[:] = -1
     return Bands(c.cell, omegas, k, mu, prop, band, damped=c.damped)
 
 
@@ -422,7 +424,7 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
         if b <= a:
             continue
         probe = a + (b - a) * np.array([0.05, 0.25, 0.5, 0.75, 0.95])
-        n = _propagating(c.mu(probe))
+        n = c.propagating(probe)
         if np.all(n == n[0]):
             spans.append((a, b, int(n[0])))
             continue
@@ -436,7 +438,7 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
                 xs.append(x)
         xs.append(b)
         for u, v in zip(xs, xs[1:]):
-            spans.append((u, v, int(_propagating(c.mu(np.array([0.5 * (u + v)])))[0])))
+            spans.append((u, v, int(c.propagating(np.array([0.5 * (u + v)]))[0])))
     gaps: list[tuple[float, float]] = []
     for a, b, n in spans:
         if n == 0:
@@ -453,7 +455,7 @@ def _bisect_change(c: _Cell, a: float, b: float, na: int) -> float:
         m = 0.5 * (a + b)
         if m <= a or m >= b:
             break
-        if int(_propagating(c.mu(np.array([m])))[0]) == na:
+        if int(c.propagating(np.array([m]))[0]) == na:
             a = m
         else:
             b = m

@@ -254,10 +254,9 @@ def pencil_det(X, lam, A):
 
 
 @njit(cache=True)
-def bloch_mu(X, A):
-    """The roots mu = 2 cos(k L) of P from det(XL - lam X0) at lam = 0, 1, -1 (A: 4x4
-    complex scratch): the evanescent pair's (the larger in modulus) first; inf when P is
-    linear (a constrained cell has one pair)."""
+def bloch_poly(X, A):
+    """P(mu) = c0 mu^2 + c1 mu + c2 from det(XL - lam X0) at lam = 0, 1, -1 (A: 4x4
+    complex scratch), over a common scale: returns (c0, c1, c2, P(2), P(-2))."""
     ph0, l0 = pencil_det(X, 0.0, A)
     ph1, l1 = pencil_det(X, 1.0, A)
     ph2, l2 = pencil_det(X, -1.0, A)
@@ -266,7 +265,14 @@ def bloch_mu(X, A):
     pp = ph1 * math.exp(l1 - ref)  # P(2)
     pm = ph2 * math.exp(l2 - ref)  # P(-2)
     c1 = 0.25 * (pp - pm)
-    c2 = 0.5 * (pp + pm) - 4.0 * c0  # c2 - 2 c0 of the docstring
+    c2 = 0.5 * (pp + pm) - 4.0 * c0  # c2 - 2 c0 of the module docstring
+    return c0, c1, c2, pp, pm
+
+
+@njit(cache=True)
+def bloch_mu(c0, c1, c2):
+    """The roots mu = 2 cos(k L) of P (``bloch_poly``): the evanescent pair's (the larger in
+    modulus) first; inf when P is linear (a constrained cell has one pair)."""
     disc = cmath.sqrt(c1 * c1 - 4.0 * c0 * c2)
     if (c1.conjugate() * disc).real < 0.0:
         disc = -disc
@@ -274,6 +280,25 @@ def bloch_mu(X, A):
     if qq == 0.0:
         return complex(math.inf, 0.0), complex(math.inf, 0.0)
     return (qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)), c2 / qq
+
+
+@njit(cache=True)
+def propagating_count(c0, c1, c2, pp, pm):
+    """How many roots of the real P lie in [-2, 2] (wave pairs that propagate), from the
+    signs of P(2) and P(-2), each exact away from its own zeros (the band edges): one
+    when they differ; else two when both roots are real, the vertex lies inside and P(+-2)
+    have the leading coefficient's sign; else none (a complex pair, or both outside)."""
+    a = c0.real
+    if (pp.real > 0.0) != (pm.real > 0.0):
+        return 1
+    if a == 0.0:
+        return 0
+    if c1.real * c1.real - 4.0 * a * c2.real < 0.0:
+        return 0
+    v = -c1.real / (2.0 * a)
+    if -2.0 < v < 2.0 and (pp.real > 0.0) == (a > 0.0):
+        return 2
+    return 0
 
 
 @njit(cache=True)
@@ -290,9 +315,12 @@ def bloch_k(mu):
 
 @njit(cache=True)
 def bloch_waves(X, A, out):
-    """out <- (mu_1, mu_2, k_1 L, k_2 L): ``bloch_mu`` and ``bloch_k``, the more attenuated
-    pair first (A: 4x4 complex scratch)."""
-    mu1, mu2 = bloch_mu(X, A)
+    """out <- (mu_1, mu_2, k_1 L, k_2 L, n): ``bloch_mu`` and ``bloch_k``, the more
+    attenuated pair first, and n the pairs that propagate (``propagating_count``;
+    meaningful for an undamped cell) (A: 4x4 complex scratch)."""
+    c0, c1, c2, pp, pm = bloch_poly(X, A)
+    mu1, mu2 = bloch_mu(c0, c1, c2)
+    out[4] = propagating_count(c0, c1, c2, pp, pm)
     k1 = bloch_k(mu1)
     k2 = bloch_k(mu2)
     if k2.imag > k1.imag:

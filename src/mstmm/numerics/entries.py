@@ -242,8 +242,8 @@ def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
 @njit(cache=True, parallel=True)
 def entry_bloch_waves(fa, damped, ws, p, out):
     """``bloch_waves`` of the cell at every frequency ws[k] (complex, rad/s), in parallel
-    over chunks (scratch allocated once per chunk): out[k] = (mu_1, mu_2, k_1 L, k_2 L),
-    the more attenuated pair first."""
+    over chunks (scratch allocated once per chunk): out[k] = (mu_1, mu_2, k_1 L, k_2 L,
+    propagating pairs), the more attenuated pair first."""
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
     n = ws.shape[0]
