@@ -43,7 +43,8 @@ WHAT = {
   an LU determinant (units L = EI_0 = mbar_0 = 1);
 * ``delta_stable`` (default): the same roots from the second-compound chain in
   units L = 1, EI_0 = 1, reduced beam functions (series below x = $threshold),
-  every component's pole factor multiplied out exactly once, renormalised every step.
+  every component's pole factor multiplied out exactly once, renormalised (by powers of
+  two) whenever its largest minor leaves [2^-20, 2^20].
 
 Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
 ``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
@@ -124,7 +125,7 @@ def _compound_step(C: sp.Matrix, complex_: bool = False) -> list[str]:
 
 
 def _unit_factor(scale) -> str:
-    """`` * L * L / EI``-style factor making a value of unit exponents ``scale`` (of L,
+    """`` * (L * L / EI)``-style factor making a value of unit exponents ``scale`` (of L,
     EI_0, mbar_0) dimensionless; half powers as ``math.sqrt`` (a dashpot's N s/m)."""
     num: list[str] = []
     den: list[str] = []
@@ -139,10 +140,13 @@ def _unit_factor(scale) -> str:
         num.append(f"math.sqrt({' * '.join(roots_num)})")
     if roots_den:
         den.append(f"math.sqrt({' * '.join(roots_den)})")
-    factor = "".join(f" * {n}" for n in num)
+    # one factor, free of the value: the compiler computes it once, outside the event loop
+    factor = " * ".join(num) if num else "1.0"
     if den:
         factor += " / " + (den[0] if len(den) == 1 else "(" + " * ".join(den) + ")")
-    return factor
+    if factor == "1.0":
+        return ""
+    return f" * ({factor})" if " " in factor else f" * {factor}"
 
 
 def _value_lines(module, damped: bool = False) -> tuple[list[str], dict]:
@@ -571,6 +575,10 @@ def numerics_source() -> str:
         threshold=repr(special.SERIES_THRESHOLD),
         digest=derive_digest(),
         sympy_version=importlib.metadata.version("sympy"),
+        krylov_tiny=repr(special.leading_threshold(special.KRYLOV)),
+        krylov_leading=special.leading_terms(special.KRYLOV),
+        compound_tiny=repr(special.leading_threshold(special.COMPOUND)),
+        compound_leading=special.leading_terms(special.COMPOUND),
         krylov_series=_indent(_series_lines(special.KRYLOV), 8),
         krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
         compound_series=_indent(_series_lines(special.COMPOUND), 8),

@@ -98,6 +98,24 @@ COMPOUND = (
 )
 
 
+#: Below ``leading_threshold`` the first neglected term of every series is under this
+#: fraction of its constant term (under a quarter of its ulp: Horner's sum rounds to it).
+LEADING_TOLERANCE = 2.0**-56
+
+
+def leading_threshold(funcs: tuple[Reduced, ...]) -> float:
+    """The argument below which every function of ``funcs`` is its constant term in double
+    precision: ``|a_1 / a_0| x^4`` (the next term, the rest far smaller) under
+    ``LEADING_TOLERANCE`` for each (the pieces between closely spaced components)."""
+    ratio = max(abs(float(f.series()[1] / f.series()[0])) for f in funcs)
+    return float((LEADING_TOLERANCE / ratio) ** 0.25)
+
+
+def leading_terms(funcs: tuple[Reduced, ...]) -> str:
+    """The constant terms of ``funcs``' series, as printed (a tuple's items)."""
+    return ", ".join(repr(float(f.series()[0])) for f in funcs)
+
+
 def scaled_closed_form(f: Reduced, E: sp.Symbol, chs: sp.Symbol, shs: sp.Symbol) -> sp.Expr:
     """``exp(-x) * f(x)`` with ``chs = exp(-x) cosh x``, ``shs = exp(-x) sinh x``, ``E = exp(-x)``.
 

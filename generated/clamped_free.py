@@ -8,7 +8,8 @@ What: the natural frequencies of an Euler-Bernoulli beam of uniform or stepped s
   an LU determinant (units L = EI_0 = mbar_0 = 1);
 * ``delta_stable`` (default): the same roots from the second-compound chain in
   units L = 1, EI_0 = 1, reduced beam functions (series below x = 1.5),
-  every component's pole factor multiplied out exactly once, renormalised every step.
+  every component's pole factor multiplied out exactly once, renormalised (by powers of
+  two) whenever its largest minor leaves [2^-20, 2^20].
 
 Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
 ``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
@@ -27,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "36fba20b60afe90b9e84344d167a48862fb7d641"
+SIGNATURE = "009f0cd514ceada35f5b154d63bcd2dd7d6d0eba"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "94e36b17dd31951fbaeed5d7ba040ed210027b25"
+NUMERICS = "20693db0e6811db40ea8f643a7197168783d6aa0"
 
 
 @njit(cache=True)
@@ -117,6 +118,7 @@ def delta_stable(omega, p):
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
         x = L
         row = 0
@@ -129,7 +131,7 @@ def delta_stable(omega, p):
             if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
                 target = p[HEAD + SEGMENT_WIDTH * seg]
                 after = seg + 1
-            rho = (target - pos) / L
+            rho = (target - pos) * inv_L
             if rho > 0.0:
                 if general and is_general(p, seg):  # exp(A h) of its field matrix
                     step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
@@ -160,7 +162,7 @@ def delta_stable(omega, p):
         tag = int(p[row])
         o = int(p[row + 2])
         pass
-        log += renormalise(v)
+        log += renormalise_lazy(v)
     log += renormalise(v)
     return v[END_PAIR], log
 
@@ -199,6 +201,7 @@ def count_below(omega, p):
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
         x = L
         row = 0
@@ -211,7 +214,7 @@ def count_below(omega, p):
             if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
                 target = p[HEAD + SEGMENT_WIDTH * seg]
                 after = seg + 1
-            rho = (target - pos) / L
+            rho = (target - pos) * inv_L
             if rho > MERGE_LENGTH and is_general(p, seg):
                 n_field, ready = field_count(Zc, p, seg, b4, rho, F, ready)  # pieces of J0 = 0
                 count += n_field
@@ -240,7 +243,7 @@ def count_below(omega, p):
         tag = int(p[row])
         o = int(p[row + 2])
         pass
-        renormalise(Zc)
+        renormalise_lazy(Zc)
     detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]
     s11 = S[1, 1]
@@ -342,16 +345,20 @@ def delta_paper(omega, p):
 
 @njit(cache=True)
 def oscillator_frequencies(p):
-    """The components' own frequencies (rad/s, ascending): roots crowd around them."""
+    """Row 0: the components' own frequencies (rad/s, ascending), where roots crowd; row 1:
+    for each, how many components at its point have it too (``own_table``)."""
     rows = event_order(p)
     total, most = event_unknowns(p, rows)
     out = np.empty(total)
+    xs = np.empty(total)
     n = 0
     for r in range(rows.shape[0]):
-        n = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+        m = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+        xs[n:m] = p[rows[r] + 1]
+        n = m
     order = np.empty(n, dtype=np.int64)
-    insertion_order(out[:n], order)
-    return out[order]
+    stable_order(out[:n], order)
+    return own_table(out[:n], xs[:n], order)
 
 @njit(cache=True)
 def event_unknowns(p, rows):

@@ -8,7 +8,8 @@ What: the natural frequencies of an Euler-Bernoulli beam of uniform or stepped s
   an LU determinant (units L = EI_0 = mbar_0 = 1);
 * ``delta_stable`` (default): the same roots from the second-compound chain in
   units L = 1, EI_0 = 1, reduced beam functions (series below x = 1.5),
-  every component's pole factor multiplied out exactly once, renormalised every step.
+  every component's pole factor multiplied out exactly once, renormalised (by powers of
+  two) whenever its largest minor leaves [2^-20, 2^20].
 
 Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
 ``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
@@ -27,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "89e38992dadc596a44c0b702fc8dad8c66ade72a"
+SIGNATURE = "fb2a0ee80f1a6422703665cb9e05de0faa8a8614"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -42,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "94e36b17dd31951fbaeed5d7ba040ed210027b25"
+NUMERICS = "20693db0e6811db40ea8f643a7197168783d6aa0"
 
 
 @njit(cache=True)
@@ -52,8 +53,8 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
     a unit force on it adds to minus its row (units L = EI = mbar = 1; paper
     Eqs. (2)-(3)); returns (constraints, unknowns)."""
     if tag == 0:  # spring_mass
-        val_k = p[o + 0] * L * L * L / EI
-        val_m = p[o + 1] / (L * mbar)
+        val_k = p[o + 0] * (L * L * L / EI)
+        val_m = p[o + 1] * (1.0 / (L * mbar))
         t0 = 1.0/val_k
         t1 = b4*val_m
         A[0, 0] = 1.0
@@ -101,8 +102,8 @@ def event_inertia(tag, p, o, L, EI, mbar, Mp):
 def event_internal(tag, p, o, L, EI, mbar, out, n):
     """Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n."""
     if tag == 0:  # spring_mass
-        val_k = p[o + 0] * L * L * L / EI
-        val_m = p[o + 1] / (L * mbar)
+        val_k = p[o + 0] * (L * L * L / EI)
+        val_m = p[o + 1] * (1.0 / (L * mbar))
         b4 = val_k/val_m
         if b4 > 0.0 and math.isfinite(b4):
             out[n] = math.sqrt(b4 * EI / mbar) / (L * L)
@@ -116,8 +117,8 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
     """The component's descriptor in complex arithmetic at the complex frequency w1 (units
     L = EI = mbar = 1, b4 = w1^2); returns (constraints, unknowns)."""
     if tag == 0:  # spring_mass
-        val_k = p[o + 0] * L * L * L / EI
-        val_m = p[o + 1] / (L * mbar)
+        val_k = p[o + 0] * (L * L * L / EI)
+        val_m = p[o + 1] * (1.0 / (L * mbar))
         b4 = w1 * w1
         t0 = 1.0/val_k
         t1 = b4*val_m
@@ -202,6 +203,7 @@ def delta_stable(omega, p):
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
         x = L
         row = 0
@@ -214,7 +216,7 @@ def delta_stable(omega, p):
             if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
                 target = p[HEAD + SEGMENT_WIDTH * seg]
                 after = seg + 1
-            rho = (target - pos) / L
+            rho = (target - pos) * inv_L
             if rho > 0.0:
                 if general and is_general(p, seg):  # exp(A h) of its field matrix
                     step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
@@ -245,8 +247,8 @@ def delta_stable(omega, p):
         tag = int(p[row])
         o = int(p[row + 2])
         if tag == 0:  # spring_mass
-            val_k = p[o + 0] * L * L * L / EI
-            val_m = p[o + 1] / (L * mbar)
+            val_k = p[o + 0] * (L * L * L / EI)
+            val_m = p[o + 1] * (1.0 / (L * mbar))
             v0 = v[0]
             v1 = v[1]
             v2 = v[2]
@@ -264,7 +266,7 @@ def delta_stable(omega, p):
             v[3] = t4*v3 - v3
             v[4] = t2 + t4*v4 - v4
             v[5] = t3 + t4*v5 - v5
-        log += renormalise(v)
+        log += renormalise_lazy(v)
     log += renormalise(v)
     return v[END_PAIR], log
 
@@ -303,6 +305,7 @@ def count_below(omega, p):
     n_seg = int(p[3])
     n_ev = int(p[4])
     base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
         x = L
         row = 0
@@ -315,7 +318,7 @@ def count_below(omega, p):
             if seg < n_seg - 1 and p[HEAD + SEGMENT_WIDTH * seg] <= x:
                 target = p[HEAD + SEGMENT_WIDTH * seg]
                 after = seg + 1
-            rho = (target - pos) / L
+            rho = (target - pos) * inv_L
             if rho > MERGE_LENGTH and is_general(p, seg):
                 n_field, ready = field_count(Zc, p, seg, b4, rho, F, ready)  # pieces of J0 = 0
                 count += n_field
@@ -344,8 +347,8 @@ def count_below(omega, p):
         tag = int(p[row])
         o = int(p[row + 2])
         if tag == 0:  # spring_mass
-            val_k = p[o + 0] * L * L * L / EI
-            val_m = p[o + 1] / (L * mbar)
+            val_k = p[o + 0] * (L * L * L / EI)
+            val_m = p[o + 1] * (1.0 / (L * mbar))
             pivot = -b4*val_m/val_k + 1.0
             v0 = Zc[0]
             v1 = Zc[1]
@@ -366,7 +369,7 @@ def count_below(omega, p):
             Zc[5] = t3 + t4*v5 - v5
             if pivot < 0.0:
                 count += 1
-        renormalise(Zc)
+        renormalise_lazy(Zc)
     detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]
     s11 = S[1, 1]
@@ -468,16 +471,20 @@ def delta_paper(omega, p):
 
 @njit(cache=True)
 def oscillator_frequencies(p):
-    """The components' own frequencies (rad/s, ascending): roots crowd around them."""
+    """Row 0: the components' own frequencies (rad/s, ascending), where roots crowd; row 1:
+    for each, how many components at its point have it too (``own_table``)."""
     rows = event_order(p)
     total, most = event_unknowns(p, rows)
     out = np.empty(total)
+    xs = np.empty(total)
     n = 0
     for r in range(rows.shape[0]):
-        n = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+        m = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+        xs[n:m] = p[rows[r] + 1]
+        n = m
     order = np.empty(n, dtype=np.int64)
-    insertion_order(out[:n], order)
-    return out[order]
+    stable_order(out[:n], order)
+    return own_table(out[:n], xs[:n], order)
 
 @njit(cache=True)
 def event_unknowns(p, rows):

@@ -292,7 +292,7 @@ class Kernel:
 
     def oscillator_frequencies(self, p: np.ndarray) -> np.ndarray:
         """The components' own frequencies (rad/s, ascending), where roots crowd."""
-        return np.asarray(self._cheapest("oscillator_frequencies")(_params(p)))
+        return np.asarray(self._cheapest("oscillator_frequencies")(_params(p))[0])
 
     def rigid_body_modes(self, p: np.ndarray) -> int:
         """Number of zero natural frequencies (rigid motions the ends and components allow)."""
@@ -330,10 +330,11 @@ class Kernel:
         """The lowest ``modes`` frequencies by the kernel's certified scan (the root search;
         :func:`mstmm.scan.find_roots` drives it).
 
-        Sign changes of the characteristic function on a grid uniform in beta plus every
-        component's own frequency, Brent on each, and one Wittrick-Williams count per
-        block; where the count disagrees, bisection on the count (which finds double
-        roots and drops spurious sign changes). Where the count cannot certify a block
+        Sign changes of the characteristic function on a grid uniform in beta plus a node
+        on either side of every component's own frequency, one Wittrick-Williams count
+        per block, Brent's method on each sign change whose root is reported; where the
+        count disagrees, bisection on the count (which finds double roots and drops
+        spurious sign changes). Where the count cannot certify a block
         the search goes on without it and says so (``Found.certified``). Without
         ``certify`` the sign-change roots come unchecked. Up to :data:`BLOCK_MODES`
         modes run in one kernel call; more run block by block (a progress bar on a

@@ -4,8 +4,9 @@ One search finds the roots, the kernel's (``lowest`` in ``mstmm.numerics.search`
 :meth:`mstmm.kernels.Kernel.lowest`), for either formulation, ``modes=`` or ``band=``:
 
 * sign changes of the pole-free characteristic function on a grid uniform in
-  ``beta = lam L`` (beam modes lie about ``pi`` apart) plus a node at every
-  component's own frequency (where roots crowd), each refined by Brent's method;
+  ``beta = lam L`` (beam modes lie about ``pi`` apart) plus a node on either side of
+  every component's own frequency (where roots crowd), each refined by Brent's method
+  when its root is reported;
 * one Wittrick-Williams count ``N(omega)`` (independent of the characteristic
   function) per block of sign changes: when ``N(top) - N(bottom)`` equals their number,
   each brackets exactly one simple root and none lies elsewhere;

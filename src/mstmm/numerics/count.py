@@ -17,7 +17,7 @@ from .segment import (
     second_compound,
 )
 from .walk import (
-    renormalise,
+    renormalise_lazy,
 )
 
 
@@ -54,7 +54,7 @@ def pair_count(Zc, U, beta, rho):
     a = Zc[0]
     w00, w10, w01, w11 = pivot_products(Zc, U)
     beam_compound_step(Zc, beta, rho)
-    renormalise(Zc)
+    renormalise_lazy(Zc)
     return pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
 
 
@@ -106,7 +106,7 @@ def field_count(Zc, p, seg, w2, rho, F, ready):
         a = Zc[0]
         w00, w10, w01, w11 = pivot_products(Zc, U)
         compound_step(E, Zc, v)
-        renormalise(Zc)
+        renormalise_lazy(Zc)
         n += pivot_negatives(U, a, Zc[0], w00, w10, w01, w11)
     return n, seg
 

@@ -20,3 +20,12 @@ RICCATI_STEP = 1.0
 NODES_PER_MODE = 8
 #: The scan's nodes beside a component's own frequency w0 are w0 (1 -+ OSC_SIDE).
 OSC_SIDE = 1e-9
+#: Two close nodes without a sign change get a probe (``search.pair_probe``) when their
+#: secant puts a root outside them within this fraction of the gap to the next node.
+PROBE_REACH = 0.25
+#: A root found within OWN_RESOLUTION sqrt(c) (relative) of an own frequency that c >= 2
+#: components share is written at it (``search.isolate``): c identical components at one
+#: point have a root of multiplicity c - 1 exactly there, and within about 1e-14 sqrt(c)
+#: to 2.5e-13 sqrt(c) of it (measured, 2 to 10,000 spring-masses) the count and the
+#: function, multiplying c pole factors at round-off, can misplace one of its copies.
+OWN_RESOLUTION = 2e-13

@@ -9,6 +9,8 @@ from numba import njit
 from .layout import (
     NODES_PER_MODE,
     OSC_SIDE,
+    OWN_RESOLUTION,
+    PROBE_REACH,
 )
 
 
@@ -26,11 +28,136 @@ def scaled(delta, omega, p, ref):
     return m * math.exp(min(g - ref, 700.0))
 
 
+@njit(cache=True, inline="always")
+def own_range(own, inv2, w, j0, j1, t, log):
+    """``own_product`` over own[j0:j1], onto (t, log): eight factors at a time (the
+    compiler vectorises them), renormalised after each eight."""
+    j = j0
+    while j < j1:
+        c = 1.0
+        for i in range(j, min(j + 8, j1)):
+            o = own[i]
+            c *= (o - w) * (o + w) * inv2[i]
+        t *= c
+        a = abs(t)
+        if a > 1e200 or a < 1e-200:
+            if t == 0.0 or not math.isfinite(t):
+                return t, log
+            e = math.frexp(t)[1]
+            t = math.ldexp(t, -e)
+            log += e * 0.6931471805599453
+        j += 8
+    return t, log
+
+
+@njit(cache=True)
+def own_product(poles, w, skip_lo, skip_hi):
+    """The product of 1 - w^2/own_j^2 = (own_j - w)(own_j + w)/own_j^2 over the own
+    frequencies own_j = poles[0, j] outside j in [skip_lo, skip_hi] (``pole_data``), as
+    (mantissa, log): the pole factors the characteristic function multiplies out (``refine_from``).
+    The difference own_j - w is exact next to own_j, so each factor is good to a few ulp
+    however close w comes."""
+    own = poles[0]
+    inv2 = poles[1]
+    t, log = own_range(own, inv2, w, 0, max(skip_lo, 0), 1.0, 0.0)
+    t, log = own_range(own, inv2, w, max(skip_hi + 1, 0), own.shape[0], t, log)
+    return t, log
+
+
+@njit(cache=True)
+def pole_data(table):
+    """(3, n) from ``oscillator_frequencies``' table: the positive own frequencies
+    (ascending), 1/own^2 (``own_product``), and for each the most components at one point
+    that have it (over its equal values: ``isolate`` writes their multiple root at it)."""
+    keep = table[0] > 0.0
+    n = int(np.count_nonzero(keep))
+    poles = np.empty((3, n))
+    poles[0] = table[0][keep]
+    poles[1] = 1.0 / (poles[0] * poles[0])
+    same = table[1][keep]
+    i = 0
+    while i < n:
+        j = i
+        most = same[i]
+        while j + 1 < n and poles[0, j + 1] == poles[0, i]:
+            j += 1
+            most = max(most, same[j])
+        poles[2, i : j + 1] = most
+        i = j + 1
+    return poles
+
+
+@njit(cache=True)
+def divided(delta, x, p, poles, skip_lo, skip_hi):
+    """delta(x) over ``own_product`` (mantissa, log)."""
+    m, g = delta(x, p)
+    if poles.shape[1] == 0:
+        return m, g
+    pm, pg = own_product(poles, x, skip_lo, skip_hi)
+    if pm == 0.0:  # not on [a, b] (``refine_from`` skips every factor vanishing there)
+        return m, g
+    return m / pm, g - pg
+
+
+@njit(cache=True)
+def divide(m, g, x, poles, skip_lo, skip_hi):
+    """A known value (m, g) of delta at x over ``own_product``."""
+    if poles.shape[1] == 0 or x != x:
+        return m, g
+    pm, pg = own_product(poles, x, skip_lo, skip_hi)
+    if pm == 0.0:  # a point outside [a, b] on an own frequency: no value
+        return np.nan, g
+    return m / pm, g - pg
+
+
 @njit(cache=True)
 def refine(delta, a, b, p, rtol, maxiter):
     """Brent's method on a sign change in [a, b]; returns (root, iterations, converged)."""
     ma, ga = delta(a, p)
     mb, gb = delta(b, p)
+    return refine_from(
+        delta,
+        a,
+        ma,
+        ga,
+        b,
+        mb,
+        gb,
+        np.nan,
+        0.0,
+        0.0,
+        np.nan,
+        0.0,
+        0.0,
+        np.empty((3, 0)),
+        p,
+        rtol,
+        maxiter,
+    )
+
+
+@njit(cache=True)
+def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, rtol, maxiter):
+    """Brent's method on a sign change in [a, b] whose values (mantissa, log) are known
+    (the scan's): returns (root, iterations, converged).
+
+    It runs on delta divided by the pole factors 1 - w^2/own_j^2 of the components' own
+    frequencies (``poles``, ``pole_data``; none: empty), all but those inside [a, b] and the
+    nearest one on either side: none of the others vanishes on [a, b], so the roots and signs
+    there are delta's, but the function is far closer to linear next to a root that
+    hundreds of own frequencies crowd (their factors, multiplied out, make delta a
+    polynomial of that degree), while the nearest pole's factor kept makes the root of a
+    weakly coupled component a near-linear one. xl < a and xr > b (nan: none) are nodes
+    just outside the bracket, with their values: the first step interpolates (inverse
+    quadratic) through the bracket and the one beside the end where the function is
+    smaller, which steers it at once to the root's side of a humped bracket (two close
+    nodes beside a component's own frequency give the slope there). From then on it is
+    Brent's method as printed (safeguarded by bisection)."""
+    # skipped: every own frequency in [a, b] and the nearest outside it on either side
+    skip_lo = np.searchsorted(poles[0], min(a, b), side="left") - 1
+    skip_hi = np.searchsorted(poles[0], max(a, b), side="right")
+    ma, ga = divide(ma, ga, a, poles, skip_lo, skip_hi)
+    mb, gb = divide(mb, gb, b, poles, skip_lo, skip_hi)
     ref = max(ga, gb)
     fa = ma * math.exp(ga - ref)
     fb = mb * math.exp(gb - ref)
@@ -40,9 +167,24 @@ def refine(delta, a, b, p, rtol, maxiter):
         return b, 0, True
     if (fa > 0.0) == (fb > 0.0):
         return 0.5 * (a + b), 0, False
+    x3 = xr
+    m3 = mr
+    g3 = gr
+    if abs(fa) < abs(fb):  # b is the end where the function is smaller
+        x3 = xl
+        m3 = ml
+        g3 = gl
+        a, b = b, a
+        fa, fb = fb, fa
     c = a
     fc = fa
-    d = b - a
+    if x3 == x3:
+        m3, g3 = divide(m3, g3, x3, poles, skip_lo, skip_hi)
+        f3 = m3 * math.exp(min(g3 - ref, 700.0))
+        if f3 == f3 and (f3 > 0.0) == (fb > 0.0) and abs(f3) > abs(fb) and f3 != fc and x3 != b:
+            a = x3
+            fa = f3
+    d = b - c
     e = d
     for it in range(maxiter):
         if (fb > 0.0) == (fc > 0.0):
@@ -90,7 +232,8 @@ def refine(delta, a, b, p, rtol, maxiter):
             b += d
         else:
             b += tol if m > 0.0 else -tol
-        fb = scaled(delta, b, p, ref)
+        mb, gb = divided(delta, b, p, poles, skip_lo, skip_hi)
+        fb = mb * math.exp(min(gb - ref, 700.0))
     return b, maxiter, False
 
 
@@ -147,58 +290,123 @@ def write_root(out, flags, k, modes, root, flag, copies, state):
 
 
 @njit(cache=True)
-def isolate(delta, count, a, b, na, nb, p, out, flags, k, modes, state, rtol):
+def shared_inside(poles, a, b):
+    """Whether [a, b] holds an own frequency that several components at one point share
+    (``pole_data``)."""
+    own = poles[0]
+    shared = poles[2]
+    j = np.searchsorted(own, a, side="left")
+    while j < own.shape[0] and own[j] <= b:
+        if shared[j] >= 2.0:
+            return True
+        j += 1
+    return False
+
+
+@njit(cache=True)
+def snap_shared(poles, x):
+    """x, or the own frequency w next to it that c >= 2 components at one point share when
+    x lies within OWN_RESOLUTION sqrt(c) of w: there they have a root of multiplicity
+    c - 1, and neither the count nor the function resolves roots (``isolate``)."""
+    own = poles[0]
+    shared = poles[2]
+    j = np.searchsorted(own, x)
+    for i in (j - 1, j):
+        if 0 <= i < own.shape[0]:
+            c = shared[i]
+            if c >= 2.0 and abs(x - own[i]) <= OWN_RESOLUTION * math.sqrt(c) * own[i]:
+                return own[i]
+    return x
+
+
+@njit(cache=True)
+def sign_across(delta, a, b, eps, p):
+    """Whether the function changes sign between a (1 - eps) and b (1 + eps)."""
+    return (delta(a * (1.0 - eps), p)[0] > 0.0) != (delta(b * (1.0 + eps), p)[0] > 0.0)
+
+
+@njit(cache=True)
+def push_piece(sx, sn, top, a, ma, ga, b, mb, gb, xo, mo, go, na, nb):
+    """Push the piece (a, b) of ``isolate`` with the function at its ends, a third point
+    (xo, mo, go) and the counts at its ends. Returns the new top."""
+    sx[top, 0] = a
+    sx[top, 1] = ma
+    sx[top, 2] = ga
+    sx[top, 3] = b
+    sx[top, 4] = mb
+    sx[top, 5] = gb
+    sx[top, 6] = xo
+    sx[top, 7] = mo
+    sx[top, 8] = go
+    sn[top, 0] = na
+    sn[top, 1] = nb
+    return top + 1
+
+
+@njit(cache=True)
+def isolate(
+    delta, count, a, ma, ga, b, mb, gb, na, nb, poles, p, out, flags, k, modes, state, rtol
+):
     """Roots in (a, b) by bisection on the count N(b) - N(a), lowest first, each polished
     by Brent once alone on a sign change; a count jump that stays > 1 down to round-off
-    width is a multiple root. The count at a midpoint is clamped into [na, nb], so that
-    a count off by one at round-off distance from a root cannot add or lose a root.
-    A simple root that the function never changes sign across, or on which Brent does
-    not converge, is written flagged UNTRUSTED. Writes out[k:] and flags[k:] (with
-    multiplicity, up to modes) and the true multiplicity of the last root written into
-    state[STATE_LAST]; returns the new k, or -1 if the bisection stack overflows."""
+    width is a multiple root. (ma, ga), (mb, gb): the function at a and b. Each midpoint
+    gets the count and the function (every midpoint ends a piece Brent may need, and its
+    parent's other end is a third point for Brent's first step). The count at a midpoint
+    is clamped into [na, nb], so that a count off by one at round-off distance from a
+    root cannot add or lose a root.
+
+    An own frequency w that c >= 2 components at one point share (``poles``,
+    ``pole_data``) is left to the count (Brent's method never runs
+    on a piece holding it), and a root found within OWN_RESOLUTION sqrt(c) of w is written
+    at w: those components have a root of multiplicity c - 1 exactly at w (their
+    differences leave the beam at rest), and next to it the count and the function, each
+    multiplying c pole factors at round-off there, can put one of its copies a little
+    beside it. Any other simple root that the function never changes sign across, or on
+    which Brent does not converge, is written flagged UNTRUSTED. Writes out[k:] and
+    flags[k:] (with multiplicity, up to modes) and the true multiplicity of the last root
+    written into state[STATE_LAST]; returns the new k, or -1 if the bisection stack
+    overflows."""
     cap = 256
-    sa = np.empty(cap)
-    sb = np.empty(cap)
-    sna = np.empty(cap, dtype=np.int64)
-    snb = np.empty(cap, dtype=np.int64)
-    sa[0] = a
-    sb[0] = b
-    sna[0] = na
-    snb[0] = nb
-    top = 1
+    sx = np.empty((cap, 9))  # a, ma, ga, b, mb, gb, and a third point xo, mo, go
+    sn = np.empty((cap, 2), dtype=np.int64)  # na, nb
+    top = push_piece(sx, sn, 0, a, ma, ga, b, mb, gb, np.nan, 0.0, 0.0, na, nb)
     while top > 0 and k < modes:
         top -= 1
-        a = sa[top]
-        b = sb[top]
-        na = sna[top]
-        nb = snb[top]
+        a, ma, ga, b, mb, gb, xo, mo, go = sx[top]
+        na = sn[top, 0]
+        nb = sn[top, 1]
         if nb <= na:
             continue
         if b - a <= 8.9e-16 * b:
+            root = snap_shared(poles, 0.5 * (a + b))
             flag = 0
-            if nb - na == 1:
+            if nb - na == 1 and root == 0.5 * (a + b) and not sign_across(delta, a, b, 1e-12, p):
                 # a simple root that the function never changed sign across: the count
                 # and the function disagree here
-                ma = delta(a * (1.0 - 1e-12), p)[0]
-                mb = delta(b * (1.0 + 1e-12), p)[0]
-                if (ma > 0.0) == (mb > 0.0):
-                    flag = UNTRUSTED
-            k = write_root(out, flags, k, modes, 0.5 * (a + b), flag, nb - na, state)
+                flag = UNTRUSTED
+            k = write_root(out, flags, k, modes, root, flag, nb - na, state)
             continue
-        if nb - na == 1:
-            ma = delta(a, p)[0]
-            mb = delta(b, p)[0]
-            if (ma > 0.0) != (mb > 0.0):
-                root, its, ok = refine(delta, a, b, p, rtol, 200)
-                k = write_root(out, flags, k, modes, root, 0 if ok else UNTRUSTED, 1, state)
-                continue
+        if nb - na == 1 and (ma > 0.0) != (mb > 0.0) and not shared_inside(poles, a, b):
+            # (a piece holding an own frequency several components share goes on by the
+            # count: their multiple root there changes the sign too when odd)
+            xl = xo if xo < a else np.nan
+            xr = xo if xo > b else np.nan
+            root, its, ok = refine_from(
+                delta, a, ma, ga, b, mb, gb, xl, mo, go, xr, mo, go, poles, p, rtol, 200
+            )
+            root = snap_shared(poles, root)
+            k = write_root(out, flags, k, modes, root, 0 if ok else UNTRUSTED, 1, state)
+            continue
         if top + 2 > cap:
             return -1
         mid = 0.5 * (a + b)
         # the count may dip or jump by one within an ulp or so of an oscillator
         # frequency (k - m w^2 at round-off); clamped, the piece keeps its total
         nm = min(max(count(mid, p), na), nb)
-        top = push_halves(sa, sb, sna, snb, top, a, mid, b, na, nm, nb)
+        mm, gm = delta(mid, p)
+        # the upper half (mid, b) first, so that the lower one pops first
+        top = push_piece(sx, sn, top, mid, mm, gm, b, mb, gb, a, ma, ga, nm, nb)
+        top = push_piece(sx, sn, top, a, ma, ga, mid, mm, gm, b, mb, gb, na, nm)
     return k
 
 
@@ -322,11 +530,116 @@ def right_of_zero(delta, x, p):
     eps = 1e-15
     while eps <= 1e-8:
         y = x * (1.0 + eps)
-        m = delta(y, p)[0]
+        m, g = delta(y, p)
         if m != 0.0:
-            return y, m
+            return y, m, g
         eps *= 8.0
-    return x, 0.0
+    return x, 0.0, 0.0
+
+
+#: Rows of the scan's node table (``lowest_block``): the node, the function there
+#: (mantissa, log), its bracket's left point with the function there, and 1.0 for a
+#: node of the uniform grid.
+NODE_W = 0
+NODE_M = 1
+NODE_G = 2
+NODE_WL = 3
+NODE_ML = 4
+NODE_GL = 5
+NODE_UNIFORM = 6
+NODE_ROWS = 7
+
+
+@njit(cache=True)
+def set_node(delta, nd, i, x, m, g, is_uniform, p):
+    """Node i of the scan table ``nd`` at x with value (m, g); its bracket's left point
+    is the node itself, or just right of it where the function is exactly zero there (a
+    root at a component's own frequency: the next bracket starts where it has a sign)."""
+    nd[NODE_W, i] = x
+    nd[NODE_M, i] = m
+    nd[NODE_G, i] = g
+    nd[NODE_UNIFORM, i] = 1.0 if is_uniform else 0.0
+    nd[NODE_WL, i] = x
+    nd[NODE_ML, i] = m
+    nd[NODE_GL, i] = g
+    if m == 0.0:
+        nd[NODE_WL, i], nd[NODE_ML, i], nd[NODE_GL, i] = right_of_zero(delta, x, p)
+
+
+@njit(cache=True, inline="always")
+def sign_change(nd, i):
+    """1 if the function changes sign between node i - 1 (its bracket's left point) and
+    node i."""
+    return 1 if (nd[NODE_ML, i - 1] > 0.0) != (nd[NODE_M, i] > 0.0) else 0
+
+
+@njit(cache=True)
+def node_root(delta, nd, i, n, poles, p, rtol):
+    """The root of the sign change between nodes i - 1 and i (of n) by ``refine_from``,
+    with the nodes beside the bracket as its third points; returns (root, flag)."""
+    left = i >= 2 and nd[NODE_WL, i - 1] == nd[NODE_W, i - 1]
+    right = i + 1 < n
+    il = i - 2 if left else i
+    ir = i + 1 if right else i
+    root, its, ok = refine_from(
+        delta,
+        nd[NODE_WL, i - 1],
+        nd[NODE_ML, i - 1],
+        nd[NODE_GL, i - 1],
+        nd[NODE_W, i],
+        nd[NODE_M, i],
+        nd[NODE_G, i],
+        nd[NODE_W, il] if left else np.nan,
+        nd[NODE_M, il],
+        nd[NODE_G, il],
+        nd[NODE_W, ir] if right else np.nan,
+        nd[NODE_M, ir],
+        nd[NODE_G, ir],
+        poles,
+        p,
+        rtol,
+        200,
+    )
+    return root, 0 if ok else UNTRUSTED
+
+
+@njit(cache=True)
+def write_changes(delta, nd, i0, j0, n, poles, p, rtol, out, flags, k, modes, state):
+    """Write the root of every sign change between nodes i0 and j0 (refined only now, and
+    only while fewer than ``modes`` are written). Returns the new k."""
+    for i in range(i0 + 1, j0 + 1):
+        if k >= modes:
+            break
+        if sign_change(nd, i) == 1:
+            root, flag = node_root(delta, nd, i, n, poles, p, rtol)
+            k = write_root(out, flags, k, modes, root, flag, 1, state)
+    return k
+
+
+@njit(cache=True)
+def pair_probe(xa, ma, ga, xb, mb, gb, lo, hi):
+    """A probe beside two close nodes xa < xb (the two sides of a component's own
+    frequency) across which the function does not change sign: their secant's root r,
+    when it lies outside [xa, xb] and within PROBE_REACH of the gap to the neighbouring
+    node (lo below, hi above), gives the probe x = r + (r - nearer node), where a linear
+    function has the opposite sign: a root that a weakly coupled component holds just
+    outside its two nodes then has a sign change of its own instead of sharing a bracket
+    with its neighbour's root. Returns the probe, or nan."""
+    ref = max(ga, gb)
+    fa = ma * math.exp(ga - ref)
+    fb = mb * math.exp(gb - ref)
+    if fa == fb or fa == 0.0 or fb == 0.0 or (fa > 0.0) != (fb > 0.0):
+        return np.nan
+    r = xb - fb * (xb - xa) / (fb - fa)
+    if r > xb:
+        d = r - xb
+        if d < PROBE_REACH * (hi - xb):
+            return xb + 2.0 * d
+    elif r < xa:
+        d = xa - r
+        if d < PROBE_REACH * (xa - lo):
+            return xa - 2.0 * d
+    return np.nan
 
 
 @njit(cache=True)
@@ -337,20 +650,22 @@ def lowest_block(
 
     Scans the characteristic function (pole-free: each sign change brackets an odd
     number of roots) on a grid uniform in beta (NODES_PER_MODE per pi) plus a node on
-    each side of every oscillator frequency, with Brent on each sign change, until ``quota`` sign
-    changes are found (or (quota + 2) pi of beta are covered), and stops at the next
-    uniform node, or at ``w_stop`` (a band's top) if that comes first. With ``certify``,
-    the count at that node proves the whole block when N(top) - N(bottom) equals the
-    number of sign changes: then each brackets exactly one simple root and no root lies
-    elsewhere. A piece where the two disagree is halved at a uniform node by the count
-    (never at an oscillator frequency, where multiple roots sit and the count is at
-    round-off), down to single pieces whose roots ``isolate`` finds by count bisection:
-    so a spurious sign change (a function that has lost its digits) is dropped and a
-    root without one (a double root) is found. Without ``certify`` the sign-change roots
-    are written unchecked. A root on which Brent does not converge is flagged UNTRUSTED.
-    Writes out[k:] and flags[k:] (up to ``modes``), advances ``state``; returns the new
-    k, or -1 with the state unchanged (a count that decreases, a bisection that
-    overflows)."""
+    each side of every oscillator frequency, until ``quota`` sign changes are found (or
+    (quota + 2) pi of beta are covered), and stops at that node, or at ``w_stop`` (a
+    band's top) if that comes first. Two close nodes (the sides of an own frequency)
+    without a sign change between them get a probe where their secant says a root lies
+    just outside them (``pair_probe``). With ``certify``, the count at the last node
+    proves the whole block when N(top) - N(bottom) equals the number of sign changes:
+    then each brackets exactly one simple root and no root lies elsewhere. A piece where
+    the two disagree is halved at the node nearest its middle by the count, down to
+    neighbouring nodes whose roots ``isolate`` finds by count bisection: so a spurious
+    sign change (a function that has lost its digits) is dropped and a root without one
+    (a double root) is found. Without ``certify`` the sign-change roots are written
+    unchecked. Brent's method refines a sign change only when its root is written (the
+    block may hold more roots than ``modes`` asks for); a root on which it does not
+    converge is flagged UNTRUSTED. Writes out[k:] and flags[k:] (up to ``modes``),
+    advances ``state``; returns the new k, or -1 with the state unchanged (a count that
+    decreases, a bisection that overflows)."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
@@ -365,29 +680,26 @@ def lowest_block(
     # exactly there (a decoupled oscillator, identical ones) sits between two nodes where
     # the function has a clean sign, never on a node whose sign is round-off (Brent would
     # take that node for the root of a bracket holding another one)
-    own = osc_frequencies(p)
+    table = osc_frequencies(p)
+    own = table[0]
+    poles = pole_data(table)  # for Brent's method and ``isolate``
     osc = np.empty(2 * own.shape[0])
     for i in range(own.shape[0]):
         osc[2 * i] = own[i] * (1.0 - OSC_SIDE)
         osc[2 * i + 1] = own[i] * (1.0 + OSC_SIDE)
     osc = osc[(osc > w_a) & (osc < scale * b_cap * b_cap * (1.0 + 1e-15))]
-    size = int(math.ceil((b_cap - b_a) / h)) + 3 + osc.shape[0]
-    w = np.empty(size)
-    uniform = np.zeros(size, dtype=np.bool_)
-    change = np.zeros(size, dtype=np.int64)  # change[i]: a sign change in (w[i-1], w[i]]
-    root = np.empty(size)
-    root_flag = np.zeros(size, dtype=np.int64)
-    w[0] = w_a
-    uniform[0] = True
-    m_prev = delta(w_a, p)[0]
-    a_left = w_a
-    if m_prev == 0.0:
-        a_left, m_prev = right_of_zero(delta, w_a, p)
+    # room for the uniform nodes, every side node and a probe per pair of them
+    size = int(math.ceil((b_cap - b_a) / h)) + 4 + osc.shape[0] + osc.shape[0] // 2 + 1
+    nd = np.empty((NODE_ROWS, size))
+    w = nd[NODE_W]
+    m0, g0 = delta(w_a, p)
+    set_node(delta, nd, 0, w_a, m0, g0, True, p)
     n = 1
     j = 1
     io = 0
     found = 0
-    while n < size:
+    skipped = 0
+    while n + 1 < size:
         bu = b_a + j * h
         wu = scale * bu * bu
         if io < osc.shape[0] and osc[io] < wu:
@@ -403,33 +715,54 @@ def lowest_block(
             x = w_stop
             is_uniform = True
         if x <= w[n - 1]:
+            if not is_uniform:
+                # a side node of an own frequency equal (or within OSC_SIDE) to one
+                # before: k equal oscillators hold up to k - 1 roots there that need not
+                # change the sign, so the scan counts them towards the quota (else it
+                # would run on for quota sign changes elsewhere)
+                skipped += 1
             continue
-        m = delta(x, p)[0]
+        m, g = delta(x, p)
         if m == 0.0:
             x *= 1.0 + 4.4e-16
-            m = delta(x, p)[0]
-        w[n] = x
-        uniform[n] = is_uniform
-        if (m > 0.0) != (m_prev > 0.0):
-            r, its, ok = refine(delta, a_left, x, p, rtol, 200)
-            change[n] = 1
-            root[n] = r
-            root_flag[n] = 0 if ok else UNTRUSTED
-            found += 1
-        a_left = x
-        m_prev = m
-        if m == 0.0:
-            # a root exactly at this node (one at a component's own frequency): the next
-            # bracket starts just right of it, where the function has a sign again
-            a_left, m_prev = right_of_zero(delta, x, p)
+            m, g = delta(x, p)
+        set_node(delta, nd, n, x, m, g, is_uniform, p)
+        found += sign_change(nd, n)
         n += 1
-        if at_stop or (is_uniform and (found >= quota or bu >= b_cap)):
+        if (
+            not is_uniform
+            and not at_stop
+            and n >= 3
+            and nd[NODE_UNIFORM, n - 2] == 0.0
+            and x - w[n - 2] <= 4.0 * OSC_SIDE * x
+            and nd[NODE_WL, n - 2] == w[n - 2]
+            and sign_change(nd, n - 1) == 0
+        ):
+            # the next node: a side node or the next uniform one
+            hi = scale * (b_a + j * h) ** 2
+            if io < osc.shape[0]:
+                hi = min(hi, osc[io])
+            hi = min(hi, w_stop)
+            xp = pair_probe(w[n - 2], nd[NODE_M, n - 2], nd[NODE_G, n - 2], x, m, g, w[n - 3], hi)
+            if xp == xp:
+                mp, gp = delta(xp, p)
+                if mp != 0.0 and xp > x:
+                    set_node(delta, nd, n, xp, mp, gp, False, p)
+                    found += sign_change(nd, n)
+                    n += 1
+                elif mp != 0.0:
+                    # below the pair: nodes n - 2 and n - 1 move up by one
+                    found -= sign_change(nd, n - 2)
+                    for i in range(n, n - 2, -1):
+                        nd[:, i] = nd[:, i - 1]
+                    set_node(delta, nd, n - 2, xp, mp, gp, False, p)
+                    n += 1
+                    found += sign_change(nd, n - 3) + sign_change(nd, n - 2)
+        if at_stop or found + skipped // 2 >= quota or (is_uniform and bu >= b_cap):
             break
     top = n - 1
     if not certify:
-        for i in range(1, n):
-            if change[i] == 1:
-                k = write_root(out, flags, k, modes, root[i], root_flag[i], 1, state)
+        k = write_changes(delta, nd, 0, top, n, poles, p, rtol, out, flags, k, modes, state)
         state[STATE_W] = w[top]
         state[STATE_COUNT] = n_a + found
         state[STATE_K] = k
@@ -439,7 +772,7 @@ def lowest_block(
         return -1
     changes = np.zeros(n, dtype=np.int64)  # sign changes in (w[0], w[i]]
     for i in range(1, n):
-        changes[i] = changes[i - 1] + change[i]
+        changes[i] = changes[i - 1] + sign_change(nd, i)
     cap = 128
     si = np.empty(cap, dtype=np.int64)
     sj = np.empty(cap, dtype=np.int64)
@@ -457,27 +790,35 @@ def lowest_block(
         ni = sni[depth]
         nj = snj[depth]
         if nj - ni == changes[j0] - changes[i0]:
-            for i in range(i0 + 1, j0 + 1):
-                if change[i] == 1:
-                    k = write_root(out, flags, k, modes, root[i], root_flag[i], 1, state)
+            k = write_changes(delta, nd, i0, j0, n, poles, p, rtol, out, flags, k, modes, state)
             continue
-        # cut at the uniform node nearest the middle
-        cut = -1
-        mid = (i0 + j0) // 2
-        for d in range(j0 - i0):
-            if i0 < mid + d < j0 and uniform[mid + d]:
-                cut = mid + d
-                break
-            if i0 < mid - d < j0 and uniform[mid - d]:
-                cut = mid - d
-                break
-        if cut < 0:
-            k = isolate(delta, count, w[i0], w[j0], ni, nj, p, out, flags, k, modes, state, rtol)
+        if j0 - i0 == 1:
+            k = isolate(
+                delta,
+                count,
+                w[i0],
+                nd[NODE_M, i0],
+                nd[NODE_G, i0],
+                w[j0],
+                nd[NODE_M, j0],
+                nd[NODE_G, j0],
+                ni,
+                nj,
+                poles,
+                p,
+                out,
+                flags,
+                k,
+                modes,
+                state,
+                rtol,
+            )
             if k < 0:
                 return -1
             continue
         if depth + 2 > cap:
             return -1
+        cut = (i0 + j0) // 2
         nm = min(max(count(w[cut], p), ni), nj)
         depth = push_halves(si, sj, sni, snj, depth, i0, cut, j0, ni, nm, nj)
     state[STATE_W] = w[top]
