@@ -680,6 +680,52 @@ def periodic_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
     ]
 
 
+def cluster_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
+    """Issue 23's targets on clusters of roots, from what ``benchmarks.clusters``
+    recorded."""
+    g = figs.get("clusters")
+    if not g:
+        return []
+    when = f"`{g['measured']['command']}`, {g['measured']['date']}"
+    rows = []
+    for r in g["in_band"]:
+        goal = 0.050 if r["n"] <= 10_000 else 0.500
+        rows.append(
+            (
+                f"N = {r['n']} spring-masses in band, lowest 20 certified, warm",
+                f"<= {goal * 1e3:.0f} ms",
+                f"{r['solve'] * 1e3:.1f} ms; {r['missed']} missed ({r['missed_by']})",
+                _status(r["solve"] <= goal and r["count_checked"] and r["missed"] == 0),
+                when + "; one count per block, Brent only on roots reported (docs/clusters.md)",
+            )
+        )
+    one, spaced, slopes = g["one_point"], g["spaced"], g["slopes"]
+    big = one[-1]
+    rows.append(
+        (
+            f"N identical resonators at one point: the whole cluster (N = {big['n']})",
+            "N - 1 roots, exact multiplicity, linear in N",
+            f"multiplicity {big['multiplicity']} at the own frequency, {big['missed']} missed,"
+            f" {big['seconds'] * 1e3:.1f} ms; log-log slope {slopes['one_point']:.2f}",
+            _status(big["multiplicity"] == big["n"] - 1 and slopes["one_point"] <= 1.15),
+            when,
+        )
+    )
+    s = spaced[-1]
+    rows.append(
+        (
+            f"N identical resonators at spaced points: every root (N = {s['n']})",
+            "linear in N, none missed",
+            f"{s['seconds']:.2f} s, {s['missed']} missed; log-log slope"
+            f" {slopes['spaced']:.2f}",
+            _status(slopes["spaced"] <= 1.15 and s["missed"] == 0),
+            when + "; roots closer than round-off come out as one root of their count's"
+            " multiplicity (docs/clusters.md)",
+        )
+    )
+    return rows
+
+
 def targets_markdown(rows) -> str:
     out = [
         "| target | goal | measured | status | what limits it / remark |",
@@ -798,6 +844,7 @@ def report(out_dir: Path, wp, sc, start: dict, end: dict, elapsed: float, st=Non
         + codebase_rows(recorded)
         + segment_rows(recorded)
         + periodic_rows(recorded)
+        + cluster_rows(recorded)
     )
     parts.append(targets_markdown(rows))
     notes = findings(wp, sc)
