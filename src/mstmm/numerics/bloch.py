@@ -105,6 +105,12 @@ def orthonormalise8(X):
                 X[r, c] /= nrm
 
 
+@njit(cache=True, inline="always")
+def times_end(M, a, X, c):
+    """(M X_L)[a, c]: row a of M (k x 4) times column c of X's lower half X_L."""
+    return M[a, 0] * X[4, c] + M[a, 1] * X[5, c] + M[a, 2] * X[6, c] + M[a, 3] * X[7, c]
+
+
 @njit(cache=True)
 def bloch_work(p, sizes):
     """Scratch for ``cell_subspace_in`` (allocated once per thread, not per frequency): the
@@ -175,12 +181,7 @@ def cell_subspace_in(event, w, p, damped, work):
                 for _ in range(pieces):
                     for a in range(4):
                         for c in range(4):
-                            S[a, c] = (
-                                U[a, 0] * X[4, c]
-                                + U[a, 1] * X[5, c]
-                                + U[a, 2] * X[6, c]
-                                + U[a, 3] * X[7, c]
-                            )
+                            S[a, c] = times_end(U, a, X, c)
                     for a in range(4):
                         for c in range(4):
                             X[4 + a, c] = S[a, c]
@@ -196,12 +197,7 @@ def cell_subspace_in(event, w, p, damped, work):
         for a in range(nc):
             sc = 0.0
             for c in range(4):
-                C[a, c] = (
-                    Cz[a, 0] * X[4, c]
-                    + Cz[a, 1] * X[5, c]
-                    + Cz[a, 2] * X[6, c]
-                    + Cz[a, 3] * X[7, c]
-                )
+                C[a, c] = times_end(Cz, a, X, c)
                 sc = max(sc, abs(Cz[a, c]))
             for j in range(nq):
                 C[a, 4 + j] = Cq[a, j]
@@ -219,12 +215,7 @@ def cell_subspace_in(event, w, p, damped, work):
         # (more only exactly at a component's own frequency with the beam held)
         for a in range(4):
             for j in range(4):
-                S[a, j] = (
-                    Ad[a, 0] * X[4, j]
-                    + Ad[a, 1] * X[5, j]
-                    + Ad[a, 2] * X[6, j]
-                    + Ad[a, 3] * X[7, j]
-                )
+                S[a, j] = times_end(Ad, a, X, j)
         for c in range(4):
             for a in range(4):
                 z0 = 0.0j
