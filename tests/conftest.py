@@ -12,17 +12,27 @@ import pytest
 
 DATA = Path(__file__).parent / "data"
 
-# Tests never touch the user's kernel cache: set before mstmm resolves it. Subprocesses
-# started by the tests inherit the environment, so they use the same private cache.
-CACHE = tempfile.mkdtemp(prefix="mstmm-test-cache-")
+# Tests never touch the user's kernel cache: set before mstmm resolves it. The process that
+# starts the session makes it; pytest-xdist's workers (started after this file is read
+# in the controller) and the subprocesses the tests start inherit it through the
+# environment, so every topology is derived and compiled once per session, not once per
+# worker. Only the process that made it removes it, when the whole session ends.
+_OWN_CACHE = "MSTMM_TEST_CACHE" not in os.environ
+if _OWN_CACHE:
+    os.environ["MSTMM_TEST_CACHE"] = tempfile.mkdtemp(prefix="mstmm-test-cache-")
+CACHE = os.environ["MSTMM_TEST_CACHE"]
 os.environ["MSTMM_CACHE"] = CACHE
 
 
-@pytest.fixture(scope="session", autouse=True)
-def private_kernel_cache():
-    """The session's kernel cache (``MSTMM_CACHE``), removed when the session ends."""
-    yield Path(CACHE)
-    shutil.rmtree(CACHE, ignore_errors=True)
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    if _OWN_CACHE:
+        shutil.rmtree(CACHE, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def private_kernel_cache() -> Path:
+    """The session's kernel cache (``MSTMM_CACHE``)."""
+    return Path(CACHE)
 
 
 @pytest.fixture(scope="session")
