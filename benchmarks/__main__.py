@@ -716,8 +716,7 @@ def cluster_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
         (
             f"N identical resonators at spaced points: every root (N = {s['n']})",
             "linear in N, none missed",
-            f"{s['seconds']:.2f} s, {s['missed']} missed; log-log slope"
-            f" {slopes['spaced']:.2f}",
+            f"{s['seconds']:.2f} s, {s['missed']} missed; log-log slope {slopes['spaced']:.2f}",
             _status(slopes["spaced"] <= 1.15 and s["missed"] == 0),
             when + "; roots closer than round-off come out as one root of their count's"
             " multiplicity (docs/clusters.md)",

@@ -226,8 +226,7 @@ def fem(elements: int = 64) -> dict:
     return {
         "error": float(np.max(np.abs(got - ref) / ref)),
         "elements": elements,
-        "scene": "examples/deep_beam_tmd.toml with a tension, a Winkler and a Pasternak"
-        " foundation",
+        "scene": "examples/deep_beam_tmd.toml with a tension, a Winkler and a Pasternak foundation",
     }
 
 

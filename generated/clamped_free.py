@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "44564a2f8cb20b86388f77ac13d326284b682b78"
+SIGNATURE = "58a3f37551a41d10a49f7b153c75b1802e62c552"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "4184c620add881e21d921266c031892e358ca75c"
+NUMERICS = "965a2c31c8550a6296a03b71855bd9ba0d449630"
 
 
 @njit(cache=True)

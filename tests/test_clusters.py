@@ -69,15 +69,20 @@ def test_identical_at_one_point(n, x0):
     assert np.max(np.abs(rest - others) / others) < 1e-13
 
 
+def spaced(n: int, w0: float = 3000.0):
+    """n identical spring-masses (half the beam's mass in all, own frequency w0) at the
+    midpoints of n equal cells: (scene, w0)."""
+    m = 0.5 * MBAR * L / n
+    return scene([((i + 0.5) * L / n, m * w0**2, m) for i in range(n)], "spaced"), w0
+
+
 def test_identical_spaced_every_root_of_the_cluster():
     """200 identical spring-masses at evenly spaced points (half the beam's mass): their
     roots crowd below w0 towards w0 (1 - 7.1e-9), 5e-12 apart at the end. Every one of the
     cluster, counted in windows down to 2e-8 wide, against the reference's own count (mpmath,
     independent of mstmm); all distinct, converged, the count check held."""
     n = 200
-    m = 0.5 * MBAR * L / n
-    w0 = 3000.0
-    sc = scene([((i + 0.5) * L / n, m * w0**2, m) for i in range(n)], "spaced")
+    sc, w0 = spaced(n)
     sol = mstmm.solve(sc, modes=n + 6, shapes=False)
     assert sol.count_checked and sol.converged.all()
     assert np.all(sol.multiplicity == 1) and np.all(np.diff(sol.omega) > 0.0)
@@ -86,6 +91,29 @@ def test_identical_spaced_every_root_of_the_cluster():
         got = np.count_nonzero((sol.omega > lo) & (sol.omega < hi))
         assert got == ref.count_below(sc, hi, dps=30) - ref.count_below(sc, lo, dps=30), d
     assert np.count_nonzero(sol.omega < w0) == ref.count_below(sc, w0, dps=30)
+
+
+def test_identical_spaced_never_counted_at_their_own_frequency():
+    """1,500 identical spring-masses at evenly spaced points: their roots crowd into
+    w0 (1 - 1e-9) .. w0 (1 - 1e-12) (the reference's count). The count taken exactly at w0
+    (the midpoint of the two nodes beside it) used to see 144 roots below instead of 1500
+    (each resonator a support there), and 1226 roots came out as one of multiplicity 1226
+    at w0 (1 + 3e-16), certified. Now every window down to 1e-12 holds the reference's
+    number, nothing lies in w0 (1 - 1e-12) .. w0 (1 + 1e-6), and each value repeated
+    (roots closer together than round-off) is one the solution's note announces as a
+    cluster."""
+    n = 1500
+    sc, w0 = spaced(n)
+    sol = mstmm.solve(sc, modes=n + 2, shapes=False)
+    assert sol.count_checked and sol.converged.all()
+    near = (sol.omega >= w0 * (1.0 - 1e-12)) & (sol.omega <= w0 * (1.0 + 1e-6))
+    assert not near.any() and ref.count_below(sc, w0 * (1.0 - 1e-12), dps=30) == n
+    for d in (1e-9, 1e-11):
+        got = np.count_nonzero(sol.omega < w0 * (1.0 - d))
+        assert got == ref.count_below(sc, w0 * (1.0 - d), dps=30), d
+    repeated = np.count_nonzero(sol.multiplicity > 1)
+    (note,) = [w for w in sol.warnings if "cluster" in w]
+    assert note.startswith(f"{repeated} roots lie in ")
 
 
 def in_band(n: int, seed: int = 7):

@@ -62,6 +62,9 @@ class Found(NamedTuple):
     certified: bool
     #: Where the count stopped certifying (rad/s; 0 when ``certified``).
     failed_at: float
+    #: Per value, True where it stands for a cluster the count holds within round-off
+    #: width (``CLUSTER``): not known to be one multiple root (None: no such value).
+    unresolved: np.ndarray | None = None
 
 
 def cache_dir() -> Path:
@@ -368,7 +371,9 @@ class Kernel:
             failed = float(state[m.STATE_FAILED]) or float(state[m.STATE_W])
         if k < out.size:
             out, flags = out[:k], flags[:k]
-        return Found(out, flags, int(state[m.STATE_LAST]), certified, failed)
+        untrusted = flags & m.UNTRUSTED
+        unresolved = (flags & m.CLUSTER) != 0
+        return Found(out, untrusted, int(state[m.STATE_LAST]), certified, failed, unresolved)
 
     def _lowest_in_blocks(
         self,

@@ -652,8 +652,12 @@ def bands_csv(b) -> str:
     out.write("omega,f,propagating,re_k1,im_k1,re_k2,im_k2\n")
     for w, n, k in zip(b.omega, b.propagating, b.k):
         row = [w, w / (2 * math.pi), n, k[0].real, k[0].imag, k[1].real, k[1].imag]
-        out.write(",".join(repr(float(v)) if not isinstance(v, (int, np.integer)) else str(v)
-                           for v in row) + "\n")
+        out.write(
+            ",".join(
+                repr(float(v)) if not isinstance(v, (int, np.integer)) else str(v) for v in row
+            )
+            + "\n"
+        )
     return out.getvalue()
 
 

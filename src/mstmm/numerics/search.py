@@ -10,6 +10,7 @@ from .layout import (
     NODES_PER_MODE,
     OSC_SIDE,
     OWN_RESOLUTION,
+    POLE_GUARD,
     PROBE_REACH,
 )
 
@@ -259,6 +260,11 @@ MAX_STALLED_BLOCKS = 4
 #: method did not converge (the caller checks it again, and reports it NOT TRUSTED
 #: if nothing confirms it).
 UNTRUSTED = 1
+#: The flag of a root that stands for several: a count jump that stays > 1 down to
+#: round-off width away from any own frequency several components share. Whether it is
+#: one multiple root or distinct roots closer together than double precision resolves,
+#: nothing here can tell; its multiplicity is the count's number of roots there.
+CLUSTER = 2
 
 
 @njit(cache=True)
@@ -320,6 +326,26 @@ def snap_shared(poles, x):
 
 
 @njit(cache=True)
+def off_pole(poles, x, a, b):
+    """x, or where the count may be taken instead of x when x lies within POLE_GUARD of
+    an own frequency w (``poles``): w (1 -+ POLE_GUARD), the one nearer x inside (a, b);
+    NaN when neither is (the piece (a, b) is round-off wide around w)."""
+    own = poles[0]
+    j = np.searchsorted(own, x)
+    for i in (j - 1, j):
+        if 0 <= i < own.shape[0] and abs(x - own[i]) <= POLE_GUARD * own[i]:
+            below = own[i] * (1.0 - POLE_GUARD)
+            above = own[i] * (1.0 + POLE_GUARD)
+            first, second = (below, above) if x <= own[i] else (above, below)
+            if a < first < b:
+                return first
+            if a < second < b:
+                return second
+            return math.nan
+    return x
+
+
+@njit(cache=True)
 def sign_across(delta, a, b, eps, p):
     """Whether the function changes sign between a (1 - eps) and b (1 + eps)."""
     return (delta(a * (1.0 - eps), p)[0] > 0.0) != (delta(b * (1.0 + eps), p)[0] > 0.0)
@@ -362,7 +388,8 @@ def isolate(
     differences leave the beam at rest), and next to it the count and the function, each
     multiplying c pole factors at round-off there, can put one of its copies a little
     beside it. Any other simple root that the function never changes sign across, or on
-    which Brent does not converge, is written flagged UNTRUSTED. Writes out[k:] and
+    which Brent does not converge, is written flagged UNTRUSTED; any other count jump
+    > 1 at round-off width, flagged CLUSTER. Writes out[k:] and
     flags[k:] (with multiplicity, up to modes) and the true multiplicity of the last root
     written into state[STATE_LAST]; returns the new k, or -1 if the bisection stack
     overflows."""
@@ -377,13 +404,18 @@ def isolate(
         nb = sn[top, 1]
         if nb <= na:
             continue
-        if b - a <= 8.9e-16 * b:
+        # never the count at an own frequency (``off_pole``): a piece too narrow to
+        # halve away from one holds its roots there to round-off
+        mid = off_pole(poles, 0.5 * (a + b), a, b)
+        if b - a <= 8.9e-16 * b or math.isnan(mid):
             root = snap_shared(poles, 0.5 * (a + b))
             flag = 0
             if nb - na == 1 and root == 0.5 * (a + b) and not sign_across(delta, a, b, 1e-12, p):
                 # a simple root that the function never changed sign across: the count
                 # and the function disagree here
                 flag = UNTRUSTED
+            elif nb - na > 1 and root == 0.5 * (a + b):
+                flag = CLUSTER  # not a shared own frequency: not known to be one root
             k = write_root(out, flags, k, modes, root, flag, nb - na, state)
             continue
         if nb - na == 1 and (ma > 0.0) != (mb > 0.0) and not shared_inside(poles, a, b):
@@ -399,7 +431,6 @@ def isolate(
             continue
         if top + 2 > cap:
             return -1
-        mid = 0.5 * (a + b)
         # the count may dip or jump by one within an ulp or so of an oscillator
         # frequency (k - m w^2 at round-off); clamped, the piece keeps its total
         nm = min(max(count(mid, p), na), nb)
