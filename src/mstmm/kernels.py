@@ -62,9 +62,6 @@ class Found(NamedTuple):
     certified: bool
     #: Where the count stopped certifying (rad/s; 0 when ``certified``).
     failed_at: float
-    #: Per value, True where it stands for a cluster the count holds within round-off
-    #: width (``CLUSTER``): not known to be one multiple root (None: no such value).
-    unresolved: np.ndarray | None = None
 
 
 def cache_dir() -> Path:
@@ -371,9 +368,7 @@ class Kernel:
             failed = float(state[m.STATE_FAILED]) or float(state[m.STATE_W])
         if k < out.size:
             out, flags = out[:k], flags[:k]
-        untrusted = flags & m.UNTRUSTED
-        unresolved = (flags & m.CLUSTER) != 0
-        return Found(out, untrusted, int(state[m.STATE_LAST]), certified, failed, unresolved)
+        return Found(out, flags, int(state[m.STATE_LAST]), certified, failed)
 
     def _lowest_in_blocks(
         self,
@@ -455,8 +450,20 @@ class Kernel:
         return out, certified
 
     def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """Number of natural frequencies below each ``omega`` (Wittrick-Williams)."""
+        """Number of natural frequencies below each ``omega`` (Wittrick-Williams).
+
+        An ``omega`` within ``POLE_GUARD`` (4e-15, relative) of a component's own
+        frequency w is counted at w (1 - POLE_GUARD) instead: exactly at w the
+        component stands like a support and the count is not defined there (the search
+        keeps its own counts off those points the same way, ``search.off_pole``)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
+        own = self.oscillator_frequencies(p)
+        if own.size:
+            guard = self.module.POLE_GUARD
+            j = np.clip(np.searchsorted(own, omegas), 1, own.size) - 1
+            for near in (own[j], own[np.minimum(j + 1, own.size - 1)]):
+                at = np.abs(omegas - near) <= guard * near
+                omegas = np.where(at, near * (1.0 - guard), omegas)
         out = np.empty(omegas.shape, dtype=np.int64)
         fa = self._addresses("count_below")
         self._entry("counts")(fa, omegas, _params(p), out)

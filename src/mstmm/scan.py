@@ -60,10 +60,6 @@ class Root:
     #: Copies reported when the lowest ``modes`` end inside this root (fewer than
     #: ``multiplicity``); 0: all of them.
     copies: int = 0
-    #: False for a cluster of ``multiplicity`` roots that the count holds within
-    #: round-off width: one multiple root, or distinct roots closer together than double
-    #: precision resolves; nothing tells which.
-    resolved: bool = True
 
     @property
     def reported(self) -> int:
@@ -118,7 +114,6 @@ def find_roots(
         return band_roots(kernel, p, band, formulation, rtol, certify)
     found = kernel.lowest(p, int(modes), certify, formulation, rtol)
     out = _roots(kernel, p, found, formulation, rtol, certify)
-    out.notes.extend(cluster_notes(out.roots))
     if len(found.omega) < int(modes):
         out.notes.append(
             f"the search found {len(found.omega)} of the {int(modes)} roots asked for and"
@@ -126,22 +121,6 @@ def find_roots(
         )
         return Roots(out.roots, False, out.notes)
     return out
-
-
-def cluster_notes(roots: list[Root]) -> list[str]:
-    """What to tell about the roots that stand for clusters (:attr:`Root.resolved`)."""
-    clusters = [r for r in roots if not r.resolved]
-    if not clusters:
-        return []
-    big = max(clusters, key=lambda r: r.multiplicity)
-    total = sum(r.multiplicity for r in clusters)
-    return [
-        f"{total} roots lie in {len(clusters)} cluster(s) narrower than double precision"
-        f" resolves (the largest: {big.multiplicity} roots at omega = {big.omega:.17g}"
-        " rad/s): each is written as one frequency repeated as many times as the count"
-        " finds roots there (its multiplicity), exact to round-off; whether it is one"
-        " multiple root or distinct roots closer together than round-off is not known"
-    ]
 
 
 def band_roots(
@@ -179,7 +158,7 @@ def band_roots(
             break
         margin *= 16.0
     keep = [r for r in out.roots if lo * (1.0 - BAND_EDGE) <= r.omega <= hi * (1.0 + BAND_EDGE)]
-    return Roots(keep, out.count_checked, out.notes + cluster_notes(keep))
+    return Roots(keep, out.count_checked, out.notes)
 
 
 def _unchecked_up_to(kernel: Kernel, p: np.ndarray, top: float, formulation: str, rtol: float):
@@ -189,8 +168,7 @@ def _unchecked_up_to(kernel: Kernel, p: np.ndarray, top: float, formulation: str
         found = kernel.lowest(p, modes, False, formulation, rtol)
         if len(found.omega) < modes or found.omega[-1] > top:
             keep = found.omega <= top
-            unresolved = None if found.unresolved is None else found.unresolved[keep]
-            return Found(found.omega[keep], found.untrusted[keep], 1, False, 0.0, unresolved)
+            return Found(found.omega[keep], found.untrusted[keep], 1, False, 0.0)
         modes *= 2
 
 
@@ -198,7 +176,7 @@ def _roots(
     kernel: Kernel, p: np.ndarray, found: Found, formulation: str, rtol: float, certify: bool
 ) -> Roots:
     """:class:`Root` values from the kernel's answer, the doubtful ones checked again."""
-    roots = simple_roots(found.omega, found.last, found.untrusted, found.unresolved)
+    roots = simple_roots(found.omega, found.last, found.untrusted)
     notes: list[str] = []
     if certify and not found.certified and len(found.omega):
         notes.append(
@@ -237,7 +215,7 @@ def verify(
         confirmed = int(n[len(inner) + j]) - int(n[j]) >= r.multiplicity or (
             r.multiplicity % 2 == 1 and _stable_sign_change(kernel, p, r.omega, rel_stable)
         )
-        out[i] = Root(r.omega, r.multiplicity, confirmed, r.how, r.copies, r.resolved)
+        out[i] = Root(r.omega, r.multiplicity, confirmed, r.how, r.copies)
     return out
 
 
@@ -248,42 +226,24 @@ def _stable_sign_change(kernel: Kernel, p: np.ndarray, omega: float, rel: float)
 
 
 def simple_roots(
-    omega: np.ndarray,
-    last_multiplicity: int = 0,
-    untrusted: np.ndarray | None = None,
-    unresolved: np.ndarray | None = None,
+    omega: np.ndarray, last_multiplicity: int = 0, untrusted: np.ndarray | None = None
 ) -> list[Root]:
     """Roots from an ascending array repeated by multiplicity (zeros: the rigid-body modes).
 
     ``last_multiplicity``: the true multiplicity of the last root when the array
     may end inside it (the kernel's search reports it); its ``copies`` are then the
     values present. ``untrusted``: per value, a root the search could not confirm
-    (the root is then not converged until :func:`verify` confirms it). ``unresolved``:
-    per value, a cluster within round-off (:attr:`Root.resolved` False).
+    (the root is then not converged until :func:`verify` confirms it).
     """
     roots: list[Root] = []
     for i, w in enumerate(omega):
         ok = untrusted is None or not untrusted[i]
-        resolved = unresolved is None or not unresolved[i]
         if roots and roots[-1].omega == w:
             last = roots[-1]
-            roots[-1] = Root(
-                last.omega,
-                last.multiplicity + 1,
-                last.converged and ok,
-                last.how,
-                resolved=last.resolved and resolved,
-            )
+            roots[-1] = Root(last.omega, last.multiplicity + 1, last.converged and ok, last.how)
         else:
-            roots.append(Root(float(w), 1, ok, "rigid" if w == 0.0 else "scan", 0, resolved))
+            roots.append(Root(float(w), 1, ok, "rigid" if w == 0.0 else "scan"))
     if roots and last_multiplicity > roots[-1].multiplicity:
         last = roots[-1]
-        roots[-1] = Root(
-            last.omega,
-            last_multiplicity,
-            last.converged,
-            last.how,
-            last.multiplicity,
-            last.resolved,
-        )
+        roots[-1] = Root(last.omega, last_multiplicity, last.converged, last.how, last.multiplicity)
     return roots

@@ -27,7 +27,6 @@ from .frf import (
 from .search import (
     STATE_CERTIFIED,
     STATE_SIZE,
-    UNTRUSTED,
     evaluate,
     lowest,
     lowest_run,
@@ -183,8 +182,7 @@ def entry_lowest_run(fa, at, p, modes, out, flags, state, k_stop, certify, w_sto
 @njit(cache=True, parallel=True)
 def entry_sweep_lowest(fa, P, modes, out, certified):
     """``lowest`` (stable) for every parameter vector (row of P), in parallel over the
-    rows; a row is certified when the count certifies all its roots and none is flagged
-    UNTRUSTED (a CLUSTER is as exact as double precision allows)."""
+    rows; a row is certified when the count certifies all its roots and none is flagged."""
     delta = as_delta(fa[FA_STABLE], fa[FA_STABLE + 1])
     count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
     osc = as_osc(fa[FA_OSC], fa[FA_OSC + 1])
@@ -195,7 +193,7 @@ def entry_sweep_lowest(fa, P, modes, out, certified):
         k = lowest(delta, count, osc, rigid, P[i], modes, out[i], flags, state, True, 0.0)
         trusted = True
         for j in range(modes):
-            trusted = trusted and (flags[j] & UNTRUSTED) == 0
+            trusted = trusted and flags[j] == 0
         certified[i] = k == modes and state[STATE_CERTIFIED] == 1.0 and trusted
 
 

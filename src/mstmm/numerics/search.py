@@ -260,11 +260,6 @@ MAX_STALLED_BLOCKS = 4
 #: method did not converge (the caller checks it again, and reports it NOT TRUSTED
 #: if nothing confirms it).
 UNTRUSTED = 1
-#: The flag of a root that stands for several: a count jump that stays > 1 down to
-#: round-off width away from any own frequency several components share. Whether it is
-#: one multiple root or distinct roots closer together than double precision resolves,
-#: nothing here can tell; its multiplicity is the count's number of roots there.
-CLUSTER = 2
 
 
 @njit(cache=True)
@@ -388,8 +383,7 @@ def isolate(
     differences leave the beam at rest), and next to it the count and the function, each
     multiplying c pole factors at round-off there, can put one of its copies a little
     beside it. Any other simple root that the function never changes sign across, or on
-    which Brent does not converge, is written flagged UNTRUSTED; any other count jump
-    > 1 at round-off width, flagged CLUSTER. Writes out[k:] and
+    which Brent does not converge, is written flagged UNTRUSTED. Writes out[k:] and
     flags[k:] (with multiplicity, up to modes) and the true multiplicity of the last root
     written into state[STATE_LAST]; returns the new k, or -1 if the bisection stack
     overflows."""
@@ -414,8 +408,6 @@ def isolate(
                 # a simple root that the function never changed sign across: the count
                 # and the function disagree here
                 flag = UNTRUSTED
-            elif nb - na > 1 and root == 0.5 * (a + b):
-                flag = CLUSTER  # not a shared own frequency: not known to be one root
             k = write_root(out, flags, k, modes, root, flag, nb - na, state)
             continue
         if nb - na == 1 and (ma > 0.0) != (mb > 0.0) and not shared_inside(poles, a, b):
