@@ -45,8 +45,9 @@ from .walk import (
     next_piece,
 )
 
-#: Longest piece (in lam h) between two re-orthonormalisations of the subspace: across
-#: it a decaying solution loses at most exp(2 BLOCH_STEP) eps against a growing one.
+#: Most beam (in lam h, over one piece or several short ones) between two
+#: re-orthonormalisations of the subspace: across it a decaying solution loses at most
+#: exp(2 BLOCH_STEP) eps against a growing one.
 BLOCH_STEP = 2.0
 SQRT_HALF = math.sqrt(0.5)
 
@@ -151,7 +152,8 @@ def cell_subspace_in(event, w, p, damped, work):
     orthonormal basis X = [X0; XL] (8 x 4; ``work``'s array). Pieces carry XL by their
     transfer (lam h <= BLOCH_STEP), a component's constraints Cz Z + Cq q = 0 are solved
     for the free parameters (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised
-    after every component and every piece, so the growing solutions never swamp the
+    after every component and before a piece would carry more than BLOCH_STEP of lam h
+    since the last time (short pieces share one), so the growing solutions never swamp the
     decaying ones (a long cell, a high frequency). ``event`` is the kernel's complex
     descriptor (``shape_event_c``), ``work`` from ``bloch_work``; ``damped``: the
     segments' loss factors count. An empty array where a component leaves fewer than four
@@ -171,21 +173,25 @@ def cell_subspace_in(event, w, p, damped, work):
         X[4 + a, a] = SQRT_HALF
     pos = 0.0
     seg = 0
+    grown = 0.0  # lam h carried since X was last orthonormalised (<= BLOCH_STEP)
     for r in range(n_ev + 1):
         x = p[rows[r] + 1] if r < n_ev else L
         while True:
             target, after = next_piece(p, seg, x)
             rho = (target - pos) / L
             if rho > 0.0:
-                pieces = segment_piece_c(p, seg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
+                pieces, kh = segment_piece_c(p, seg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
                 for _ in range(pieces):
+                    if grown + kh > BLOCH_STEP:
+                        orthonormalise8(X)
+                        grown = 0.0
                     for a in range(4):
                         for c in range(4):
                             S[a, c] = times_end(U, a, X, c)
                     for a in range(4):
                         for c in range(4):
                             X[4 + a, c] = S[a, c]
-                    orthonormalise8(X)
+                    grown += kh
                 pos = target
             if after == seg:
                 break
@@ -230,6 +236,9 @@ def cell_subspace_in(event, w, p, damped, work):
         if free < 4:
             return np.zeros((0, 0), dtype=np.complex128)
         X[:, :] = Y
+        orthonormalise8(X)
+        grown = 0.0
+    if grown > 0.0:
         orthonormalise8(X)
     return X
 

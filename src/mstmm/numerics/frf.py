@@ -478,7 +478,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     stop = outputs[bo[bptr], 1]
                 rho = (stop - pos) / L
                 if rho > 0.0:
-                    pieces = segment_piece_c(p, seg, w1, beta, damped, rho, MARCH_STEP, U, Ff)
+                    pieces, _ = segment_piece_c(p, seg, w1, beta, damped, rho, MARCH_STEP, U, Ff)
                     for _ in range(pieces):
                         for a in range(4):
                             zz[a] = (

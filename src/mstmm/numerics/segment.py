@@ -183,19 +183,20 @@ def segment_piece_c(p, seg, w1, beta, damped, rho, step, U, F):
     """U <- the transfer across rho / pieces of segment seg in complex arithmetic (w1 =
     (lam_0 L)^2, beta = sqrt(w1); ``damped``: its stiffnesses times 1 + i eta), the
     pieces of equal length keeping k h <= step; F is scratch for a general segment's
-    powers of A. Returns the number of pieces."""
+    powers of A. Returns the number of pieces and the k h of each (<= step)."""
     i = HEAD + SEGMENT_WIDTH * seg
     stiff = 1.0 + 1j * (p[i + 3] if damped else 0.0)
     if is_general(p, seg):
         field_prepare(p, seg, w1 * w1, stiff, F)
-        pieces = max(1, int(math.ceil(field_balance(F) * rho / step)))
+        k = field_balance(F)
+        pieces = max(1, int(math.ceil(k * rho / step)))
         field_exp(F, rho / pieces, U)
-        return pieces
+        return pieces, k * rho / pieces
     e = p[i + 1] / p[1] * stiff
     bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / p[2] / e))
     pieces = max(1, int(math.ceil(abs(bs) * rho / step)))
     piece_transfer_c(bs, e, rho / pieces, U)
-    return pieces
+    return pieces, abs(bs) * rho / pieces
 
 
 @njit(cache=True)
