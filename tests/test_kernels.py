@@ -119,11 +119,14 @@ def test_stable_and_paper_determinants_differ_by_a_constant(left, right):
 
 
 def test_solve_path_does_not_import_sympy():
+    """Nor SciPy's optimize (0.35 s of every fresh process when ``mstmm.bands`` imported
+    it at the top)."""
     code = (
         "import sys, mstmm\n"
         "s = mstmm.load_scene(mstmm.example_path('wu_chou_1998'))\n"
         "sol = mstmm.solve(s, modes=3)\n"
         "assert 'sympy' not in sys.modules, 'sympy imported'\n"
+        "assert 'scipy.optimize' not in sys.modules, 'scipy.optimize imported'\n"
         "print(len(sol.omega))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)

@@ -25,7 +25,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .kernels import Kernel, load_kernel, numerics
 from .scene import Scene, SceneError, load_scene, scene_from_dict, scene_to_dict
@@ -384,6 +383,8 @@ def _isolate(c: _Cell, s: float, f, a, b, na, nb, fa, fb) -> tuple[list, bool]:
     if d < 0:
         return [], False
     if d == 1 and (fa > 0.0) != (fb > 0.0):
+        from scipy.optimize import brentq  # here: importing SciPy costs every process 0.35 s
+
         return [(brentq(f, a, b, xtol=1e-300, rtol=1e-15, maxiter=200), 1)], True
     if b - a <= CLUSTER_RTOL * b:
         return [(0.5 * (a + b), d)], True
