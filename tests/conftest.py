@@ -30,12 +30,6 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
 
 
 @pytest.fixture(scope="session")
-def private_kernel_cache() -> Path:
-    """The session's kernel cache (``MSTMM_CACHE``)."""
-    return Path(CACHE)
-
-
-@pytest.fixture(scope="session")
 def reference() -> dict[str, list[float]]:
     """Exact frequencies of ../shared/reference (copied into tests/data), rad/s."""
     raw = json.loads((DATA / "reference.json").read_text())

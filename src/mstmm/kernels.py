@@ -455,17 +455,10 @@ class Kernel:
         An ``omega`` within ``POLE_GUARD`` (4e-15, relative) of a component's own
         frequency w is counted at w (1 - POLE_GUARD) instead: exactly at w the
         component stands like a support and the count is not defined there (the search
-        keeps its own counts off those points the same way, ``search.off_pole``)."""
+        keeps its own counts off those points the same way: ``search.near_pole``)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
-        own = self.oscillator_frequencies(p)
-        if own.size:
-            guard = self.module.POLE_GUARD
-            j = np.clip(np.searchsorted(own, omegas), 1, own.size) - 1
-            for near in (own[j], own[np.minimum(j + 1, own.size - 1)]):
-                at = np.abs(omegas - near) <= guard * near
-                omegas = np.where(at, near * (1.0 - guard), omegas)
         out = np.empty(omegas.shape, dtype=np.int64)
-        fa = self._addresses("count_below")
+        fa = self._addresses("count_below", "oscillator_frequencies")
         self._entry("counts")(fa, omegas, _params(p), out)
         return out
 

@@ -134,10 +134,3 @@ def pair_stiffness(Zc, S):
     if Zc[0] != 0.0:
         return Zc[5] / Zc[0]
     return det_symmetric(S)
-
-
-@njit(cache=True)
-def counts(count, omegas, p, out):
-    """out[i] = count(omegas[i], p)."""
-    for i in range(omegas.shape[0]):
-        out[i] = count(omegas[i], p)

@@ -18,15 +18,13 @@ from .bloch import (
     closed_stiffness,
     pencil_det,
 )
-from .count import (
-    counts,
-)
 from .frf import (
     frf_march,
 )
 from .search import (
     STATE_CERTIFIED,
     STATE_SIZE,
+    counts_off_poles,
     evaluate,
     lowest,
     lowest_run,
@@ -123,8 +121,10 @@ def entry_refine(fa, at, a, b, p, rtol, maxiter):
 
 @njit(cache=True)
 def entry_counts(fa, omegas, p, out):
-    """``counts`` with the kernel's count."""
-    counts(as_count(fa[FA_COUNT], fa[FA_COUNT + 1]), omegas, p, out)
+    """``counts_off_poles`` with the kernel's count and own frequencies."""
+    counts_off_poles(
+        as_count(fa[FA_COUNT], fa[FA_COUNT + 1]), as_osc(fa[FA_OSC], fa[FA_OSC + 1]), omegas, p, out
+    )
 
 
 @njit(cache=True)

@@ -321,23 +321,42 @@ def snap_shared(poles, x):
 
 
 @njit(cache=True)
-def off_pole(poles, x, a, b):
-    """x, or where the count may be taken instead of x when x lies within POLE_GUARD of
-    an own frequency w (``poles``): w (1 -+ POLE_GUARD), the one nearer x inside (a, b);
-    NaN when neither is (the piece (a, b) is round-off wide around w)."""
-    own = poles[0]
+def near_pole(own, x):
+    """The own frequency (``own`` ascending) within POLE_GUARD of x, where the count is
+    not defined (a component there stands like a support); NaN when none is."""
     j = np.searchsorted(own, x)
     for i in (j - 1, j):
         if 0 <= i < own.shape[0] and abs(x - own[i]) <= POLE_GUARD * own[i]:
-            below = own[i] * (1.0 - POLE_GUARD)
-            above = own[i] * (1.0 + POLE_GUARD)
-            first, second = (below, above) if x <= own[i] else (above, below)
-            if a < first < b:
-                return first
-            if a < second < b:
-                return second
-            return math.nan
-    return x
+            return own[i]
+    return math.nan
+
+
+@njit(cache=True)
+def off_pole(poles, x, a, b):
+    """x, or where the count may be taken instead of x when x lies within POLE_GUARD of
+    an own frequency w (``near_pole``): w (1 -+ POLE_GUARD), the one nearer x inside
+    (a, b); NaN when neither is (the piece (a, b) is round-off wide around w)."""
+    w = near_pole(poles[0], x)
+    if math.isnan(w):
+        return x
+    below = w * (1.0 - POLE_GUARD)
+    above = w * (1.0 + POLE_GUARD)
+    first, second = (below, above) if x <= w else (above, below)
+    if a < first < b:
+        return first
+    if a < second < b:
+        return second
+    return math.nan
+
+
+@njit(cache=True)
+def counts_off_poles(count, osc, omegas, p, out):
+    """out[i] = count(omegas[i], p), taken at w (1 - POLE_GUARD) for an omegas[i] within
+    POLE_GUARD of an own frequency w (``near_pole``), as the search's own counts are."""
+    own = pole_data(osc(p))[0]
+    for i in range(omegas.shape[0]):
+        w = near_pole(own, omegas[i])
+        out[i] = count(omegas[i] if math.isnan(w) else w * (1.0 - POLE_GUARD), p)
 
 
 @njit(cache=True)
