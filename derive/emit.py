@@ -1,10 +1,12 @@
 """Emit the numba kernel module of a topology: fill the template, sign it, write it.
 
 Two templates: ``templates/euler_bernoulli.py.tmpl``, the beam functions every kernel and
-the shared numerics use (printed once into ``generated/euler_bernoulli.py``; the numerics
-themselves, the scan, the count, the marches, are ordinary code in ``mstmm.numerics``);
-and ``templates/kernel.py.tmpl``, a topology's characteristic functions with one branch
-per kind present, printed from each kind's descriptor. A bare beam gets no branch at all.
+the shared numerics use (printed once into ``generated/euler_bernoulli.py``); and
+``templates/kernel.py.tmpl``, a topology's per-component functions (``event_<what>``) with
+one branch per kind present, printed from each kind's descriptor (a bare beam gets no
+branch at all). The numerics, the characteristic functions' walk, the scan, the count,
+the marches, are ordinary code in ``mstmm.numerics``: a kernel binds
+``mstmm.numerics.characteristic`` to its printed functions.
 """
 
 from __future__ import annotations
@@ -30,11 +32,8 @@ from .segments import general
 
 TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 NUMERICS_TEMPLATE = TEMPLATE.with_name("euler_bernoulli.py.tmpl")
-#: A topology's characteristic functions: real (undamped) or complex (damped).
-FORMULATIONS = {
-    False: TEMPLATE.with_name("undamped.py.tmpl"),
-    True: TEMPLATE.with_name("damped.py.tmpl"),
-}
+#: The characteristic functions a kernel binds (``mstmm.numerics.characteristic``).
+FUNCTIONS = {False: "UNDAMPED", True: "DAMPED"}
 #: What each kind of kernel's functions are (the module docstring).
 WHAT = {
     False: """
@@ -225,10 +224,18 @@ def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
 
 def _damped_lines(module, d: descriptor.Descriptor) -> list[str]:
     """The same in a damped kernel: complex, with the damping values (a kind of stages
-    adds the log of the factor its condensation took out)."""
+    returns the log of the factor its condensation took out)."""
     if _staged(module):
-        return _tip_lines(True) + _step_lines(d, complex_=True) + ["log += chain_log"]
+        return _tip_lines(True) + _step_lines(d, complex_=True) + ["return chain_log"]
     return _value_lines(module, damped=True)[0] + _step_lines(d, complex_=True)
+
+
+def _counted_lines(module, d: descriptor.Descriptor) -> list[str]:
+    """``_count_lines`` as a function's body: returns the negative pivots."""
+    lines = _count_lines(module, d)
+    if not any("count +=" in line for line in lines):
+        return lines
+    return ["count = 0"] + lines + ["return count"]
 
 
 def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
@@ -398,8 +405,36 @@ def dispatch_table(damped: bool) -> tuple:
         ),
     )
     if damped:
-        return common
+        return (
+            (
+                "damped",
+                "p, o, v, w1, b4, L, EI, mbar",
+                _damped_lines,
+                "return 0.0j",
+                "v <- the component's pole-free compound step in complex arithmetic at the\n"
+                "    complex frequency w1 (b4 = w1^2), its dashpots' forces i w c included (the\n"
+                "    event of ``delta_damped``); returns the complex log of a factor taken out.",
+            ),
+            *common,
+        )
     return (
+        (
+            "stable",
+            "p, o, v, b4, L, EI, mbar",
+            _stable_lines,
+            "return",
+            "v <- the component's pole-free compound step on the minors (the event of\n"
+            "    ``delta_stable``; units L = EI = mbar = 1, docs/components.md).",
+        ),
+        (
+            "count",
+            "p, o, Zc, b4, L, EI, mbar",
+            _counted_lines,
+            "return 0",
+            "Zc <- the minors of the node's state subspace past the component; returns the\n"
+            "    negative pivots it adds to the Wittrick-Williams count (the event of\n"
+            "    ``count_below``).",
+        ),
         (
             "descriptor",
             "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
@@ -505,23 +540,24 @@ def _branch_lines(parsed: list, body) -> list[str]:
     return lines
 
 
+#: The events of the hot loops (``delta_stable``, ``count_below``, ``delta_damped``): inlined
+#: into them by numba (a compiled call costs about 20 ns, a fifth of a component's step;
+#: the walks hand them ``borrowed`` arrays, whose reference counts cost nothing).
+HOT = ("stable", "count", "damped")
+
+
 def _dispatch(parsed: list, damped: bool = False) -> str:
     """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
-    printed inline (one compiled function per entry, not per kind: compile time)."""
+    printed inline (one compiled function per entry, not per kind: compile time); the
+    characteristic functions call them at each component."""
     out = []
     for what, args, body, tail, doc in dispatch_table(damped):
-        lines = ["", "", "@njit(cache=True)", f"def event_{what}(tag, {args}):", f'    """{doc}"""']
+        decorator = '@njit(cache=True, inline="always")' if what in HOT else "@njit(cache=True)"
+        lines = ["", "", decorator, f"def event_{what}(tag, {args}):", f'    """{doc}"""']
         lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
         lines.append(f"    {tail}")
         out.append("\n".join(lines) + "\n")
     return _stage_dispatch(parsed, damped) + "".join(out)
-
-
-def _branches(parsed: list, body) -> str:
-    """The branches printed in place inside the hot loops of ``delta_stable`` and
-    ``count_below`` (a call with array arguments would cost reference counting per event;
-    ``pass`` for a bare beam, whose loop never gets there)."""
-    return _indent(_branch_lines(parsed, body) or ["pass"], 8)
 
 
 def _node_stiffness_lines() -> list[str]:
@@ -531,11 +567,6 @@ def _node_stiffness_lines() -> list[str]:
     A[3, 0] = -kY
     A[2, 1] = kT
     return _step_lines(descriptor.point(A), "Zc")
-
-
-def _penalty_lines(end: str) -> list[str]:
-    """Constrained Y / theta of an end as a huge stiffness (exact for the inertia count)."""
-    return [f"S[{d}, {d}] += PENALTY" for d in KNOWN_ZERO[end] if d < 2]
 
 
 def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
@@ -630,15 +661,6 @@ def kernel_source(topology: Topology) -> str:
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
-    if damped:
-        branches = dict(stable_branches=_branches(parsed, _damped_lines))
-    else:
-        branches = dict(
-            stable_branches=_branches(parsed, _stable_lines),
-            count_branches=_branches(parsed, _count_lines),
-            right_penalty=_indent(_penalty_lines(topology.right), 4),
-        )
-    formulation = Template(FORMULATIONS[damped].read_text()).substitute(branches)
     values = dict(
         key=topology.key,
         left=topology.left,
@@ -659,7 +681,7 @@ def kernel_source(topology: Topology) -> str:
         start_pair=pair_index(left_unknown),
         end_pair=pair_index(KNOWN_ZERO[topology.right]),
         dispatch=_dispatch(parsed, damped),
-        formulation="\n" + formulation.rstrip("\n") + "\n",
+        functions=FUNCTIONS[damped],
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))
 

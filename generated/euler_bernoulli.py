@@ -20,7 +20,7 @@ import math
 from numba import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "05c06bbb54d2bd9ee958a550fff8343ede616832"
+DIGEST = "b9488135241301f2b86032d746bf8172cb3dd540"
 
 
 @njit(cache=True, inline="always")

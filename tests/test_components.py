@@ -58,10 +58,17 @@ def test_a_kind_defined_in_a_test_file_solves_against_the_reference(tmp_path, mo
 #: hot loops whose branches are printed in place.
 DISPATCH = tuple(
     f"event_{w}"
-    for w in ("descriptor", "descriptor_c", "nq", "internal", "rigid", "damps", "inertia")
-) + (
-    "delta_stable",
-    "count_below",
+    for w in (
+        "descriptor",
+        "descriptor_c",
+        "nq",
+        "internal",
+        "rigid",
+        "damps",
+        "inertia",
+        "stable",
+        "count",
+    )
 )
 
 

@@ -5,6 +5,7 @@ them recompiles every function that may have inlined it)."""
 from __future__ import annotations
 
 import hashlib
+import os
 from pathlib import Path
 
 import numpy as np
@@ -54,3 +55,50 @@ def test_a_kernel_module_sees_the_numerics_it_star_imports():
     v = np.array([3.0, -5.0, 0.5])
     log = numerics.walk.renormalise.py_func(v)
     assert np.isclose(log, np.log(8.0)) and np.allclose(v, [3 / 8, -5 / 8, 0.5 / 8])
+
+
+_BOUND = """
+import json, sys
+import numpy as np
+import mstmm
+out = {}
+for name in ("bare_cantilever", "wu_chou_1998"):
+    scene = mstmm.load_scene(mstmm.example_path(name))
+    module = mstmm.kernel_for(scene).module
+    p = mstmm.parameter_vector(scene)
+    values = [module.delta_stable(w, p) for w in (3.0, 170.0, 900.0)]
+    counts = [int(module.count_below(w, p)) for w in (3.0, 170.0, 900.0)]
+    hits = sum(sum(f.stats.cache_hits.values()) for f in (module.delta_stable, module.count_below))
+    qual = module.delta_stable.py_func.__qualname__
+    out[name] = [[list(map(float, v)) for v in values], counts, hits, qual, module.SIGNATURE]
+print(json.dumps(out))
+"""
+
+
+def test_bound_characteristic_functions_cache_per_kernel():
+    """A kernel's characteristic functions are ``mstmm.numerics.characteristic`` compiled
+    with the kernel's printed functions: numba caches each copy under the kernel's
+    signature, so a second process loads both kernels' copies from disk (no
+    ``dynamic globals``) and neither gets the other's machine code (the bare beam's values
+    differ from the loaded beam's)."""
+    import json
+    import subprocess
+    import sys
+
+    env = dict(os.environ, MSTMM_INTERPRET_BUDGET="0")
+    runs = []
+    for _ in range(2):
+        done = subprocess.run(
+            [sys.executable, "-c", _BOUND], env=env, capture_output=True, text=True, check=True
+        )
+        runs.append(json.loads(done.stdout))
+    first, second = runs
+    for name, (values, counts, hits, qual, sig) in second.items():
+        assert (values, counts) == tuple(first[name][:2]), name  # the same machine code
+        assert hits == 2, name  # both functions loaded from numba's cache
+        assert qual == f"kernel_{sig[:20]}.delta_stable"
+    assert first["bare_cantilever"][0] != first["wu_chou_1998"][0]
+    # below 3, 170, 900 rad/s: the bare cantilever (first roots 225.8, 1415 rad/s) has
+    # 0, 0, 1 natural frequencies, the paper's loaded beam 0, 1, 4 (its README table)
+    assert first["bare_cantilever"][1] == [0, 0, 1]
+    assert first["wu_chou_1998"][1] == [0, 1, 4]

@@ -8,7 +8,8 @@ The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and t
 table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``field`` (a segment's
 field matrix from its differential equation), ``segment`` (a piece's transfer, whichever
 the segment's kind), ``paper``
-(the paper's determinant), ``search`` (the certified scan), ``shapes`` (mode shapes),
+(the paper's determinant), ``characteristic`` (a topology's characteristic functions, bound
+to the functions its kernel prints), ``search`` (the certified scan), ``shapes`` (mode shapes),
 ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch conditions), ``entries``
 (the drivers called from Python).
 """
@@ -18,6 +19,7 @@ from mstmm.generated.euler_bernoulli import *  # noqa: F403
 from . import cache  # noqa: F401  (numba's cache of these modules follows all of them)
 from .bloch import *  # noqa: F403
 from .chain import *  # noqa: F403
+from .characteristic import *  # noqa: F403
 from .count import *  # noqa: F403
 from .entries import *  # noqa: F403
 from .field import *  # noqa: F403

@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.core import cgutils
+from numba.extending import intrinsic, overload
 
 from .layout import (
     EVENT_WIDTH,
@@ -151,3 +153,33 @@ def event_order(p):
     for r in range(n_ev):
         rows[r] = event_row(p, r)
     return rows
+
+
+def borrowed(array):
+    """``array`` viewed without a reference (its meminfo null): what a walk hands to the
+    kernel's inlined events. An array passed to an inlined function is a new variable
+    there, and numba increments and decrements its reference count around every call
+    (atomic operations: a fifth of a 1000-component walk; its pruning pass cannot remove
+    them across the events' branches). A null meminfo makes them no-ops. The view must
+    not outlive ``array``: the walks hold both until they return. In plain Python (the
+    interpreted tier) it is ``array`` itself."""
+    return array
+
+
+@intrinsic
+def _unreferenced(typingctx, array):
+    def codegen(context, builder, sig, args):
+        src = context.make_array(sig.args[0])(context, builder, args[0])
+        out = context.make_array(sig.return_type)(context, builder)
+        for name in ("nitems", "itemsize", "data", "shape", "strides"):
+            setattr(out, name, getattr(src, name))
+        out.meminfo = cgutils.get_null_value(out.meminfo.type)
+        out.parent = cgutils.get_null_value(out.parent.type)
+        return out._getvalue()
+
+    return array(array), codegen
+
+
+@overload(borrowed)
+def _borrowed(array):
+    return lambda array: _unreferenced(array)

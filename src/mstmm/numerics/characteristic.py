@@ -1,0 +1,543 @@
+"""A topology's characteristic functions, written once as ordinary code (issue 21).
+
+The segment walk with its events, the stable second-compound chain (``delta_stable``,
+complex: ``delta_damped``), the Wittrick-Williams count (``count_below``), the paper's
+tree algorithm (``u_bar_paper``, paper Eq. (4)), the components' own frequencies and the
+rigid motions. What differs between topologies is what SymPy prints into a kernel module
+from each kind's declared physics (``mstmm.derive.emit``): the per-component functions
+``event_stable``, ``event_count``, ``event_damped``, ``event_descriptor``, ... (one branch
+per kind present) and the ends' constants (``LEFT_KNOWN``, ``START_PAIR``, ...).
+
+:func:`bind_characteristic`, called at the end of a kernel module, compiles a copy of each
+function below with the kernel's namespace as its globals: numba resolves the printed
+functions by name at compile time (no function values, so the copy caches on disk), and
+caches the copy under the kernel's topology and signature (``_tagged``). The placeholders
+below name what a kernel provides; they are never called.
+"""
+
+import cmath
+import math
+import types
+
+import numpy as np
+from numba import njit, prange
+
+from mstmm.generated.euler_bernoulli import (
+    beam_compound_step,
+    beam_compound_step_c,
+    clamped_clamped_count,
+    node_stiffness_step,
+)
+
+from .count import field_count, neg2, pair_count, pair_stiffness
+from .layout import EVENT_WIDTH, HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
+from .paper import apply_columns, lu_logdet, segment_transfer
+from .search import rigid_dimension
+from .segment import any_general, is_general, segment_compound, segment_constraints
+from .walk import (
+    borrowed,
+    event_order,
+    next_piece,
+    own_table,
+    renormalise,
+    renormalise_lazy,
+    scale_minors,
+    stable_order,
+)
+
+__all__ = ["bind_characteristic", "UNDAMPED", "DAMPED"]
+
+# What a kernel module defines for its topology (printed by ``mstmm.derive.emit``): the
+# ends' unknowns and knowns (state indices of [Y, theta, M, Q]) and the pairs of minors
+# the chain starts from and ends on.
+LEFT_UNKNOWN = (0, 1)
+RIGHT_UNKNOWN = (0, 1)
+LEFT_KNOWN = (2, 3)
+RIGHT_KNOWN = (2, 3)
+START_PAIR = 0
+END_PAIR = 0
+
+
+def _printed(*args):
+    raise NotImplementedError("printed per topology into its kernel module")
+
+
+#: v <- the pole-free compound step of the component of kind ``tag`` whose data block
+#: starts at ``o`` (units L = EI_0 = mbar_0 = 1, b4 = (lam_0 L)^4).
+event_stable = _printed
+#: The same on complex minors at w1 (b4 = w1^2), with the dashpots; returns the complex
+#: log of a factor it took out.
+event_damped = _printed
+#: Zc <- the minors after the component; returns the negative pivots it adds to the count.
+event_count = _printed
+#: The component's descriptor (Cz, Cq, A, B, qmass; paper Eqs. (2)-(3)), real and complex.
+event_descriptor = _printed
+event_descriptor_c = _printed
+#: Its mass matrix on [Y, theta]; its own frequencies; its unknowns; its constraints on
+#: rigid motions (stiffness, damping).
+event_inertia = _printed
+event_internal = _printed
+event_nq = _printed
+event_rigid = _printed
+event_damps = _printed
+
+
+def delta_stable(omega, p):
+    """Reduced determinant from the second-compound chain, as (mantissa, log).
+
+    Each component's pole-free compound step is the kernel's printed ``event_stable``."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
+    v = np.zeros(6)
+    v[START_PAIR] = 1.0
+    vb = borrowed(v)  # what the events get (no reference counts)
+    pb = borrowed(p)
+    log = 0.0
+    pos = 0.0
+    seg = 0
+    general = any_general(p)
+    F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
+    ready = -1
+    U = np.empty((4, 4))  # work space of its steps
+    E = np.empty((6, 6))
+    w = np.empty(6)
+    n_seg = int(p[3])
+    n_ev = int(p[4])
+    base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
+    for r in range(n_ev + 1):
+        x = L
+        row = 0
+        if r < n_ev:
+            row = base + EVENT_WIDTH * r
+            x = p[row + 1]
+        while True:  # the beam up to x, piece by piece (segment boundaries)
+            target, after = next_piece(pb, seg, x)
+            rho = (target - pos) * inv_L
+            if rho > 0.0:
+                if general and is_general(p, seg):  # exp(A h) of its field matrix
+                    step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
+                    log += step
+                elif n_seg == 1:
+                    log += beam_compound_step(vb, beta, rho)
+                else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
+                    i = HEAD + SEGMENT_WIDTH * seg
+                    e = p[i + 1] / EI
+                    f = 1.0 / e
+                    scale_minors(vb, f)
+                    bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar * f))
+                    log += beam_compound_step(vb, bs, rho)
+                    scale_minors(vb, e)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        tag = int(p[row])
+        o = int(p[row + 2])
+        event_stable(tag, pb, o, vb, b4, L, EI, mbar)
+        log += renormalise_lazy(v)
+    log += renormalise(v)
+    return v[END_PAIR], log
+
+
+def count_below(omega, p):
+    """Number of natural frequencies below omega (with multiplicity), Wittrick-Williams.
+
+    The state subspace admitted left of each node is carried as its minors Zc (the
+    stable chain's Pluecker coordinates) from a free end, the left end's constraints
+    added as a stiffness PENALTY; each piece adds the negative pivots of eliminating its
+    near node (``pair_count``) and its clamped-clamped count J0, each component its own
+    (the kernel's printed ``event_count``: a node stiffness, its own frequencies, a
+    constraint as PENALTY, a hinge's split rotation). At x = L the right end's
+    constraints join as PENALTY."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
+    S = np.zeros((2, 2))
+    U = np.zeros((4, 4))
+    Zc = np.zeros(6)
+    Zb = borrowed(Zc)  # what the events get (no reference counts)
+    pb = borrowed(p)
+    F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
+    ready = -1
+    Zc[0] = 1.0  # the free end: Y and theta admitted
+    for d in LEFT_KNOWN:
+        if d == 0:
+            node_stiffness_step(Zc, PENALTY, 0.0)
+        elif d == 1:
+            node_stiffness_step(Zc, 0.0, PENALTY)
+    renormalise(Zc)
+    count = 0
+    pos = 0.0
+    seg = 0
+    n_seg = int(p[3])
+    n_ev = int(p[4])
+    base = HEAD + SEGMENT_WIDTH * n_seg
+    inv_L = 1.0 / L  # a multiplication per piece instead of a division
+    for r in range(n_ev + 1):
+        x = L
+        row = 0
+        if r < n_ev:
+            row = base + EVENT_WIDTH * r
+            x = p[row + 1]
+        while True:  # the beam up to x, piece by piece (segment boundaries)
+            target, after = next_piece(pb, seg, x)
+            rho = (target - pos) * inv_L
+            if rho > MERGE_LENGTH and is_general(p, seg):
+                n_field, ready = field_count(Zc, p, seg, b4, rho, F, ready)  # pieces of J0 = 0
+                count += n_field
+                pos = target
+            elif rho > MERGE_LENGTH:
+                # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
+                # transfer matrix is rank-one to working precision): the pivots of each
+                # near node and J0 of each step, with the segment's own properties
+                i = HEAD + SEGMENT_WIDTH * seg
+                e = p[i + 1] / EI
+                bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+                pieces = max(1, int(math.ceil(bs * rho / RICCATI_STEP)))
+                if e != 1.0:
+                    scale_minors(Zc, 1.0 / e)
+                for _ in range(pieces):
+                    count += pair_count(Zc, U, bs, rho / pieces)
+                    count += clamped_clamped_count(bs * rho / pieces)
+                if e != 1.0:
+                    scale_minors(Zc, e)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        tag = int(p[row])
+        o = int(p[row + 2])
+        count += event_count(tag, pb, o, Zb, b4, L, EI, mbar)
+        renormalise_lazy(Zc)
+    detS = pair_stiffness(Zc, S)
+    s00 = S[0, 0]
+    s11 = S[1, 1]
+    for d in RIGHT_KNOWN:
+        if d < 2:  # Y or theta held by the end: a PENALTY stiffness
+            S[d, d] += PENALTY
+
+    d0 = S[0, 0] - s00
+    d1 = S[1, 1] - s11
+    return count + neg2(S[0, 0], S[1, 1], detS + d0 * s11 + d1 * s00 + d0 * d1)
+
+
+def shape_event(p, row, b4, Cz, Cq, A, B, qmass):
+    """The descriptor of the component at event row ``row`` (``event_descriptor``)."""
+    return event_descriptor(
+        int(p[row]), p, int(p[row + 2]), b4, p[0], p[1], p[2], Cz, Cq, A, B, qmass
+    )
+
+
+def shape_inertia(p, row, Mp):
+    """The mass matrix on [Y, theta] of the component at event row ``row`` into Mp
+    (``event_inertia``); 1 if it holds one, else 0."""
+    return event_inertia(int(p[row]), p, int(p[row + 2]), p[0], p[1], p[2], Mp)
+
+
+def u_bar_paper(omega, p):
+    """U_bar of paper Eq. (4) after the boundary reduction (units L = EI_0 = mbar_0 = 1).
+
+    The tree algorithm: the state is carried as a linear combination (W, 4 x columns) of
+    the unknowns: the left end's two, then each component's q (paper Eq. (2): Z+ = A Z +
+    B q); each component adds its geometric equations Cz Z + Cq q = 0 (paper Eq. (3)) as
+    rows; at x = L the main transfer equation Z_L = W u is reduced by the right end's
+    conditions (its two unknowns as the last columns). Rows: main TE, then geometric."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
+    b4 = (beta * beta) ** 2
+    rows = event_order(p)
+    n_ev = rows.shape[0]
+    nq_total, most = shape_sizes(p)
+    size = 4 + nq_total
+    A = np.zeros((size, size))
+    W = np.zeros((4, size))
+    W[LEFT_UNKNOWN[0], 0] = 1.0
+    W[LEFT_UNKNOWN[1], 1] = 1.0
+    U = np.zeros((4, 4))
+    col = np.zeros(4)
+    nb = max(1, most)
+    Cz = np.zeros((nb, 4))
+    Cq = np.zeros((nb, nb))
+    Ad = np.zeros((4, 4))
+    B = np.zeros((4, nb))
+    qmass = np.zeros((3, nb))
+    pos = 0.0
+    seg = 0
+    ncols = 2
+    nrow = 4
+    for r in range(n_ev + 1):
+        x = p[rows[r] + 1] if r < n_ev else L
+        while True:
+            target, after = next_piece(p, seg, x)
+            rho = (target - pos) / L
+            if rho > 0.0:
+                segment_transfer(p, seg, beta, rho, U)
+                apply_columns(U, W, ncols, col)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        nc, nq = shape_event(p, rows[r], b4, Cz, Cq, Ad, B, qmass)
+        for i in range(nc):
+            for j in range(ncols):
+                A[nrow + i, j] = (
+                    Cz[i, 0] * W[0, j]
+                    + Cz[i, 1] * W[1, j]
+                    + Cz[i, 2] * W[2, j]
+                    + Cz[i, 3] * W[3, j]
+                )
+            for j in range(nq):
+                A[nrow + i, ncols + j] = Cq[i, j]
+        apply_columns(Ad, W, ncols, col)
+        for j in range(nq):
+            for i in range(4):
+                W[i, ncols + j] = B[i, j]
+        ncols += nq
+        nrow += nc
+    for i in range(4):
+        for j in range(ncols):
+            A[i, j] = W[i, j]
+    A[RIGHT_UNKNOWN[0], ncols] = -1.0
+    A[RIGHT_UNKNOWN[1], ncols + 1] = -1.0
+    return A
+
+
+def delta_paper(omega, p):
+    """det U_bar of paper Eq. (4), as (mantissa, log)."""
+    return lu_logdet(u_bar_paper(omega, p))
+
+
+def oscillator_frequencies(p):
+    """Row 0: the components' own frequencies (rad/s, ascending), where roots crowd; row 1:
+    for each, how many components at its point have it too (``own_table``)."""
+    rows = event_order(p)
+    total, most = event_unknowns(p, rows)
+    out = np.empty(total)
+    xs = np.empty(total)
+    n = 0
+    for r in range(rows.shape[0]):
+        m = event_internal(int(p[rows[r]]), p, int(p[rows[r] + 2]), p[0], p[1], p[2], out, n)
+        xs[n:m] = p[rows[r] + 1]
+        n = m
+    order = np.empty(n, dtype=np.int64)
+    stable_order(out[:n], order)
+    return own_table(out[:n], xs[:n], order)
+
+
+def delta_damped(w, p):
+    """Reduced determinant of the damped chain at the complex frequency w (rad/s), as
+    (mantissa, log), both complex: mantissa * exp(log) is an entire function of w whose
+    zeros w = w_d + i sigma are the damped natural frequencies (time dependence
+    exp(i w t), sigma > 0 a decaying mode).
+
+    The second-compound chain of ``delta_stable`` in complex arithmetic: beta = sqrt(w1)
+    with w1 = w L^2 sqrt(mbar_0 / EI_0) (complex; any branch: the function depends on
+    beta^4 = w1^2 only), each segment's EI (1 + i eta) (its loss factor), each kind's
+    pole-free compound step with its dashpots (k -> k + i w c), the kernel's printed
+    ``event_damped``; the
+    beam functions' exp(-x) scaling goes into the complex log, the renormalisation into
+    its real part."""
+    L = p[0]
+    EI = p[1]
+    mbar = p[2]
+    w1 = w * L * L * math.sqrt(mbar / EI)
+    b4 = w1 * w1
+    beta = cmath.sqrt(w1)
+    v = np.zeros(6, dtype=np.complex128)
+    v[START_PAIR] = 1.0
+    vb = borrowed(v)  # what the events get (no reference counts)
+    pb = borrowed(p)
+    log = 0.0j
+    pos = 0.0
+    seg = 0
+    ready = -1
+    F = np.empty((4, 4, 4), dtype=np.complex128)  # a general segment's A, A^2, A^3
+    ready_f = -1
+    U = np.empty((4, 4), dtype=np.complex128)  # work space of its steps
+    E = np.empty((6, 6), dtype=np.complex128)
+    w6 = np.empty(6, dtype=np.complex128)
+    e = 1.0 + 0.0j
+    f = 1.0 + 0.0j
+    bs = beta
+    n_seg = int(p[3])
+    n_ev = int(p[4])
+    base = HEAD + SEGMENT_WIDTH * n_seg
+    for r in range(n_ev + 1):
+        x = L
+        row = 0
+        if r < n_ev:
+            row = base + EVENT_WIDTH * r
+            x = p[row + 1]
+        while True:  # the beam up to x, piece by piece (segment boundaries)
+            target, after = next_piece(pb, seg, x)
+            rho = (target - pos) / L
+            if rho > 0.0 and is_general(p, seg):  # exp(A2 h), stiffnesses times 1 + i eta
+                stiff = 1.0 + 1j * p[HEAD + SEGMENT_WIDTH * seg + 3]
+                step, ready_f = segment_compound(v, p, seg, b4, stiff, rho, F, ready_f, U, E, w6)
+                log += step
+                pos = target
+            elif rho > 0.0:
+                # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e), e = EI_s (1 + i eta_s) / EI_0
+                if seg != ready:  # the segment's factors, once per segment
+                    i = HEAD + SEGMENT_WIDTH * seg
+                    e = p[i + 1] / EI * (1.0 + 1j * p[i + 3])
+                    f = 1.0 / e
+                    bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar * f))
+                    ready = seg
+                scale_minors(vb, f)
+                log += beam_compound_step_c(vb, bs, rho)
+                scale_minors(vb, e)
+                pos = target
+            if after == seg:
+                break
+            seg = after
+        if r == n_ev:
+            break
+        tag = int(p[row])
+        o = int(p[row + 2])
+        log += event_damped(tag, pb, o, vb, w1, b4, L, EI, mbar)
+        log += renormalise(v)
+    log += renormalise(v)
+    return v[END_PAIR], log
+
+
+def evaluate_damped(ws, p, mant, logs):
+    """mant[i], logs[i] = delta_damped(ws[i], p): a contour or a grid in one call."""
+    for i in range(ws.shape[0]):
+        mant[i], logs[i] = delta_damped(ws[i], p)
+
+
+def evaluate_damped_parallel(ws, p, mant, logs):
+    """``evaluate_damped`` in parallel over the points (compiled on first use: the search
+    calls it for batches that cost more than starting the threads)."""
+    for i in prange(ws.shape[0]):
+        mant[i], logs[i] = delta_damped(ws[i], p)
+
+
+def event_unknowns(p, rows):
+    """Total unknowns of the components' full descriptors, and the most of one."""
+    total = 0
+    most = 0
+    for r in range(rows.shape[0]):
+        nq = event_nq(int(p[rows[r]]), p, int(p[rows[r] + 2]))
+        total += nq
+        most = max(most, nq)
+    return total, most
+
+
+def shape_sizes(p):
+    """Unknowns of the components' full descriptors: (total, most of one)."""
+    return event_unknowns(p, event_order(p))
+
+
+def rigid_flag(p, row, dampers):
+    """The rigid-motion constraint of the component at event row ``row`` (``event_rigid``;
+    with ``dampers``, ``event_damps`` where that is none)."""
+    flag = event_rigid(int(p[row]), p, int(p[row + 2]))
+    if flag == 0 and dampers:
+        flag = event_damps(int(p[row]), p, int(p[row + 2]))
+    return flag
+
+
+def shape_event_c(p, row, w1, Cz, Cq, A, B, qmass):
+    """The descriptor of the component at event row ``row`` in complex arithmetic, at the
+    complex frequency w1 (units of the kernel: b4 = w1^2; ``event_descriptor_c``)."""
+    return event_descriptor_c(
+        int(p[row]), p, int(p[row + 2]), w1, p[0], p[1], p[2], Cz, Cq, A, B, qmass
+    )
+
+
+def rigid_body_modes(p):
+    """Number of zero natural frequencies: the rigid motions Y = a + b x (plus a kink at
+    each free hinge) that the ends and the components leave free (they store no energy:
+    supports and springs need Y = 0 where they are, rotational springs theta = 0)."""
+    return rigid_motions(p, False)
+
+
+def rigid_motions(p, dampers):
+    """Dimension of the rigid motions the ends and components leave free; with
+    ``dampers``, grounded dashpots count as Y = 0 too (the rigid motions that store no
+    energy and dissipate none). Exact: ``rigid_dimension`` on the components' positions."""
+    rows = event_order(p)
+    n_ev = rows.shape[0]
+    knots = np.empty(n_ev)
+    room = n_ev + 4 + int(p[3]) * (2 * n_ev + 4)
+    cx = np.empty(room)
+    ct = np.empty(room, dtype=np.int64)
+    h = 0
+    n = 0
+    for r in range(n_ev):
+        flag = rigid_flag(p, rows[r], dampers)
+        if flag == 3:
+            knots[h] = p[rows[r] + 1]
+            h += 1
+        elif flag != 0:
+            cx[n] = p[rows[r] + 1]
+            ct[n] = flag
+            n += 1
+    for x, known in ((0.0, LEFT_KNOWN), (p[0], RIGHT_KNOWN)):
+        for d in known:
+            if d < 2:  # Y (1) or theta (2) held by the end
+                cx[n] = x
+                ct[n] = d + 1
+                n += 1
+    n = segment_constraints(p, knots, h, cx, ct, n)
+    return rigid_dimension(p[0], knots, h, cx, ct, n)
+
+
+#: The characteristic functions of an undamped kernel, of a damped one (both get ``COMMON``).
+COMMON = (
+    "event_unknowns",
+    "shape_sizes",
+    "rigid_flag",
+    "shape_event_c",
+    "rigid_body_modes",
+    "rigid_motions",
+)
+UNDAMPED = COMMON + (
+    "delta_stable",
+    "count_below",
+    "shape_event",
+    "shape_inertia",
+    "u_bar_paper",
+    "delta_paper",
+    "oscillator_frequencies",
+)
+DAMPED = COMMON + ("delta_damped", "evaluate_damped", "evaluate_damped_parallel")
+#: Compiled with numba's parallel target.
+_PARALLEL = ("evaluate_damped_parallel",)
+
+
+def _tagged(name: str, namespace: dict):
+    """A copy of this module's function ``name`` with ``namespace`` as its globals, its
+    qualified name ``kernel_<signature>.<name>``: numba keys its on-disk cache on the
+    qualified name (and stamps it with the numerics' sources, ``cache``), and the
+    signature covers everything the kernel's printed functions are made from (the
+    topology included)."""
+    f = globals()[name]
+    copy = types.FunctionType(f.__code__, namespace, name, f.__defaults__, f.__closure__)
+    copy.__qualname__ = f"kernel_{namespace['SIGNATURE'][:20]}.{name}"
+    copy.__doc__ = f.__doc__
+    return copy
+
+
+def bind_characteristic(namespace: dict, names: tuple[str, ...]) -> None:
+    """Define the functions ``names`` of this module in a kernel module's ``namespace``,
+    each compiled (on first call, or loaded from numba's cache) with the kernel's printed
+    functions."""
+    for name in names:
+        namespace[name] = njit(cache=True, parallel=name in _PARALLEL)(_tagged(name, namespace))
