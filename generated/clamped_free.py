@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "952b37e074ec242c4c627daa6436d043dab9ef35"
+SIGNATURE = "343e85576eb03e27fe6779340be87323978d49ab"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "1258eedcbde52a5c4bb79f2d84457d96b4057f72"
+NUMERICS = "d53008cbfa3be4ffdedca42fb3787278253b15a5"
 
 
 @njit(cache=True, inline="always")

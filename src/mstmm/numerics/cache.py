@@ -68,6 +68,41 @@ class UserWideLocator(_Stamped, caching.UserWideCacheLocator):
     """The user-wide cache directory (an installation that is not writable)."""
 
 
-_OURS = (UserProvidedLocator, InTreeLocator, UserWideLocator)
+class _BesideKernel:
+    """A numba locator for the copies ``characteristic.bind_characteristic`` makes of a
+    kernel's characteristic functions: cached beside the kernel's file and stamped with
+    it, as the kernel's printed functions are (a kernel's file changes whenever anything
+    it is made from does: its signature covers the numerics' sources), so that an empty
+    kernel cache is a cold start and nothing accumulates in this package's folder."""
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        kernel = py_func.__globals__.get("__file__")
+        copy = py_func.__qualname__.startswith("kernel_")
+        if not copy or not kernel or Path(py_file).resolve().parent != _HERE:
+            return None
+        return super().from_function(py_func, kernel)
+
+
+class KernelUserProvidedLocator(_BesideKernel, caching.UserProvidedCacheLocator):
+    """``NUMBA_CACHE_DIR``, when set."""
+
+
+class KernelInTreeLocator(_BesideKernel, caching.InTreeCacheLocator):
+    """``__pycache__`` beside the kernel's file, when writable."""
+
+
+class KernelUserWideLocator(_BesideKernel, caching.UserWideCacheLocator):
+    """The user-wide cache directory (a kernel folder that is not writable)."""
+
+
+_OURS = (
+    KernelUserProvidedLocator,
+    KernelInTreeLocator,
+    KernelUserWideLocator,
+    UserProvidedLocator,
+    InTreeLocator,
+    UserWideLocator,
+)
 if not any(c in caching.CacheImpl._locator_classes for c in _OURS):
     caching.CacheImpl._locator_classes[0:0] = list(_OURS)

@@ -11,7 +11,7 @@ per kind present) and the ends' constants (``LEFT_KNOWN``, ``START_PAIR``, ...).
 :func:`bind_characteristic`, called at the end of a kernel module, compiles a copy of each
 function below with the kernel's namespace as its globals: numba resolves the printed
 functions by name at compile time (no function values, so the copy caches on disk), and
-caches the copy under the kernel's topology and signature (``_tagged``). The placeholders
+caches the copy beside the kernel's file under its signature (``_tagged``). The placeholders
 below name what a kernel provides; they are never called.
 """
 
@@ -524,10 +524,10 @@ _PARALLEL = ("evaluate_damped_parallel",)
 
 def _tagged(name: str, namespace: dict):
     """A copy of this module's function ``name`` with ``namespace`` as its globals, its
-    qualified name ``kernel_<signature>.<name>``: numba keys its on-disk cache on the
-    qualified name (and stamps it with the numerics' sources, ``cache``), and the
-    signature covers everything the kernel's printed functions are made from (the
-    topology included)."""
+    qualified name ``kernel_<signature>.<name>`` (the signature covers everything the
+    kernel's printed functions are made from, the topology included): numba caches the
+    copy beside the kernel's file, stamped with it (``cache._BesideKernel``), as it
+    caches the kernel's own functions."""
     f = globals()[name]
     copy = types.FunctionType(f.__code__, namespace, name, f.__defaults__, f.__closure__)
     copy.__qualname__ = f"kernel_{namespace['SIGNATURE'][:20]}.{name}"
