@@ -30,12 +30,13 @@ from mstmm.generated.euler_bernoulli import (
 )
 
 from .count import field_count, neg2, pair_count, pair_stiffness
-from .layout import EVENT_WIDTH, HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
+from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
 from .paper import apply_columns, lu_logdet, segment_transfer
 from .search import rigid_dimension
 from .segment import any_general, is_general, segment_compound, segment_constraints
 from .walk import (
     borrowed,
+    event_at,
     event_order,
     next_piece,
     own_table,
@@ -106,14 +107,9 @@ def delta_stable(omega, p):
     w = np.empty(6)
     n_seg = int(p[3])
     n_ev = int(p[4])
-    base = HEAD + SEGMENT_WIDTH * n_seg
     inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
-        x = L
-        row = 0
-        if r < n_ev:
-            row = base + EVENT_WIDTH * r
-            x = p[row + 1]
+        row, x = event_at(pb, r, n_ev)
         while True:  # the beam up to x, piece by piece (segment boundaries)
             target, after = next_piece(pb, seg, x)
             rho = (target - pos) * inv_L
@@ -177,16 +173,10 @@ def count_below(omega, p):
     count = 0
     pos = 0.0
     seg = 0
-    n_seg = int(p[3])
     n_ev = int(p[4])
-    base = HEAD + SEGMENT_WIDTH * n_seg
     inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
-        x = L
-        row = 0
-        if r < n_ev:
-            row = base + EVENT_WIDTH * r
-            x = p[row + 1]
+        row, x = event_at(pb, r, n_ev)
         while True:  # the beam up to x, piece by piece (segment boundaries)
             target, after = next_piece(pb, seg, x)
             rho = (target - pos) * inv_L
@@ -373,15 +363,9 @@ def delta_damped(w, p):
     e = 1.0 + 0.0j
     f = 1.0 + 0.0j
     bs = beta
-    n_seg = int(p[3])
     n_ev = int(p[4])
-    base = HEAD + SEGMENT_WIDTH * n_seg
     for r in range(n_ev + 1):
-        x = L
-        row = 0
-        if r < n_ev:
-            row = base + EVENT_WIDTH * r
-            x = p[row + 1]
+        row, x = event_at(pb, r, n_ev)
         while True:  # the beam up to x, piece by piece (segment boundaries)
             target, after = next_piece(pb, seg, x)
             rho = (target - pos) / L

@@ -145,6 +145,16 @@ def event_row(p, r):
     return HEAD + SEGMENT_WIDTH * int(p[3]) + EVENT_WIDTH * r
 
 
+@njit(cache=True, inline="always")
+def event_at(p, r, n_ev):
+    """(row, x) of the r-th event of the walk along the beam; past the last one (r = n_ev)
+    row 0 and x = L, the walk's end."""
+    if r < n_ev:
+        row = event_row(p, r)
+        return row, p[row + 1]
+    return 0, p[0]
+
+
 @njit(cache=True)
 def event_order(p):
     """Start of each row of the event table, in x order."""
