@@ -515,7 +515,6 @@ def _tagged(name: str, namespace: dict):
     f = globals()[name]
     copy = types.FunctionType(f.__code__, namespace, name, f.__defaults__, f.__closure__)
     copy.__qualname__ = f"kernel_{namespace['SIGNATURE'][:20]}.{name}"
-    copy.__doc__ = f.__doc__
     return copy
 
 
