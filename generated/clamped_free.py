@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "65ed96527e02fbec4b77cccea96f90d036c55e83"
+SIGNATURE = "811c99965c180e0f30c7b5b37ea790ac7a215da7"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "2e22ea8838115f4020fd5ab8b6ddfad1cf197a9b"
+NUMERICS = "8e258cb181383d719c19af79e0a912fcc06ddc6a"
 
 
 @njit(cache=True, inline="always")

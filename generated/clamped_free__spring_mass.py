@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "ce18c00ec64eae8f69ad5f96b287766bf6084d7f"
+SIGNATURE = "15e263a6d6c724a70ea591cf9259b98827e91fe0"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "2e22ea8838115f4020fd5ab8b6ddfad1cf197a9b"
+NUMERICS = "8e258cb181383d719c19af79e0a912fcc06ddc6a"
 
 
 @njit(cache=True, inline="always")

@@ -17,10 +17,10 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-from numba import njit
+from mstmm.jit import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "b9488135241301f2b86032d746bf8172cb3dd540"
+DIGEST = "9ec757a73f97157f75fb3304114027f9613d4901"
 
 
 @njit(cache=True, inline="always")
@@ -137,7 +137,7 @@ def beam_transfer(lam, l, EI, U):
     U[3, 3] = t3
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def beam_transfer_scaled(beta, rho, U):
     """Eq. (1) in units L = 1, EI = 1, times exp(-shift); returns shift."""
     shift, K0, K1, K2, K3 = krylov_scaled(beta * rho)
@@ -166,7 +166,7 @@ def beam_transfer_scaled(beta, rho, U):
     return shift
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def beam_compound_step(v, beta, rho):
     """v <- C2(U_beam) v in units L = 1, EI = 1; returns the log of the scale taken out."""
     x = beta * rho
@@ -286,7 +286,7 @@ def compound_krylov_c(x):
     return shift, E, F1, F2, F3, F4
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def beam_transfer_scaled_c(beta, rho, U):
     """``beam_transfer_scaled`` for a complex beta: U (complex) times exp(-shift)."""
     shift, K0, K1, K2, K3 = krylov_scaled_c(beta * rho)
@@ -354,7 +354,7 @@ def beam_compound_step_c(v, beta, rho):
 
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def clamped_clamped_count(x):
     """Natural frequencies of a segment clamped at both ends below x = lam l (J0 of one member)."""
     if x < math.pi:

@@ -102,3 +102,30 @@ def test_bound_characteristic_functions_cache_per_kernel():
     # 0, 0, 1 natural frequencies, the paper's loaded beam 0, 1, 4 (its README table)
     assert first["bare_cantilever"][1] == [0, 0, 1]
     assert first["wu_chou_1998"][1] == [0, 1, 4]
+
+
+def test_a_nested_call_compiles_one_specialization_per_type_not_per_literal():
+    """``mstmm.jit.njit``: a callee called with a literal (``0``) and with a variable
+    that numba first types as that literal compiles once, for int64 (issue 21: such
+    duplicates were 7.5 s of the first run on a machine with nothing compiled)."""
+    from numba import types
+
+    from mstmm.jit import njit
+
+    @njit
+    def callee(a, i):
+        return a[i] * 2.0
+
+    @njit
+    def caller(a):
+        s = callee(a, 0)  # a literal argument
+        j = 0  # Literal[int](0) until the loop makes it int64
+        for k in range(a.shape[0]):
+            s += callee(a, j)
+            j = k
+        return s
+
+    a = np.array([1.0, 2.0, 3.0])
+    # s = 2 a[0] + 2 (a[0] + a[0] + a[1]): the loop reads j before it takes k
+    assert caller(a) == 2.0 * (a[0] + a[0] + a[0] + a[1])
+    assert callee.signatures == [(types.Array(types.float64, 1, "C"), types.int64)]

@@ -32,7 +32,8 @@ import cmath
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 from .frf import (
     eliminate_c,

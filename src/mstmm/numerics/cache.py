@@ -24,7 +24,7 @@ _DIGEST: list[tuple[tuple, str]] = []
 def sources() -> list[Path]:
     """The files whose content the numerics' machine code depends on."""
     printed = importlib.util.find_spec("mstmm.generated.euler_bernoulli")
-    files = sorted(_HERE.glob("*.py"))
+    files = sorted(_HERE.glob("*.py")) + [_HERE.parent / "jit.py"]
     if printed is not None and printed.origin:
         files.append(Path(printed.origin))
     return files

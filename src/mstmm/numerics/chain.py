@@ -12,7 +12,8 @@ kernels and the complex ones.
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 
 @njit(cache=True)

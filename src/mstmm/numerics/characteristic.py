@@ -20,7 +20,7 @@ import math
 import types
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
 from mstmm.generated.euler_bernoulli import (
     beam_compound_step,
@@ -28,6 +28,7 @@ from mstmm.generated.euler_bernoulli import (
     clamped_clamped_count,
     node_stiffness_step,
 )
+from mstmm.jit import njit
 
 from .count import field_count, neg2, pair_count, pair_stiffness
 from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
@@ -41,6 +42,7 @@ from .walk import (
     next_piece,
     own_table,
     renormalise,
+    renormalise_end,
     renormalise_lazy,
     scale_minors,
     stable_order,
@@ -117,16 +119,18 @@ def delta_stable(omega, p):
                 if general and is_general(p, seg):  # exp(A h) of its field matrix
                     step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
                     log += step
-                elif n_seg == 1:
-                    log += beam_compound_step(vb, beta, rho)
                 else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
-                    i = HEAD + SEGMENT_WIDTH * seg
-                    e = p[i + 1] / EI
-                    f = 1.0 / e
-                    scale_minors(vb, f)
-                    bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar * f))
+                    e = 1.0
+                    bs = beta
+                    if n_seg > 1:
+                        i = HEAD + SEGMENT_WIDTH * seg
+                        e = p[i + 1] / EI
+                        bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+                    if e != 1.0:
+                        scale_minors(vb, 1.0 / e)
                     log += beam_compound_step(vb, bs, rho)
-                    scale_minors(vb, e)
+                    if e != 1.0:
+                        scale_minors(vb, e)
                 pos = target
             if after == seg:
                 break
@@ -137,7 +141,7 @@ def delta_stable(omega, p):
         o = int(p[row + 2])
         event_stable(tag, pb, o, vb, b4, L, EI, mbar)
         log += renormalise_lazy(v)
-    log += renormalise(v)
+    log += renormalise_end(v)
     return v[END_PAIR], log
 
 
@@ -164,12 +168,11 @@ def count_below(omega, p):
     F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
     ready = -1
     Zc[0] = 1.0  # the free end: Y and theta admitted
-    for d in LEFT_KNOWN:
-        if d == 0:
-            node_stiffness_step(Zc, PENALTY, 0.0)
-        elif d == 1:
-            node_stiffness_step(Zc, 0.0, PENALTY)
-    renormalise(Zc)
+    if 0 in LEFT_KNOWN or 1 in LEFT_KNOWN:  # Y or theta held: a PENALTY stiffness each
+        kY = PENALTY if 0 in LEFT_KNOWN else 0.0
+        kT = PENALTY if 1 in LEFT_KNOWN else 0.0
+        node_stiffness_step(Zc, kY, kT)
+    renormalise_end(Zc)
     count = 0
     pos = 0.0
     seg = 0
@@ -395,7 +398,7 @@ def delta_damped(w, p):
         o = int(p[row + 2])
         log += event_damped(tag, pb, o, vb, w1, b4, L, EI, mbar)
         log += renormalise(v)
-    log += renormalise(v)
+    log += renormalise_end(v)
     return v[END_PAIR], log
 
 

@@ -2,12 +2,12 @@
 by node on the minors of the state subspace (paper's Eq. (4) reduced; docs/components.md)."""
 
 import numpy as np
-from numba import njit
 
 from mstmm.generated.euler_bernoulli import (
     beam_compound_step,
     beam_transfer_scaled,
 )
+from mstmm.jit import njit
 
 from .segment import (
     compound_step,
@@ -32,7 +32,7 @@ def neg2(a, c, det):
     return 0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def pair_count(Zc, U, beta, rho):
     """Carry the node's state subspace across a piece (beta*rho <= RICCATI_STEP); returns
     the negative pivots of eliminating the near node.

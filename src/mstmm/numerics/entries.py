@@ -5,10 +5,12 @@ topology; numba caches it on disk)."""
 import math
 
 import numpy as np
-from numba import njit, prange, types
+from numba import prange, types
 from numba.core import cgutils
 from numba.core.types import FunctionType
 from numba.extending import intrinsic
+
+from mstmm.jit import njit
 
 from .bloch import (
     bloch_waves,

@@ -18,7 +18,8 @@ ones share it.
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 #: Degree of the Taylor series on a matrix of norm <= 1/2: the remainder is below
 #: 0.5^19 / 19! ~ 1.6e-23 of the norm, far under rounding.

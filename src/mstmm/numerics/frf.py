@@ -5,7 +5,8 @@ import cmath
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 from .segment import (
     segment_piece_c,

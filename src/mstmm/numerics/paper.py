@@ -4,11 +4,11 @@ LU log-determinant (paper Eq. (4), ``delta_paper``)."""
 import math
 
 import numpy as np
-from numba import njit
 
 from mstmm.generated.euler_bernoulli import (
     beam_transfer_scaled,
 )
+from mstmm.jit import njit
 
 from .field import (
     expm_short,

@@ -4,7 +4,8 @@ clusters, the rigid-body dimension (``lowest``: every root certified by the coun
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 from .layout import (
     NODES_PER_MODE,

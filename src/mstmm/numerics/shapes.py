@@ -4,7 +4,8 @@ kept, walked back by the stored maps (``mode_shapes``)."""
 import math
 
 import numpy as np
-from numba import njit
+
+from mstmm.jit import njit
 
 from .layout import (
     HEAD,

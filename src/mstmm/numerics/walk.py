@@ -4,9 +4,10 @@ between segment ends, and the event table (components in x order)."""
 import math
 
 import numpy as np
-from numba import njit
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
+
+from mstmm.jit import njit
 
 from .layout import (
     EVENT_WIDTH,
@@ -16,12 +17,18 @@ from .layout import (
 
 
 @njit(cache=True, inline="always")
-def renormalise(v):
-    """Divide v by a power of two near its largest entry; return the natural log taken out.
-    (The largest real or imaginary part: for a complex v, abs would cost a hypot each.)"""
+def largest(v):
+    """v's largest real or imaginary part (for a complex v, abs would cost a hypot each)."""
     big = 0.0
     for a in range(v.shape[0]):
         big = max(big, abs(v[a].real), abs(v[a].imag))
+    return big
+
+
+@njit(cache=True, inline="always")
+def scale_out(v, big):
+    """Divide v by a power of two near ``big`` (its largest entry); return the natural log
+    taken out."""
     if big == 0.0 or not math.isfinite(big):
         return 0.0
     e = math.frexp(big)[1]
@@ -29,6 +36,19 @@ def renormalise(v):
     for a in range(v.shape[0]):
         v[a] *= f
     return e * 0.6931471805599453
+
+
+@njit(cache=True, inline="always")
+def renormalise(v):
+    """Divide v by a power of two near its largest entry; return the natural log taken out."""
+    return scale_out(v, largest(v))
+
+
+@njit(cache=True)
+def renormalise_end(v):
+    """``renormalise``, compiled once and called: at the start and end of a walk, where an
+    inlined copy would cost its compile time and save nothing."""
+    return scale_out(v, largest(v))
 
 
 #: ``renormalise_lazy`` leaves v alone while its largest entry lies in [2^-20, 2^20]: one
@@ -42,12 +62,10 @@ def renormalise_lazy(v):
     """``renormalise`` only when v's largest entry has left [LAZY_LOW, LAZY_HIGH] (the
     walks' per-event step: powers of two are exact either way, so the result is the
     same; the frexp and the divisions of every step were a fifth of a walk)."""
-    big = 0.0
-    for a in range(v.shape[0]):
-        big = max(big, abs(v[a].real), abs(v[a].imag))
+    big = largest(v)
     if LAZY_LOW <= big <= LAZY_HIGH:
         return 0.0
-    return renormalise(v)
+    return scale_out(v, big)
 
 
 @njit(cache=True, inline="always")
