@@ -2047,6 +2047,10 @@ def _dashpot_rank(scene) -> int:
     return n - len(_null_space(damp, n)) if damp else 0
 
 
+#: With a loss factor, a zero at w_d < -AXIS_TOL |w| is one of the w_d > 0 model's
+#: continuation and not reported; within it, it is on the imaginary axis and reported (the
+#: rule of mstmm.damped.AXIS_TOL, stated here again: this model imports nothing of mstmm).
+AXIS_TOL = mpf("1e-9")
 _TURN = mpf("0.5")  # largest change of arg accepted between neighbouring samples (rad)
 _MAX_DEPTH = 44  # bisections of a contour piece before a zero is declared on the contour
 _PIECES = 12  # initial pieces per contour edge
@@ -2367,7 +2371,7 @@ class _DampedSolver:
                 continue
             if self.viscous and root.real < 0:
                 root = -root.conjugate()
-            elif root.real < 0:
+            elif root.real < -AXIS_TOL * abs(root):
                 continue  # a zero of the w_d > 0 model's continuation, not reported
             others = [o[0] for o in found] + [c[0] for i, c in enumerate(clusters) if i != index]
             same = next((o for o in found if abs(o[0] - root) <= close * abs(root)), None)
@@ -2451,7 +2455,11 @@ class _DampedSolver:
             got = self._half_path(width, lo, hi)
         else:
             expected = sum(m for _r, m, _a in inside)
-            corners = [mpc(0, lo), mpc(width, lo), mpc(width, hi), mpc(0, hi), mpc(0, lo)]
+            # the left edge on the imaginary axis, or just left of the roots on it (a loss
+            # factor leaves a grounded oscillator's roots there: w_d = 0 is reported)
+            axis = [abs(r) for r, _m, _a in inside if r.real <= 0 and r != 0]
+            x0 = -AXIS_TOL * min(axis) if axis else mpf(0)
+            corners = [mpc(x0, lo), mpc(width, lo), mpc(width, hi), mpc(x0, hi), mpc(x0, lo)]
             got = _whole(_path_change(self.G, corners) / (2 * mp.pi), "winding number")
         if got != expected:
             raise _Uncertified(
@@ -2467,7 +2475,7 @@ def _order_key(w):
     """Rigid-body zeros, then overdamped roots (w_d = 0) by sigma, then by w_d (sigma)."""
     if w == 0:
         return (0, mpf(0), mpf(0))
-    if w.real == 0:
+    if abs(w.real) <= AXIS_TOL * abs(w):  # on the axis to its accuracy
         return (1, w.imag, mpf(0))
     return (2, w.real, w.imag)
 

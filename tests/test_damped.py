@@ -26,6 +26,7 @@ Checked here, through the default path (``mstmm.solve`` with mode shapes):
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 import pytest
@@ -292,3 +293,54 @@ def test_a_zero_at_negative_w_d_is_left_out_and_said():
     assert np.max(np.abs(sol.omega - exact) / np.abs(exact)) < 1e-12
     assert sol.count_checked
     assert all("w_d < 0" in w for w in sol.warnings if "left out" in w), sol.warnings
+
+
+#: An overdamped spring-mass (zeta = 1.57) on a clamped-clamped beam with a loss factor:
+#: the loss factor moves the pair's fast root right of the imaginary axis (7.8e-4 +
+#: 41.44i) and its slow one left of it (-6.5e-7 + 5.24i, 1.2e-7 |w| away: not round-off).
+#: Hypothesis found it: the solver listed the slow root (inside its contour, which
+#: reaches 1e-3 left of the axis) while the reference leaves w_d < 0 out.
+OVERDAMPED_ON_LOSS = {
+    "beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0}
+    | {"left": "clamped", "right": "clamped", "loss_factor": 0.001},
+    "attachments": [{"type": "spring_mass", "x": 0.8, "k": 5.0, "m": 0.0237, "c": 1.078}],
+}
+
+
+def test_a_root_just_left_of_the_axis_under_a_loss_factor_is_left_out_and_said():
+    """One rule for w_d < 0 under a loss factor, however close to the axis: the solver's
+    roots (the default path, mode shapes on) are the mpmath reference's, and the slow
+    root of the overdamped pair is named in a note, not listed."""
+    sol = mstmm.solve(mstmm.scene_from_dict(OVERDAMPED_ON_LOSS), modes=6)
+    exact = np.array([complex(w) for w in ref.damped_frequencies(OVERDAMPED_ON_LOSS, 6, dps=20)])
+    assert np.all(sol.omega.real >= 0.0)
+    assert rel(sol.omega, exact).max() <= RTOL, (sol.omega, exact)
+    assert sol.count_checked
+    notes = [w for w in sol.warnings if "w_d < 0" in w]
+    assert len(notes) == 1 and "+5.24" in notes[0], sol.warnings
+
+
+#: Hypothesis found this one too: an overdamped spring-mass at a clamped end is grounded,
+#: so with a loss factor on the beam its two roots stay exactly on the imaginary axis
+#: (where the reference's contour used to pass: it now runs just left of them).
+GROUNDED_OVERDAMPED = {
+    "beam": {"length": 1.0, "EI": 1.0, "mass_per_length": 1.0}
+    | {"left": "clamped", "right": "clamped", "loss_factor": 0.001},
+    "attachments": [{"type": "spring_mass", "x": 0.0, "k": 5.0, "m": 0.0237061, "c": 1.07837}],
+}
+#: beta_n L of a clamped-clamped beam: cos(x) cosh(x) = 1.
+CLAMPED_CLAMPED = (4.730040744862704, 7.853204624095838, 10.995607838001671, 14.137165491257464)
+
+
+def test_roots_on_the_axis_under_a_loss_factor_are_listed_in_order_of_decay():
+    """Closed forms: the grounded oscillator's overdamped roots i omega_n (zeta -+
+    sqrt(zeta^2 - 1)) first, by decay rate, then the beam's clamped-clamped modes with
+    EI (1 + i eta): w = (beta_n L)^2 sqrt(1 + i eta) (units EI = mbar = L = 1). The
+    default path, mode shapes on."""
+    sol = mstmm.solve(mstmm.scene_from_dict(GROUNDED_OVERDAMPED), modes=6)
+    k, m, c = 5.0, 0.0237061, 1.07837
+    wn, zeta = math.sqrt(k / m), c / (2.0 * math.sqrt(k * m))
+    axis = [1j * wn * (zeta + s * math.sqrt(zeta * zeta - 1.0)) for s in (-1.0, 1.0)]
+    beam = [x * x * np.sqrt(1.0 + 0.001j) for x in CLAMPED_CLAMPED]
+    assert rel(sol.omega, np.array(axis + beam)).max() <= RTOL, sol.omega
+    assert sol.count_checked and not [w for w in sol.warnings if "w_d < 0" in w]

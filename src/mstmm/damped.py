@@ -63,6 +63,12 @@ FINEST = 1e-13
 WINDING_SLACK = 0.05
 #: Newton stops at a step this small relative to |w| (or to the frequency unit near 0).
 NEWTON_TOL = 4e-16
+#: With a loss factor, a root at w_d < -AXIS_TOL |w| lies left of the imaginary axis beyond
+#: its accuracy (Newton's 4e-16, the cluster discs' 1e-7 |w| at worst): the loss factor's
+#: model holds for w_d > 0 only, and such a root is left out and said (the slow root of
+#: an overdamped pair on a beam with a loss factor: one of the pair moves right of the
+#: axis, the other left). Within it, a root counts as on the axis and is kept.
+AXIS_TOL = 1e-9
 #: Steps of the damping scale t in the continuation (halved on failure).
 CONTINUATION_STEPS = 8
 #: Scenes with this many components evaluate batches of at least PARALLEL_BATCH points
@@ -714,6 +720,15 @@ def _follow(problem: _Problem, todo: list[tuple[float, int]], pick) -> None:
         todo += [(w1, finer), (w0, steps * 8 or CONTINUATION_STEPS)]
 
 
+def _order_key(r: DampedRoot) -> tuple:
+    """Roots on the imaginary axis (to ``AXIS_TOL``: overdamped) first, by decay rate;
+    then by w_d."""
+    w = r.omega
+    if abs(w.real) <= AXIS_TOL * abs(w):
+        return (0, 0.0, w.imag)
+    return (1, w.real, w.imag)
+
+
 def _axis_roots(problem: _Problem, sigma_lo: float, sigma_hi: float) -> None:
     """The overdamped roots of a viscous scene: f(-conj w) = conj f(w), so on the
     imaginary axis f is real up to a constant phase, and each root of odd multiplicity
@@ -890,12 +905,20 @@ def damped_roots(
                 f" sigma < {sigma_top:.6g} rad/s (the origin's {problem.order0} included);"
                 f" {found} found"
             )
+    # the box reaches eps left of the imaginary axis (its contour clear of the origin's
+    # zero); with a loss factor, a zero there at w_d < 0 beyond its accuracy is one of
+    # those left out below, as far left as any (viscous: roots are snapped onto the axis)
+    w_left = [-eps if viscous else -AXIS_TOL * abs(r.omega) for r in problem.roots]
     inside = [
         r
-        for r in problem.roots
-        if -eps < r.omega.real < w_top and -delta < r.omega.imag < sigma_top
+        for r, x0 in zip(problem.roots, w_left)
+        if x0 < r.omega.real < w_top and -delta < r.omega.imag < sigma_top
     ]
-    left = [r for r in problem.roots if r.omega.real <= -eps and -delta < r.omega.imag < sigma_top]
+    left = [
+        r
+        for r, x0 in zip(problem.roots, w_left)
+        if r.omega.real <= x0 and -delta < r.omega.imag < sigma_top
+    ]
     if left:  # a loss factor's model: no mirror symmetry, a continuation may cross w_d = 0
         problem.notes.append(
             f"{len(left)} zero(s) of the characteristic function lie at w_d < 0 ("
@@ -904,7 +927,7 @@ def damped_roots(
             " only (a heavily damped pair near the imaginary axis)"
         )
     out = [DampedRoot(0j, rigid, True, "rigid")] if rigid else []
-    out += sorted(inside, key=lambda r: (r.omega.real > 0, r.omega.real, r.omega.imag))
+    out += sorted(inside, key=_order_key)
     return DampedRoots(out, checked, problem.notes, box)
 
 
