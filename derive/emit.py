@@ -369,6 +369,9 @@ def _damps_lines(module, d: descriptor.Descriptor) -> list[str]:
 
 
 _DESCRIPTOR_C_ARGS = "p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass"
+#: ``event_chain``'s arguments, the same in a real and in a damped kernel (one walk,
+#: ``numerics.characteristic.delta_chain``, calls both).
+CHAIN_ARGS = "p, o, v, w1, b4, L, EI, mbar"
 _DESCRIPTOR_C_DOC = (
     "The component's descriptor in complex arithmetic at the complex frequency w1 (units\n"
     "    L = EI = mbar = 1, b4 = w1^2); returns (constraints, unknowns)."
@@ -407,8 +410,8 @@ def dispatch_table(damped: bool) -> tuple:
     if damped:
         return (
             (
-                "damped",
-                "p, o, v, w1, b4, L, EI, mbar",
+                "chain",
+                CHAIN_ARGS,
                 _damped_lines,
                 "return 0.0j",
                 "v <- the component's pole-free compound step in complex arithmetic at the\n"
@@ -419,12 +422,13 @@ def dispatch_table(damped: bool) -> tuple:
         )
     return (
         (
-            "stable",
-            "p, o, v, b4, L, EI, mbar",
+            "chain",
+            CHAIN_ARGS,
             _stable_lines,
-            "return",
+            "return 0.0",
             "v <- the component's pole-free compound step on the minors (the event of\n"
-            "    ``delta_stable``; units L = EI = mbar = 1, docs/components.md).",
+            "    ``delta_stable``; units L = EI = mbar = 1, w1 = (lam_0 L)^2, b4 = w1^2,\n"
+            "    docs/components.md); returns the log of a factor taken out (none: 0).",
         ),
         (
             "count",
@@ -540,10 +544,11 @@ def _branch_lines(parsed: list, body) -> list[str]:
     return lines
 
 
-#: The events of the hot loops (``delta_stable``, ``count_below``, ``delta_damped``): inlined
-#: into them by numba (a compiled call costs about 20 ns, a fifth of a component's step;
-#: the walks hand them ``borrowed`` arrays, whose reference counts cost nothing).
-HOT = ("stable", "count", "damped")
+#: The events of the hot loops (``delta_stable`` and ``delta_damped``: the one chain,
+#: ``count_below``): inlined into them by numba (a compiled call costs about 20 ns, a fifth
+#: of a component's step; the walks hand them ``borrowed`` arrays, whose reference counts
+#: cost nothing).
+HOT = ("chain", "count")
 
 
 def _dispatch(parsed: list, damped: bool = False) -> str:

@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "811c99965c180e0f30c7b5b37ea790ac7a215da7"
+SIGNATURE = "0930267bbe32a904bee53fd87b8f2ab1e85bf97d"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,14 +43,15 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "8e258cb181383d719c19af79e0a912fcc06ddc6a"
+NUMERICS = "1f3d1b3a8f550b66b6b6b62c4f4dc8fa16340312"
 
 
 @njit(cache=True, inline="always")
-def event_stable(tag, p, o, v, b4, L, EI, mbar):
+def event_chain(tag, p, o, v, w1, b4, L, EI, mbar):
     """v <- the component's pole-free compound step on the minors (the event of
-    ``delta_stable``; units L = EI = mbar = 1, docs/components.md)."""
-    return
+    ``delta_stable``; units L = EI = mbar = 1, w1 = (lam_0 L)^2, b4 = w1^2,
+    docs/components.md); returns the log of a factor taken out (none: 0)."""
+    return 0.0
 
 
 @njit(cache=True, inline="always")

@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "15e263a6d6c724a70ea591cf9259b98827e91fe0"
+SIGNATURE = "835a346ae24fe3e4004ce4a10ded5704e6c996fd"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,13 +43,14 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "8e258cb181383d719c19af79e0a912fcc06ddc6a"
+NUMERICS = "1f3d1b3a8f550b66b6b6b62c4f4dc8fa16340312"
 
 
 @njit(cache=True, inline="always")
-def event_stable(tag, p, o, v, b4, L, EI, mbar):
+def event_chain(tag, p, o, v, w1, b4, L, EI, mbar):
     """v <- the component's pole-free compound step on the minors (the event of
-    ``delta_stable``; units L = EI = mbar = 1, docs/components.md)."""
+    ``delta_stable``; units L = EI = mbar = 1, w1 = (lam_0 L)^2, b4 = w1^2,
+    docs/components.md); returns the log of a factor taken out (none: 0)."""
     if tag == 0:  # spring_mass
         val_k = p[o + 0] * (L * L * L / EI)
         val_m = p[o + 1] * (1.0 / (L * mbar))
@@ -70,7 +71,7 @@ def event_stable(tag, p, o, v, b4, L, EI, mbar):
         v[3] = t4*v3 - v3
         v[4] = t2 + t4*v4 - v4
         v[5] = t3 + t4*v5 - v5
-    return
+    return 0.0
 
 
 @njit(cache=True, inline="always")

@@ -20,7 +20,7 @@ import math
 from mstmm.jit import njit
 
 #: sha1 of the derive/ sources this module was printed from (the runtime checks it).
-DIGEST = "9ec757a73f97157f75fb3304114027f9613d4901"
+DIGEST = "2736d5c2cf94587c599053aedcff2f6338d53261"
 
 
 @njit(cache=True, inline="always")

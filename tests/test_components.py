@@ -66,7 +66,7 @@ DISPATCH = tuple(
         "rigid",
         "damps",
         "inertia",
-        "stable",
+        "chain",
         "count",
     )
 )

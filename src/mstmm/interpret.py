@@ -96,14 +96,18 @@ def python_copy(module: ModuleType) -> dict:
     import sys
 
     ns: dict = {}
+    shared = set()
     for name, mod in list(sys.modules.items()):
         if mod is not None and (
             name.startswith("mstmm.numerics.") or name == "mstmm.generated.euler_bernoulli"
         ):
             ns.update(vars(mod))
+            shared.add(name)
     ns.update(vars(module))
     for name, obj in list(ns.items()):
         f = getattr(obj, "py_func", None)
+        if not isinstance(f, types.FunctionType) and getattr(obj, "__module__", None) in shared:
+            f = obj  # a plain function of the numerics (``generic``'s real and complex twins)
         if isinstance(f, types.FunctionType):
             ns[name] = types.FunctionType(f.__code__, ns, f.__name__, f.__defaults__, f.__closure__)
     return ns

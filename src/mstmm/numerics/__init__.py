@@ -1,17 +1,17 @@
 """The numerics every kernel shares, as ordinary code: the drivers take a topology's
-characteristic functions as first-class functions (``delta``, ``count``, ``event``, ...),
-so they compile once per machine and serve every topology. The beam functions they use
-are printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star-imports
-this package.
+characteristic functions as first-class functions (``delta``, ``count``, ``event``, ...), so
+they compile once per machine and serve every topology. The beam functions they use are
+printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star-imports this
+package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
-table), ``chain`` (kinds of stages in series), ``count`` (Wittrick-Williams), ``field`` (a segment's
-field matrix from its differential equation), ``segment`` (a piece's transfer, whichever
-the segment's kind), ``paper``
-(the paper's determinant), ``characteristic`` (a topology's characteristic functions, bound
-to the functions its kernel prints), ``search`` (the certified scan), ``shapes`` (mode shapes),
-``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch conditions), ``entries``
-(the drivers called from Python).
+table), ``chain`` (kinds of stages in series), ``generic`` (what differs between the real
+and the complex walk), ``count`` (Wittrick-Williams), ``field`` (a segment's field matrix
+from its differential equation), ``segment`` (a piece's transfer, whichever the segment's
+kind), ``paper`` (the paper's determinant), ``characteristic`` (a topology's characteristic
+functions, bound to the functions its kernel prints), ``search`` (the certified scan),
+``shapes`` (mode shapes), ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch
+conditions), ``entries`` (the drivers called from Python).
 """
 
 from mstmm.generated.euler_bernoulli import *  # noqa: F403
@@ -24,6 +24,7 @@ from .count import *  # noqa: F403
 from .entries import *  # noqa: F403
 from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
+from .generic import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .paper import *  # noqa: F403
 from .search import *  # noqa: F403

@@ -1,11 +1,12 @@
 """A topology's characteristic functions, written once as ordinary code (issue 21).
 
-The segment walk with its events, the stable second-compound chain (``delta_stable``,
-complex: ``delta_damped``), the Wittrick-Williams count (``count_below``), the paper's
+The segment walk with its events, the stable second-compound chain (``delta_chain``, one
+walk bound as ``delta_stable`` and, complex, ``delta_damped``: ``generic`` holds what
+differs), the Wittrick-Williams count (``count_below``), the paper's
 tree algorithm (``u_bar_paper``, paper Eq. (4)), the components' own frequencies and the
 rigid motions. What differs between topologies is what SymPy prints into a kernel module
 from each kind's declared physics (``mstmm.derive.emit``): the per-component functions
-``event_stable``, ``event_count``, ``event_damped``, ``event_descriptor``, ... (one branch
+``event_chain``, ``event_count``, ``event_descriptor``, ... (one branch
 per kind present) and the ends' constants (``LEFT_KNOWN``, ``START_PAIR``, ...).
 
 :func:`bind_characteristic`, called at the end of a kernel module, compiles a copy of each
@@ -15,7 +16,6 @@ caches the copy beside the kernel's file under its signature (``_tagged``). The 
 below name what a kernel provides; they are never called.
 """
 
-import cmath
 import math
 import types
 
@@ -23,14 +23,13 @@ import numpy as np
 from numba import prange
 
 from mstmm.generated.euler_bernoulli import (
-    beam_compound_step,
-    beam_compound_step_c,
     clamped_clamped_count,
     node_stiffness_step,
 )
 from mstmm.jit import njit
 
 from .count import field_count, neg2, pair_count, pair_stiffness
+from .generic import beam_step, chain_frequency, segment_factors, stiffness, work, zero
 from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
 from .paper import apply_columns, lu_logdet, segment_transfer
 from .search import rigid_dimension
@@ -41,7 +40,6 @@ from .walk import (
     event_order,
     next_piece,
     own_table,
-    renormalise,
     renormalise_end,
     renormalise_lazy,
     scale_minors,
@@ -66,11 +64,10 @@ def _printed(*args):
 
 
 #: v <- the pole-free compound step of the component of kind ``tag`` whose data block
-#: starts at ``o`` (units L = EI_0 = mbar_0 = 1, b4 = (lam_0 L)^4).
-event_stable = _printed
-#: The same on complex minors at w1 (b4 = w1^2), with the dashpots; returns the complex
-#: log of a factor it took out.
-event_damped = _printed
+#: starts at ``o`` (units L = EI_0 = mbar_0 = 1, w1 = (lam_0 L)^2, b4 = w1^2); returns the
+#: log of a factor it took out (0 in a real kernel; complex, with the dashpots, in a damped
+#: one).
+event_chain = _printed
 #: Zc <- the minors after the component; returns the negative pivots it adds to the count.
 event_count = _printed
 #: The component's descriptor (Cz, Cq, A, B, qmass; paper Eqs. (2)-(3)), real and complex.
@@ -85,29 +82,41 @@ event_rigid = _printed
 event_damps = _printed
 
 
-def delta_stable(omega, p):
-    """Reduced determinant from the second-compound chain, as (mantissa, log).
+def delta_chain(w, p):
+    """Reduced determinant from the second-compound chain at the frequency w (rad/s), as
+    (mantissa, log): a kernel's ``delta_stable`` (w = omega real) and, in a damped kernel,
+    its ``delta_damped`` (w = w_d + i sigma complex, mantissa and log complex;
+    mantissa * exp(log) is an entire function of w whose zeros are the damped natural
+    frequencies, time dependence exp(i w t), sigma > 0 a decaying mode).
 
-    Each component's pole-free compound step is the kernel's printed ``event_stable``."""
+    One walk for both (``generic``: numba compiles each for its type): beta = lam_0 L
+    (complex for a complex w: any branch, the chain depends on beta^4 = w1^2 only); each
+    segment's EI (times 1 + i eta, its loss factor, in complex arithmetic); each
+    component's pole-free compound step (with its dashpots, k -> k + i w c), the kernel's
+    printed ``event_chain``; the beam functions' exp(-x) scaling and the renormalisation
+    go into the log."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
-    beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
-    b4 = (beta * beta) ** 2
-    v = np.zeros(6)
+    w1, b4, beta = chain_frequency(w, L, EI, mbar)
+    v = work(beta, 6)
+    v[:] = 0.0
     v[START_PAIR] = 1.0
     vb = borrowed(v)  # what the events get (no reference counts)
     pb = borrowed(p)
-    log = 0.0
+    log = zero(beta)
     pos = 0.0
     seg = 0
     general = any_general(p)
-    F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
-    ready = -1
-    U = np.empty((4, 4))  # work space of its steps
-    E = np.empty((6, 6))
-    w = np.empty(6)
-    n_seg = int(p[3])
+    F = work(beta, (4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready_f``)
+    ready_f = -1
+    U = work(beta, (4, 4))  # work space of its steps
+    E = work(beta, (6, 6))
+    w6 = work(beta, 6)
+    # an Euler-Bernoulli segment's factors (of segment ``ready``): U_s = D U(beta_s) D^-1,
+    # D = diag(1, 1, e, e) (docs/components.md)
+    ready = 0
+    e, f, bs = segment_factors(p, 0, beta, EI, mbar)
     n_ev = int(p[4])
     inv_L = 1.0 / L  # a multiplication per piece instead of a division
     for r in range(n_ev + 1):
@@ -117,18 +126,18 @@ def delta_stable(omega, p):
             rho = (target - pos) * inv_L
             if rho > 0.0:
                 if general and is_general(p, seg):  # exp(A h) of its field matrix
-                    step, ready = segment_compound(v, p, seg, b4, 1.0, rho, F, ready, U, E, w)
+                    stiff = stiffness(beta, p[HEAD + SEGMENT_WIDTH * seg + 3])
+                    step, ready_f = segment_compound(
+                        v, p, seg, b4, stiff, rho, F, ready_f, U, E, w6
+                    )
                     log += step
-                else:  # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e) (docs/components.md)
-                    e = 1.0
-                    bs = beta
-                    if n_seg > 1:
-                        i = HEAD + SEGMENT_WIDTH * seg
-                        e = p[i + 1] / EI
-                        bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+                else:
+                    if seg != ready:
+                        e, f, bs = segment_factors(p, seg, beta, EI, mbar)
+                        ready = seg
                     if e != 1.0:
-                        scale_minors(vb, 1.0 / e)
-                    log += beam_compound_step(vb, bs, rho)
+                        scale_minors(vb, f)
+                    log += beam_step(vb, bs, rho)
                     if e != 1.0:
                         scale_minors(vb, e)
                 pos = target
@@ -139,10 +148,14 @@ def delta_stable(omega, p):
             break
         tag = int(p[row])
         o = int(p[row + 2])
-        event_stable(tag, pb, o, vb, b4, L, EI, mbar)
+        log += event_chain(tag, pb, o, vb, w1, b4, L, EI, mbar)
         log += renormalise_lazy(v)
     log += renormalise_end(v)
     return v[END_PAIR], log
+
+
+#: The names a kernel binds the chain under (``bind_characteristic``).
+delta_stable = delta_damped = delta_chain
 
 
 def count_below(omega, p):
@@ -167,6 +180,9 @@ def count_below(omega, p):
     pb = borrowed(p)
     F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
     ready = -1
+    # an Euler-Bernoulli segment's factors (of segment ``ready_s``)
+    ready_s = 0
+    e, f, bs = segment_factors(p, 0, beta, EI, mbar)
     Zc[0] = 1.0  # the free end: Y and theta admitted
     if 0 in LEFT_KNOWN or 1 in LEFT_KNOWN:  # Y or theta held: a PENALTY stiffness each
         kY = PENALTY if 0 in LEFT_KNOWN else 0.0
@@ -191,12 +207,12 @@ def count_below(omega, p):
                 # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
                 # transfer matrix is rank-one to working precision): the pivots of each
                 # near node and J0 of each step, with the segment's own properties
-                i = HEAD + SEGMENT_WIDTH * seg
-                e = p[i + 1] / EI
-                bs = beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+                if seg != ready_s:
+                    e, f, bs = segment_factors(p, seg, beta, EI, mbar)
+                    ready_s = seg
                 pieces = max(1, int(math.ceil(bs * rho / RICCATI_STEP)))
                 if e != 1.0:
-                    scale_minors(Zc, 1.0 / e)
+                    scale_minors(Zc, f)
                 for _ in range(pieces):
                     count += pair_count(Zc, U, bs, rho / pieces)
                     count += clamped_clamped_count(bs * rho / pieces)
@@ -329,77 +345,6 @@ def oscillator_frequencies(p):
     order = np.empty(n, dtype=np.int64)
     stable_order(out[:n], order)
     return own_table(out[:n], xs[:n], order)
-
-
-def delta_damped(w, p):
-    """Reduced determinant of the damped chain at the complex frequency w (rad/s), as
-    (mantissa, log), both complex: mantissa * exp(log) is an entire function of w whose
-    zeros w = w_d + i sigma are the damped natural frequencies (time dependence
-    exp(i w t), sigma > 0 a decaying mode).
-
-    The second-compound chain of ``delta_stable`` in complex arithmetic: beta = sqrt(w1)
-    with w1 = w L^2 sqrt(mbar_0 / EI_0) (complex; any branch: the function depends on
-    beta^4 = w1^2 only), each segment's EI (1 + i eta) (its loss factor), each kind's
-    pole-free compound step with its dashpots (k -> k + i w c), the kernel's printed
-    ``event_damped``; the
-    beam functions' exp(-x) scaling goes into the complex log, the renormalisation into
-    its real part."""
-    L = p[0]
-    EI = p[1]
-    mbar = p[2]
-    w1 = w * L * L * math.sqrt(mbar / EI)
-    b4 = w1 * w1
-    beta = cmath.sqrt(w1)
-    v = np.zeros(6, dtype=np.complex128)
-    v[START_PAIR] = 1.0
-    vb = borrowed(v)  # what the events get (no reference counts)
-    pb = borrowed(p)
-    log = 0.0j
-    pos = 0.0
-    seg = 0
-    ready = -1
-    F = np.empty((4, 4, 4), dtype=np.complex128)  # a general segment's A, A^2, A^3
-    ready_f = -1
-    U = np.empty((4, 4), dtype=np.complex128)  # work space of its steps
-    E = np.empty((6, 6), dtype=np.complex128)
-    w6 = np.empty(6, dtype=np.complex128)
-    e = 1.0 + 0.0j
-    f = 1.0 + 0.0j
-    bs = beta
-    n_ev = int(p[4])
-    for r in range(n_ev + 1):
-        row, x = event_at(pb, r, n_ev)
-        while True:  # the beam up to x, piece by piece (segment boundaries)
-            target, after = next_piece(pb, seg, x)
-            rho = (target - pos) / L
-            if rho > 0.0 and is_general(p, seg):  # exp(A2 h), stiffnesses times 1 + i eta
-                stiff = 1.0 + 1j * p[HEAD + SEGMENT_WIDTH * seg + 3]
-                step, ready_f = segment_compound(v, p, seg, b4, stiff, rho, F, ready_f, U, E, w6)
-                log += step
-                pos = target
-            elif rho > 0.0:
-                # U_s = D U(beta_s) D^-1, D = diag(1, 1, e, e), e = EI_s (1 + i eta_s) / EI_0
-                if seg != ready:  # the segment's factors, once per segment
-                    i = HEAD + SEGMENT_WIDTH * seg
-                    e = p[i + 1] / EI * (1.0 + 1j * p[i + 3])
-                    f = 1.0 / e
-                    bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar * f))
-                    ready = seg
-                scale_minors(vb, f)
-                log += beam_compound_step_c(vb, bs, rho)
-                scale_minors(vb, e)
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if r == n_ev:
-            break
-        tag = int(p[row])
-        o = int(p[row + 2])
-        log += event_damped(tag, pb, o, vb, w1, b4, L, EI, mbar)
-        log += renormalise(v)
-    log += renormalise_end(v)
-    return v[END_PAIR], log
 
 
 def evaluate_damped(ws, p, mant, logs):
