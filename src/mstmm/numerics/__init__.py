@@ -24,7 +24,6 @@ from .count import *  # noqa: F403
 from .entries import *  # noqa: F403
 from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
-from .generic import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .paper import *  # noqa: F403
 from .search import *  # noqa: F403

@@ -28,8 +28,8 @@ from mstmm.generated.euler_bernoulli import (
 )
 from mstmm.jit import njit
 
+from . import generic
 from .count import field_count, neg2, pair_count, pair_stiffness
-from .generic import beam_step, chain_frequency, segment_factors, stiffness, work, zero
 from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
 from .paper import apply_columns, lu_logdet, segment_transfer
 from .search import rigid_dimension
@@ -80,6 +80,9 @@ event_internal = _printed
 event_nq = _printed
 event_rigid = _printed
 event_damps = _printed
+#: What differs between the real and the complex chain: ``generic.REAL`` or
+#: ``generic.COMPLEX``, put into a kernel's namespace by ``bind_characteristic``.
+chain_frequency = work = stiffness = segment_factors = beam_step = _printed
 
 
 def delta_chain(w, p):
@@ -99,20 +102,20 @@ def delta_chain(w, p):
     EI = p[1]
     mbar = p[2]
     w1, b4, beta = chain_frequency(w, L, EI, mbar)
-    v = work(beta, 6)
+    v = work(6)
     v[:] = 0.0
     v[START_PAIR] = 1.0
     vb = borrowed(v)  # what the events get (no reference counts)
     pb = borrowed(p)
-    log = zero(beta)
+    log = 0.0 * v[0]  # 0, real or complex
     pos = 0.0
     seg = 0
     general = any_general(p)
-    F = work(beta, (4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready_f``)
+    F = work((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready_f``)
     ready_f = -1
-    U = work(beta, (4, 4))  # work space of its steps
-    E = work(beta, (6, 6))
-    w6 = work(beta, 6)
+    U = work((4, 4))  # work space of its steps
+    E = work((6, 6))
+    w6 = work(6)
     # an Euler-Bernoulli segment's factors (of segment ``ready``): U_s = D U(beta_s) D^-1,
     # D = diag(1, 1, e, e) (docs/components.md)
     ready = 0
@@ -126,7 +129,7 @@ def delta_chain(w, p):
             rho = (target - pos) * inv_L
             if rho > 0.0:
                 if general and is_general(p, seg):  # exp(A h) of its field matrix
-                    stiff = stiffness(beta, p[HEAD + SEGMENT_WIDTH * seg + 3])
+                    stiff = stiffness(p[HEAD + SEGMENT_WIDTH * seg + 3])
                     step, ready_f = segment_compound(
                         v, p, seg, b4, stiff, rho, F, ready_f, U, E, w6
                     )
@@ -180,9 +183,10 @@ def count_below(omega, p):
     pb = borrowed(p)
     F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
     ready = -1
-    # an Euler-Bernoulli segment's factors (of segment ``ready_s``)
+    # an Euler-Bernoulli segment's factors (of segment ``ready_s``; the first's are 1)
     ready_s = 0
-    e, f, bs = segment_factors(p, 0, beta, EI, mbar)
+    e = f = 1.0
+    bs = beta
     Zc[0] = 1.0  # the free end: Y and theta admitted
     if 0 in LEFT_KNOWN or 1 in LEFT_KNOWN:  # Y or theta held: a PENALTY stiffness each
         kY = PENALTY if 0 in LEFT_KNOWN else 0.0
@@ -469,6 +473,8 @@ def _tagged(name: str, namespace: dict):
 def bind_characteristic(namespace: dict, names: tuple[str, ...]) -> None:
     """Define the functions ``names`` of this module in a kernel module's ``namespace``,
     each compiled (on first call, or loaded from numba's cache) with the kernel's printed
-    functions."""
+    functions and the real or complex twins of ``generic`` (complex: a damped kernel's
+    ``names``, which hold ``delta_damped``)."""
+    namespace.update(generic.COMPLEX if "delta_damped" in names else generic.REAL)
     for name in names:
         namespace[name] = njit(cache=True, parallel=name in _PARALLEL)(_tagged(name, namespace))
