@@ -63,6 +63,10 @@ def _printed(*args):
     raise NotImplementedError("printed per topology into its kernel module")
 
 
+def _bound(*args):
+    raise NotImplementedError("generic's real or complex twin, bound into a kernel module")
+
+
 #: v <- the pole-free compound step of the component of kind ``tag`` whose data block
 #: starts at ``o`` (units L = EI_0 = mbar_0 = 1, w1 = (lam_0 L)^2, b4 = w1^2); returns the
 #: log of a factor it took out (0 in a real kernel; complex, with the dashpots, in a damped
@@ -82,7 +86,7 @@ event_rigid = _printed
 event_damps = _printed
 #: What differs between the real and the complex chain: ``generic.REAL`` or
 #: ``generic.COMPLEX``, put into a kernel's namespace by ``bind_characteristic``.
-chain_frequency = work = stiffness = segment_factors = beam_step = _printed
+chain_frequency = work = stiffness = segment_factors = beam_step = _bound
 
 
 def delta_chain(w, p):
@@ -183,10 +187,9 @@ def count_below(omega, p):
     pb = borrowed(p)
     F = np.empty((4, 4, 4))  # a general segment's A, A^2, A^3 (of segment ``ready``)
     ready = -1
-    # an Euler-Bernoulli segment's factors (of segment ``ready_s``; the first's are 1)
+    # an Euler-Bernoulli segment's factors (of segment ``ready_s``)
     ready_s = 0
-    e = f = 1.0
-    bs = beta
+    e, f, bs = segment_factors(p, 0, beta, EI, mbar)
     Zc[0] = 1.0  # the free end: Y and theta admitted
     if 0 in LEFT_KNOWN or 1 in LEFT_KNOWN:  # Y or theta held: a PENALTY stiffness each
         kY = PENALTY if 0 in LEFT_KNOWN else 0.0
