@@ -43,6 +43,21 @@ def try_plot(fn, results, path: Path) -> tuple[str | None, str]:
 # ------------------------------------------------------------------ targets
 
 
+def _first_run_remark(first: dict, key: str) -> str:
+    """What a first run's time is made of (``benchmarks.components``)."""
+    from .workprecision import fmt_time
+
+    remark = "numba compiles the topology's kernel; the shared numerics once per machine"
+    alone = first.get("nothing_compiled_one_process")
+    if key == "nothing_compiled" and alone:
+        remark += (
+            ", in two helper processes while this one compiles the kernel (mstmm.compiling);"
+            f" in one process (`MSTMM_COMPILE_HELPERS=0`) {fmt_time(alone['wall_seconds'])}"
+            f" ({'-'.join(alone['ends'])} ends, same run)"
+        )
+    return remark
+
+
 def _status(ok: bool | None) -> str:
     return {True: "**met**", False: "**missed**", None: "not measured"}[ok]
 
@@ -462,7 +477,7 @@ def component_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
                     "<= 15 s",
                     f"{fmt_time(r['wall_seconds'])} ({'-'.join(r['ends'])} ends)",
                     _status(r["wall_seconds"] <= 15.0 and r["certified"]),
-                    "numba compiles the topology's kernel; the shared numerics once per machine",
+                    _first_run_remark(first, key),
                 )
             )
         d = first.get("default")

@@ -20,10 +20,10 @@ from mstmm.cli import main
 
 def _cantilever_omega(scene, n: int) -> float:
     """n-th root of 1 + cos(b) cosh(b) = 0 (closed form, by bisection), as omega."""
-    lo, hi = (n - 0.5) * math.pi, (n + 0.5) * math.pi - 1e-9
+    # the n-th root lies within 0.2 of (n - 1/2) pi (1.8751, 4.6941, 7.8548, ...)
+    lo, hi = (n - 0.5) * math.pi - 0.5, (n - 0.5) * math.pi + 0.5
     f = lambda b: 1.0 + math.cos(b) * math.cosh(b)  # noqa: E731
-    if n == 1:
-        lo, hi = 1.0, 3.0
+    assert f(lo) * f(hi) < 0.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if f(lo) * f(mid) <= 0.0:

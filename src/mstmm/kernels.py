@@ -34,7 +34,7 @@ import numpy as np
 from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, event_rows
 from mstmm.sign import signature
 
-from . import interpret, progress
+from . import compiling, interpret, progress
 from .topology import Topology
 
 #: Characteristic functions every kernel carries (``evaluate_<name>``, ``refine_<name>``).
@@ -244,6 +244,8 @@ class Kernel:
         entry = self._entries.get(name)
         if entry is None:
             interpret.mark_compiled()
+            compiling.start()
+            compiling.wait(name)
             entry = self._entries[name] = getattr(numerics(), f"entry_{name}")
         return entry
 
@@ -276,6 +278,7 @@ class Kernel:
 
     def _compiled(self, name: str):
         interpret.mark_compiled()
+        compiling.start()  # the shared drivers compile in helpers meanwhile, if not cached
         return getattr(self.module, name)
 
     #: The kernel functions the shared search calls (besides the characteristic function).

@@ -79,6 +79,15 @@ FUNCTION_TYPES = {
     "shape_inertia": (FA_INERTIA, INERTIA),
 }
 
+_I1 = types.int64[::1]
+#: The one signature each driver compiled ahead of its call is called with (by
+#: ``mstmm.kernels.Kernel``; ``mstmm.compiling`` compiles them in helper processes).
+SIGNATURES = {
+    "lowest": (_I1, _i8, _A1, _i8, _A1, _I1, _A1, types.boolean, _f8),
+    "mode_shapes": (_I1, _I1, _f8, _A1, _i8, _A1, types.float64[:, :, ::1], _A2, _A1, _A2, _A2)
+    + (_A1, _A1),
+}
+
 
 def _function_value(ftype):
     """An intrinsic that makes a first-class function value of type ``ftype`` from the

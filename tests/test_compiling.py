@@ -1,0 +1,102 @@
+"""The shared drivers compile in helper processes on a machine's first compiled run
+(``mstmm.compiling``): the main process compiles its kernel meanwhile and loads the
+drivers from numba's cache, with the same answers."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from test_cli import _cantilever_omega
+
+import mstmm
+from mstmm import compiling, interpret
+from mstmm.numerics import entries
+
+_COLD = """
+import json, sys
+from numba.core import event
+compiled = []
+
+class Listener(event.Listener):
+    def on_start(self, e):
+        pass
+
+    def on_end(self, e):
+        compiled.append(e.data["dispatcher"].py_func.__qualname__)
+
+event.register("numba:compile", Listener())
+import mstmm
+from mstmm import compiling
+scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
+sol = mstmm.solve(scene, modes=4)
+print(json.dumps({
+    "omega": [float(w) for w in sol.omega],
+    "certified": bool(sol.count_checked),
+    "shapes": [[list(map(float, s.x)), list(map(float, s.Y))] for s in sol.shapes],
+    "compiled": compiled,
+    "cached": [compiling.cached(n) for n in compiling.BACKGROUND],
+}))
+"""
+
+
+def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
+    """``entries.SIGNATURES`` (what a helper compiles) is what a solve calls: a solve
+    forced to run compiled, mode shapes on, adds no other signature to the drivers."""
+    scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+    budget = interpret._Process.budget
+    interpret.set_budget(0.0)
+    try:
+        sol = mstmm.solve(scene, modes=3)
+    finally:
+        interpret.set_budget(budget)
+    assert sol.count_checked and len(sol.shapes) == 3
+    for name in compiling.BACKGROUND:
+        dispatcher = getattr(entries, f"entry_{name}")
+        assert dispatcher.signatures == [entries.SIGNATURES[name]], name
+
+
+def test_a_first_compiled_run_on_a_cold_machine_loads_the_drivers_from_its_helpers():
+    """Nothing in numba's cache (a fresh ``NUMBA_CACHE_DIR``), the solve forced compiled:
+    the drivers of ``compiling.BACKGROUND`` are compiled by helpers, not by the main
+    process, and the roots are the cantilever's closed-form ones, mode shapes on."""
+    with tempfile.TemporaryDirectory() as numba_cache, tempfile.TemporaryDirectory() as kc:
+        env = dict(
+            os.environ,
+            NUMBA_CACHE_DIR=numba_cache,
+            MSTMM_CACHE=kc,
+            MSTMM_INTERPRET_BUDGET="0",
+            MSTMM_COMPILE_HELPERS="1",
+        )
+        done = subprocess.run(
+            [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True, check=True
+        )
+    out = json.loads(done.stdout.splitlines()[-1])
+    scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
+    for n, w in enumerate(out["omega"], start=1):
+        assert abs(w / _cantilever_omega(scene, n) - 1.0) < 1e-12, n
+    assert out["certified"] and len(out["shapes"]) == 4
+    for n, (x, Y) in enumerate(out["shapes"], start=1):  # the closed-form mode shapes
+        b = (
+            _cantilever_omega(scene, n) ** 0.5
+            * (scene.beam.mass_per_length / scene.beam.EI) ** 0.25
+        )
+        s = (math.cosh(b) + math.cos(b)) / (math.sinh(b) + math.sin(b))
+        phi = [
+            math.cosh(b * t) - math.cos(b * t) - s * (math.sinh(b * t) - math.sin(b * t)) for t in x
+        ]
+        assert max(abs(y / Y[-1] - f / phi[-1]) for y, f in zip(Y, phi)) < 1e-9, n
+    if compiling.enabled():
+        for name in compiling.BACKGROUND:
+            assert f"entry_{name}" not in out["compiled"], name
+        assert "delta_stable" in " ".join(out["compiled"])  # the kernel: here
+    assert out["cached"] == [True] * len(compiling.BACKGROUND)
+
+
+def test_helpers_can_be_turned_off(monkeypatch):
+    monkeypatch.setenv("MSTMM_COMPILE_HELPERS", "0")
+    assert not compiling.enabled()
