@@ -51,7 +51,8 @@ def _first_run_remark(first: dict, key: str) -> str:
     alone = first.get("nothing_compiled_one_process")
     if key == "nothing_compiled" and alone:
         remark += (
-            ", in two helper processes while this one compiles the kernel (mstmm.compiling);"
+            ", in two helper processes (nice 10) while this one compiles the kernel and runs"
+            " the drivers as Python until they are compiled (mstmm.compiling);"
             f" in one process (`MSTMM_COMPILE_HELPERS=0`) {fmt_time(alone['wall_seconds'])}"
             f" ({'-'.join(alone['ends'])} ends, same run)"
         )

@@ -38,8 +38,8 @@ print(json.dumps({
     "omega": [float(w) for w in sol.omega],
     "certified": bool(sol.count_checked),
     "shapes": [[list(map(float, s.x)), list(map(float, s.Y))] for s in sol.shapes],
-    "compiled": compiled,
-    "cached": [compiling.cached(n) for n in compiling.BACKGROUND],
+    "compiled": list(compiled),
+    "cached": [compiling.wait(n) or compiling.cached(n) for n in compiling.BACKGROUND],
 }))
 """
 
@@ -63,7 +63,9 @@ def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
 def test_a_first_compiled_run_on_a_cold_machine_loads_the_drivers_from_its_helpers():
     """Nothing in numba's cache (a fresh ``NUMBA_CACHE_DIR``), the solve forced compiled:
     the drivers of ``compiling.BACKGROUND`` are compiled by helpers, not by the main
-    process, and the roots are the cantilever's closed-form ones, mode shapes on."""
+    process (it runs them as Python around its compiled kernel until they are), the
+    roots are the cantilever's closed-form ones, mode shapes on, and the helpers leave
+    the drivers in the cache."""
     with tempfile.TemporaryDirectory() as numba_cache, tempfile.TemporaryDirectory() as kc:
         env = dict(
             os.environ,
@@ -100,3 +102,33 @@ def test_a_first_compiled_run_on_a_cold_machine_loads_the_drivers_from_its_helpe
 def test_helpers_can_be_turned_off(monkeypatch):
     monkeypatch.setenv("MSTMM_COMPILE_HELPERS", "0")
     assert not compiling.enabled()
+
+
+def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monkeypatch, tmp_path):
+    """One helper per driver and cache: while another process's helper holds the driver's
+    lock, ``start`` starts none, ``running`` says so (the driver then runs as Python or is
+    waited for), and the lock's release ends it."""
+    if compiling.fcntl is None:
+        return  # no locks on this platform: nothing to check
+    lock = tmp_path / "entry_lowest.nbi.compiling"
+
+    class Fresh:
+        started = False
+        helpers: dict = {}
+        elsewhere: dict = {}
+
+    monkeypatch.setattr(compiling, "_State", Fresh)
+    monkeypatch.setattr(compiling, "BACKGROUND", ("lowest",))
+    monkeypatch.setattr(compiling, "enabled", lambda: True)
+    monkeypatch.setattr(compiling, "cached", lambda name: False)
+    monkeypatch.setattr(compiling, "_lock_path", lambda name: lock)
+    held = compiling._try_lock(lock)  # another process's helper (its own open file)
+    assert held is not None
+    try:
+        compiling.start()
+        assert Fresh.helpers == {} and Fresh.elsewhere == {"lowest": lock}
+        assert compiling.running("lowest")
+    finally:
+        os.close(held)  # that helper exits
+    assert not compiling.running("lowest")
+    compiling.wait("lowest")  # returns at once

@@ -5,14 +5,21 @@ shared drivers (``mstmm.numerics.entries``: the root search, the mode-shape
 march) besides the topology's kernel, and each of the three takes several
 seconds. The drivers do not depend on the topology (they take its functions as
 first-class function values), so a helper process can compile them into
-numba's on-disk cache while this process compiles the kernel; when this process
-reaches a driver, it waits for its helper and loads the machine code from the
-cache. A helper that fails costs nothing but the wait: the driver then compiles
-here, as it would have without it.
+numba's on-disk cache while this process compiles the kernel. When this process
+reaches a driver its helper has not finished, the driver runs as Python around the
+compiled kernel (the interpreted tier's copy of it, :mod:`mstmm.interpret`) if that
+is estimated to take under :data:`PYTHON_WHILE_COMPILING`; a bigger problem waits
+for the helper and loads the machine code from the cache. The helpers run at a
+lower priority (``nice`` 10), so that this process keeps a core. A helper that
+fails costs nothing but the wait: the driver then compiles here, as it would have
+without it.
 
 Helpers start only when a driver is not in numba's cache yet (the first
 compiled run after installing, or after a change in ``mstmm.numerics``), and
-only on a machine with more than one core. A helper still compiling when this
+only on a machine with more than one core. One helper per driver and cache: it
+holds a lock beside numba's index of the driver, and another process that needs
+the driver meanwhile waits for that helper (or runs the driver as Python) instead
+of starting its own. A helper still compiling when this
 process exits goes on and leaves its driver in the cache for the next run.
 ``MSTMM_COMPILE_HELPERS=0`` turns them off.
 """
@@ -22,15 +29,29 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # not POSIX: no locks, each process starts its own helpers
+    fcntl = None
 
 #: The drivers a default solve calls (``entry_<name>``), each compiled by a helper of
 #: its own when numba's cache does not hold it.
 BACKGROUND = ("lowest", "mode_shapes")
+#: Seconds of driver work (the interpreted tier's estimate, ``interpret.estimated_cost``)
+#: below which a driver still compiling in a helper runs as Python instead of waiting.
+PYTHON_WHILE_COMPILING = 2.0
+#: The helpers' niceness (added to this process's).
+NICENESS = 10
 
 
 class _State:
     started: bool = False
+    #: This process's helpers, by driver.
     helpers: dict[str, subprocess.Popen] = {}
+    #: Drivers another process's helper is compiling: the lock file it holds.
+    elsewhere: dict[str, Path] = {}
 
 
 def enabled() -> bool:
@@ -40,34 +61,94 @@ def enabled() -> bool:
     return len(os.sched_getaffinity(0)) > 1 if hasattr(os, "sched_getaffinity") else True
 
 
+def _cache_file(name: str):
+    from mstmm.numerics import entries
+
+    return getattr(entries, f"entry_{name}")._cache._cache_file
+
+
 def cached(name: str) -> bool:
     """Whether numba's cache holds machine code of ``entry_<name>`` for the current sources
     (an unreadable cache counts as holding it: no helper then)."""
-    from mstmm.numerics import entries
-
     try:
-        cache_file = getattr(entries, f"entry_{name}")._cache._cache_file
-        return bool(cache_file._load_index())
+        return bool(_cache_file(name)._load_index())
     except Exception:  # numba's private cache API: a change there must not break a solve
         return True
 
 
+def _lock_path(name: str) -> Path | None:
+    """The lock a helper compiling ``entry_<name>`` holds, beside numba's index of it (one
+    helper per driver and cache, whichever process started it); None without locks."""
+    if fcntl is None:
+        return None
+    try:
+        return Path(str(_cache_file(name)._index_path) + ".compiling")
+    except Exception:
+        return None
+
+
+def _try_lock(path: Path) -> int | None:
+    """A descriptor holding the exclusive lock on ``path``, or None if another holds it."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        os.close(fd)
+        return None
+    return fd
+
+
 def start() -> None:
-    """Start a helper for each driver of :data:`BACKGROUND` numba has not cached (once per
-    process)."""
+    """Start a helper for each driver of :data:`BACKGROUND` numba has not cached and no
+    other process is compiling (once per process). The helper inherits the driver's lock
+    and holds it until it exits."""
     if _State.started:
         return
     _State.started = True
     if not enabled():
         return
     for name in BACKGROUND:
-        if not cached(name):
-            _State.helpers[name] = subprocess.Popen(
-                [sys.executable, "-m", "mstmm.compiling", name],
-                stdin=subprocess.DEVNULL,
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-            )
+        if cached(name):
+            continue
+        path = _lock_path(name)
+        fd = None
+        if path is not None:
+            try:
+                fd = _try_lock(path)
+            except OSError:  # no lock where the cache is: go on without one
+                path = None
+            if path is not None and fd is None:
+                _State.elsewhere[name] = path
+                continue
+        try:
+            if fd is None or not cached(name):
+                _State.helpers[name] = subprocess.Popen(
+                    [sys.executable, "-m", "mstmm.compiling", name],
+                    stdin=subprocess.DEVNULL,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                    pass_fds=() if fd is None else (fd,),
+                )
+        finally:
+            if fd is not None:
+                os.close(fd)
+
+
+def running(name: str) -> bool:
+    """Whether a helper (this process's or another's) is still compiling ``entry_<name>``."""
+    helper = _State.helpers.get(name)
+    if helper is not None:
+        return helper.poll() is None
+    path = _State.elsewhere.get(name)
+    if path is None:
+        return False
+    fd = _try_lock(path)
+    if fd is None:
+        return True
+    os.close(fd)
+    del _State.elsewhere[name]
+    return False
 
 
 def wait(name: str) -> None:
@@ -75,6 +156,13 @@ def wait(name: str) -> None:
     helper = _State.helpers.pop(name, None)
     if helper is not None:
         helper.wait()
+    path = _State.elsewhere.pop(name, None)
+    if path is not None:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)  # released when its helper exits
+        finally:
+            os.close(fd)
 
 
 def compile_driver(name: str) -> None:
@@ -86,5 +174,7 @@ def compile_driver(name: str) -> None:
 
 
 if __name__ == "__main__":
+    if hasattr(os, "nice"):
+        os.nice(NICENESS)
     for arg in sys.argv[1:]:
         compile_driver(arg)

@@ -284,6 +284,21 @@ class Kernel:
     #: The kernel functions the shared search calls (besides the characteristic function).
     SEARCH = ("count_below", "oscillator_frequencies", "rigid_body_modes")
 
+    def _compiled_search(self, formulation: str) -> tuple:
+        """The search's kernel functions, compiled, for its driver run as Python (a
+        frequency passed on as a float: an int would make numba compile another
+        specialization)."""
+        delta, count, osc, rigid = (
+            self._compiled(n) for n in (f"delta_{formulation}",) + self.SEARCH
+        )
+        return (lambda w, p: delta(float(w), p), lambda w, p: count(float(w), p), osc, rigid)
+
+    def _driver_compiling(self, name: str, python_seconds: float) -> bool:
+        """Whether the shared driver ``entry_<name>`` is still compiling in a helper
+        (:mod:`mstmm.compiling`) and its Python copy is estimated to take at most
+        ``compiling.PYTHON_WHILE_COMPILING``: it then runs as Python meanwhile."""
+        return python_seconds <= compiling.PYTHON_WHILE_COMPILING and compiling.running(name)
+
     def _search_functions(self, formulation: str) -> tuple:
         """The search's functions as plain Python (the interpreted path)."""
         names = (f"delta_{formulation}",) + self.SEARCH
@@ -356,7 +371,12 @@ class Kernel:
             k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
         elif modes <= BLOCK_MODES:
             fa, at = self._search(formulation)
-            k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
+            if self._driver_compiling("lowest", interpret.estimated_cost(modes, 0)):
+                f = self._compiled_search(formulation)
+                lowest = self._python_function("lowest")
+                k = lowest(*f, p, modes, out, flags, state, certify, rtol)
+            else:
+                k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
             k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
         return self._found(out, flags, state, int(k))
@@ -485,6 +505,8 @@ class Kernel:
         xs = np.ascontiguousarray(xs, dtype=np.float64)
         m = int(m)
         python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
+        cost = interpret.estimated_cost(m * interpret.SHAPE_COST_FACTOR, self.attachments(p))
+        python = python or self._driver_compiling("mode_shapes", cost)
         names = ("shape_event", "shape_inertia", "shape_sizes")
         if python:
             event, inertia, sizes = (self._python_function(n) for n in names)
