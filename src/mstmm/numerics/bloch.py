@@ -42,8 +42,9 @@ from .segment import (
     segment_piece_c,
 )
 from .walk import (
-    event_order,
-    next_piece,
+    STOP_END,
+    STOP_EVENT,
+    walk_next,
 )
 
 #: Most beam (in lam h, over one piece or several short ones) between two
@@ -116,12 +117,11 @@ def times_end(M, a, X, c):
 @njit(cache=True)
 def bloch_work(p, sizes):
     """Scratch for ``cell_subspace_in`` (allocated once per thread, not per frequency): the
-    event order and the arrays of the march."""
+    arrays of the march."""
     nq_all, max_q = sizes(p)
     nb = max(1, max_q)
     c = np.complex128
     return (
-        event_order(p),
         np.zeros((8, 4), dtype=c),  # X
         np.zeros((4, 4), dtype=c),  # S
         np.zeros((nb, 4), dtype=c),  # Cz
@@ -164,8 +164,8 @@ def cell_subspace_in(event, w, p, damped, work):
     mbar = p[2]
     w1 = w * L * L * math.sqrt(mbar / EI)
     beta = cmath.sqrt(w1)
-    rows, X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work
-    n_ev = rows.shape[0]
+    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work
+    n_ev = int(p[4])
     for a in range(8):
         for c in range(4):
             X[a, c] = 0.0
@@ -175,31 +175,29 @@ def cell_subspace_in(event, w, p, damped, work):
     pos = 0.0
     seg = 0
     grown = 0.0  # lam h carried since X was last orthonormalised (<= BLOCH_STEP)
-    for r in range(n_ev + 1):
-        x = p[rows[r] + 1] if r < n_ev else L
-        while True:
-            target, after = next_piece(p, seg, x)
-            rho = (target - pos) / L
-            if rho > 0.0:
-                pieces, kh = segment_piece_c(p, seg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
-                for _ in range(pieces):
-                    if grown + kh > BLOCH_STEP:
-                        orthonormalise8(X)
-                        grown = 0.0
-                    for a in range(4):
-                        for c in range(4):
-                            S[a, c] = times_end(U, a, X, c)
-                    for a in range(4):
-                        for c in range(4):
-                            X[4 + a, c] = S[a, c]
-                    grown += kh
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if r == n_ev:
+    r = 0
+    while True:  # the walk along the beam (``walk_next``)
+        sg, stop, what, row, r, seg = walk_next(p, r, seg, pos, n_ev, math.inf)
+        rho = (stop - pos) / L
+        if rho > 0.0:
+            pieces, kh = segment_piece_c(p, sg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
+            for _ in range(pieces):
+                if grown + kh > BLOCH_STEP:
+                    orthonormalise8(X)
+                    grown = 0.0
+                for a in range(4):
+                    for c in range(4):
+                        S[a, c] = times_end(U, a, X, c)
+                for a in range(4):
+                    for c in range(4):
+                        X[4 + a, c] = S[a, c]
+                grown += kh
+            pos = stop
+        if what == STOP_END:
             break
-        nc, nq = event(p, rows[r], w1, Cz, Cq, Ad, B, ev_mass)
+        if what != STOP_EVENT:
+            continue
+        nc, nq = event(p, row, w1, Cz, Cq, Ad, B, ev_mass)
         n = 4 + nq
         for a in range(nc):
             sc = 0.0

@@ -35,15 +35,16 @@ from .paper import apply_columns, lu_logdet, segment_transfer
 from .search import rigid_dimension
 from .segment import any_general, is_general, segment_compound, segment_constraints
 from .walk import (
+    STOP_END,
+    STOP_EVENT,
     borrowed,
-    event_at,
     event_order,
-    next_piece,
     own_table,
     renormalise_end,
     renormalise_lazy,
     scale_minors,
     stable_order,
+    walk_next,
 )
 
 __all__ = ["bind_characteristic", "UNDAMPED", "DAMPED"]
@@ -126,37 +127,32 @@ def delta_chain(w, p):
     e, f, bs = segment_factors(p, 0, beta, EI, mbar)
     n_ev = int(p[4])
     inv_L = 1.0 / L  # a multiplication per piece instead of a division
-    for r in range(n_ev + 1):
-        row, x = event_at(pb, r, n_ev)
-        while True:  # the beam up to x, piece by piece (segment boundaries)
-            target, after = next_piece(pb, seg, x)
-            rho = (target - pos) * inv_L
-            if rho > 0.0:
-                if general and is_general(p, seg):  # exp(A h) of its field matrix
-                    stiff = stiffness(p[HEAD + SEGMENT_WIDTH * seg + 3])
-                    step, ready_f = segment_compound(
-                        v, p, seg, b4, stiff, rho, F, ready_f, U, E, w6
-                    )
-                    log += step
-                else:
-                    if seg != ready:
-                        e, f, bs = segment_factors(p, seg, beta, EI, mbar)
-                        ready = seg
-                    if e != 1.0:
-                        scale_minors(vb, f)
-                    log += beam_step(vb, bs, rho)
-                    if e != 1.0:
-                        scale_minors(vb, e)
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if r == n_ev:
+    r = 0
+    while True:  # the walk along the beam (``walk_next``): a piece, then what it meets
+        s, stop, what, row, r, seg = walk_next(pb, r, seg, pos, n_ev, math.inf)
+        rho = (stop - pos) * inv_L
+        if rho > 0.0:
+            if general and is_general(p, s):  # exp(A h) of its field matrix
+                stiff = stiffness(p[HEAD + SEGMENT_WIDTH * s + 3])
+                step, ready_f = segment_compound(v, p, s, b4, stiff, rho, F, ready_f, U, E, w6)
+                log += step
+            else:
+                if s != ready:
+                    e, f, bs = segment_factors(p, s, beta, EI, mbar)
+                    ready = s
+                if e != 1.0:
+                    scale_minors(vb, f)
+                log += beam_step(vb, bs, rho)
+                if e != 1.0:
+                    scale_minors(vb, e)
+            pos = stop
+        if what == STOP_EVENT:
+            tag = int(p[row])
+            o = int(p[row + 2])
+            log += event_chain(tag, pb, o, vb, w1, b4, L, EI, mbar)
+            log += renormalise_lazy(v)
+        elif what == STOP_END:
             break
-        tag = int(p[row])
-        o = int(p[row + 2])
-        log += event_chain(tag, pb, o, vb, w1, b4, L, EI, mbar)
-        log += renormalise_lazy(v)
     log += renormalise_end(v)
     return v[END_PAIR], log
 
@@ -201,40 +197,38 @@ def count_below(omega, p):
     seg = 0
     n_ev = int(p[4])
     inv_L = 1.0 / L  # a multiplication per piece instead of a division
-    for r in range(n_ev + 1):
-        row, x = event_at(pb, r, n_ev)
-        while True:  # the beam up to x, piece by piece (segment boundaries)
-            target, after = next_piece(pb, seg, x)
-            rho = (target - pos) * inv_L
-            if rho > MERGE_LENGTH and is_general(p, seg):
-                n_field, ready = field_count(Zc, p, seg, b4, rho, F, ready)  # pieces of J0 = 0
-                count += n_field
-                pos = target
-            elif rho > MERGE_LENGTH:
-                # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
-                # transfer matrix is rank-one to working precision): the pivots of each
-                # near node and J0 of each step, with the segment's own properties
-                if seg != ready_s:
-                    e, f, bs = segment_factors(p, seg, beta, EI, mbar)
-                    ready_s = seg
-                pieces = max(1, int(math.ceil(bs * rho / RICCATI_STEP)))
-                if e != 1.0:
-                    scale_minors(Zc, f)
-                for _ in range(pieces):
-                    count += pair_count(Zc, U, bs, rho / pieces)
-                    count += clamped_clamped_count(bs * rho / pieces)
-                if e != 1.0:
-                    scale_minors(Zc, e)
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if r == n_ev:
+    r = 0
+    while True:  # the walk along the beam (``walk_next``); a piece up to MERGE_LENGTH
+        # merges into the next one
+        s, stop, what, row, r, seg = walk_next(pb, r, seg, pos, n_ev, math.inf)
+        rho = (stop - pos) * inv_L
+        if rho > MERGE_LENGTH and is_general(p, s):
+            n_field, ready = field_count(Zc, p, s, b4, rho, F, ready)  # pieces of J0 = 0
+            count += n_field
+            pos = stop
+        elif rho > MERGE_LENGTH:
+            # across the piece in steps of beta_s rho <= RICCATI_STEP (a long piece's
+            # transfer matrix is rank-one to working precision): the pivots of each
+            # near node and J0 of each step, with the segment's own properties
+            if s != ready_s:
+                e, f, bs = segment_factors(p, s, beta, EI, mbar)
+                ready_s = s
+            pieces = max(1, int(math.ceil(bs * rho / RICCATI_STEP)))
+            if e != 1.0:
+                scale_minors(Zc, f)
+            for _ in range(pieces):
+                count += pair_count(Zc, U, bs, rho / pieces)
+                count += clamped_clamped_count(bs * rho / pieces)
+            if e != 1.0:
+                scale_minors(Zc, e)
+            pos = stop
+        if what == STOP_EVENT:
+            tag = int(p[row])
+            o = int(p[row + 2])
+            count += event_count(tag, pb, o, Zb, b4, L, EI, mbar)
+            renormalise_lazy(Zc)
+        elif what == STOP_END:
             break
-        tag = int(p[row])
-        o = int(p[row + 2])
-        count += event_count(tag, pb, o, Zb, b4, L, EI, mbar)
-        renormalise_lazy(Zc)
     detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]
     s11 = S[1, 1]
@@ -273,8 +267,7 @@ def u_bar_paper(omega, p):
     mbar = p[2]
     beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
     b4 = (beta * beta) ** 2
-    rows = event_order(p)
-    n_ev = rows.shape[0]
+    n_ev = int(p[4])
     nq_total, most = shape_sizes(p)
     size = 4 + nq_total
     A = np.zeros((size, size))
@@ -293,21 +286,19 @@ def u_bar_paper(omega, p):
     seg = 0
     ncols = 2
     nrow = 4
-    for r in range(n_ev + 1):
-        x = p[rows[r] + 1] if r < n_ev else L
-        while True:
-            target, after = next_piece(p, seg, x)
-            rho = (target - pos) / L
-            if rho > 0.0:
-                segment_transfer(p, seg, beta, rho, U)
-                apply_columns(U, W, ncols, col)
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if r == n_ev:
+    r = 0
+    while True:  # the walk along the beam (``walk_next``)
+        s, stop, what, row, r, seg = walk_next(p, r, seg, pos, n_ev, math.inf)
+        rho = (stop - pos) / L
+        if rho > 0.0:
+            segment_transfer(p, s, beta, rho, U)
+            apply_columns(U, W, ncols, col)
+            pos = stop
+        if what == STOP_END:
             break
-        nc, nq = shape_event(p, rows[r], b4, Cz, Cq, Ad, B, qmass)
+        if what != STOP_EVENT:
+            continue
+        nc, nq = shape_event(p, row, b4, Cz, Cq, Ad, B, qmass)
         for i in range(nc):
             for j in range(ncols):
                 A[nrow + i, j] = (

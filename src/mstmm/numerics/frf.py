@@ -16,8 +16,12 @@ from .shapes import (
     MARCH_STEP,
 )
 from .walk import (
-    event_order,
-    next_piece,
+    STOP_END,
+    STOP_EXTRA,
+    STOP_SEGMENT,
+    event_at,
+    event_row,
+    walk_next,
 )
 
 # Frequency response (receptance): the forced march. The state left of x is
@@ -389,8 +393,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     mbar = p[2]
     w1 = w * L * L * math.sqrt(mbar / EI)
     beta = cmath.sqrt(w1)
-    rows = event_order(p)
-    n_ev = rows.shape[0]
+    n_ev = int(p[4])
     nq_all, max_q = sizes(p)
     nb = max(1, max_q)
     Cz = np.zeros((nb, 4), dtype=np.complex128)
@@ -466,60 +469,54 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
         seg = 0
         q0 = 0
         failed = False
-        for r in range(n_ev + 1):
-            x = p[rows[r] + 1] if r < n_ev else L
-            while True:  # to x, stopping at segment ends, the load and the outputs
-                target, after = next_piece(p, seg, x)
-                stop = target
-                if not applied and pos <= x_in < stop:
-                    stop = x_in
-                while bptr < n_beam and (done[bo[bptr]] or outputs[bo[bptr], 1] < pos):
-                    bptr += 1  # the next beam output not recorded
-                if bptr < n_beam and outputs[bo[bptr], 1] < stop:
-                    stop = outputs[bo[bptr], 1]
-                rho = (stop - pos) / L
-                if rho > 0.0:
-                    pieces, _ = segment_piece_c(p, seg, w1, beta, damped, rho, MARCH_STEP, U, Ff)
-                    for _ in range(pieces):
-                        for a in range(4):
-                            zz[a] = (
-                                U[a, 0] * z[0] + U[a, 1] * z[1] + U[a, 2] * z[2] + U[a, 3] * z[3]
+        r = 0
+        while True:  # the walk along the beam (``walk_next``), stopping at the load and
+            # the outputs between components too
+            _, x = event_at(p, r, n_ev)  # the next component's x (L past the last)
+            extra = x_in if not applied and pos <= x_in else math.inf
+            while bptr < n_beam and (done[bo[bptr]] or outputs[bo[bptr], 1] < pos):
+                bptr += 1  # the next beam output not recorded
+            if bptr < n_beam and outputs[bo[bptr], 1] < extra:
+                extra = outputs[bo[bptr], 1]
+            sg, stop, what, row, r, seg = walk_next(p, r, seg, pos, n_ev, extra)
+            rho = (stop - pos) / L
+            if rho > 0.0:
+                pieces, _ = segment_piece_c(p, sg, w1, beta, damped, rho, MARCH_STEP, U, Ff)
+                for _ in range(pieces):
+                    for a in range(4):
+                        zz[a] = U[a, 0] * z[0] + U[a, 1] * z[1] + U[a, 2] * z[2] + U[a, 3] * z[3]
+                        for c in range(2):
+                            S[a, c] = (
+                                U[a, 0] * W[0, c]
+                                + U[a, 1] * W[1, c]
+                                + U[a, 2] * W[2, c]
+                                + U[a, 3] * W[3, c]
                             )
-                            for c in range(2):
-                                S[a, c] = (
-                                    U[a, 0] * W[0, c]
-                                    + U[a, 1] * W[1, c]
-                                    + U[a, 2] * W[2, c]
-                                    + U[a, 3] * W[3, c]
-                                )
-                        for a in range(4):
-                            z[a] = zz[a]
-                            for c in range(2):
-                                W[a, c] = S[a, c]
-                        nf = orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf)
-                    pos = stop
-                if pos < x:  # the load and the outputs between components
-                    if not applied and x_in == pos:
-                        if kind_in == FRF_FORCE:
-                            z[3] += load
-                        else:
-                            z[2] -= load
-                        applied = True
-                    bptr = frf_record_at(outputs, pos, bo, bptr, done, W, z, T, t, ep, nep)
-                if stop < target:
-                    continue
-                if after == seg:
-                    break
-                seg = after
+                    for a in range(4):
+                        z[a] = zz[a]
+                        for c in range(2):
+                            W[a, c] = S[a, c]
+                    nf = orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf)
+                pos = stop
+            if pos < x:  # the load and the outputs between components
+                if not applied and x_in == pos:
+                    if kind_in == FRF_FORCE:
+                        z[3] += load
+                    else:
+                        z[2] -= load
+                    applied = True
+                bptr = frf_record_at(outputs, pos, bo, bptr, done, W, z, T, t, ep, nep)
+            if what == STOP_EXTRA or what == STOP_SEGMENT:
+                continue
             if not applied and x_in == x:  # a load at a component, or at x = L
                 if kind_in == FRF_FORCE:
                     z[3] += load
                 else:
                     z[2] -= load
                 applied = True
-            if r == n_ev:
+            if what == STOP_END:
                 break
-            nc, nq = event(p, rows[r], w1, Cz, Cq, Ad, B, ev_mass)
+            nc, nq = event(p, row, w1, Cz, Cq, Ad, B, ev_mass)
             n = 2 + nq
             for a in range(nc):
                 rhs[a] = -(Cz[a, 0] * z[0] + Cz[a, 1] * z[1] + Cz[a, 2] * z[2] + Cz[a, 3] * z[3])
@@ -607,7 +604,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     W[a, c] = S[a, c]
             nf = orthonormalise_c(W, z, T, t, done, ep, G, g, nep, frozen, nf)
             q0 += nq
-            if r + 1 == n_ev or p[rows[r + 1] + 1] != x:  # outputs after the last one here
+            if r == n_ev or p[event_row(p, r) + 1] != x:  # outputs after the last one here
                 bptr = frf_record_at(outputs, x, bo, bptr, done, W, z, T, t, ep, nep)
         if failed:
             for j in range(n_out):

@@ -17,8 +17,9 @@ from .segment import (
     segment_rotary,
 )
 from .walk import (
-    event_order,
-    next_piece,
+    STOP_END,
+    STOP_EVENT,
+    walk_next,
 )
 
 # Mode shapes (paper Eq. (5)): an orthonormalisation march with every attached unknown kept.
@@ -231,28 +232,25 @@ def svd_2x2(E, V):
 
 
 @njit(cache=True)
-def shape_steps(p, beta, rows):
+def shape_steps(p, beta):
     """Number of steps of the march: every point component and every piece."""
     L = p[0]
-    n_ev = rows.shape[0]
+    n_ev = int(p[4])
     steps = n_ev
+    r = 0
     pos = 0.0
     seg = 0
     F = np.empty((4, 4, 4))  # a general segment's field_prepare (of segment ``ready``)
     ready = -1
-    for r in range(n_ev + 1):
-        x = p[rows[r] + 1] if r < n_ev else L
-        while True:
-            target, after = next_piece(p, seg, x)
-            rho = (target - pos) / L
-            if rho > 0.0:
-                pieces, ready = segment_pieces(p, seg, beta, rho, MARCH_STEP, F, ready)
-                steps += pieces
-                pos = target
-            if after == seg:
-                break
-            seg = after
-    return steps
+    while True:  # the walk along the beam (``walk_next``)
+        sg, stop, what, _, r, seg = walk_next(p, r, seg, pos, n_ev, math.inf)
+        rho = (stop - pos) / L
+        if rho > 0.0:
+            pieces, ready = segment_pieces(p, sg, beta, rho, MARCH_STEP, F, ready)
+            steps += pieces
+            pos = stop
+        if what == STOP_END:
+            return steps
 
 
 @njit(cache=True)
@@ -282,10 +280,9 @@ def mode_shapes(
     mbar = p[2]
     beta = L * math.sqrt(math.sqrt(mbar * omega * omega / EI))
     b4 = (beta * beta) ** 2
-    rows = event_order(p)
-    n_ev = rows.shape[0]
+    n_ev = int(p[4])
     nq_all, max_q = sizes(p)
-    n_steps = shape_steps(p, beta, rows)
+    n_steps = shape_steps(p, beta)
     # per step: kind (0 piece, 1 point), rho, its segment's (beta_s, e, mbar_s/mbar_0),
     # nq, nf, offsets of its q and frozen params
     kind = np.zeros(n_steps, dtype=np.int64)
@@ -324,39 +321,37 @@ def mode_shapes(
     nf_total = 0
     pos = 0.0
     seg = 0
-    for i in range(n_ev + 1):
-        x = p[rows[i] + 1] if i < n_ev else L
-        while True:
-            target, after = next_piece(p, seg, x)
-            rho = (target - pos) / L
-            if rho > 0.0:
-                pieces, ready = segment_pieces(p, seg, beta, rho, MARCH_STEP, F, ready)
-                ready = piece_matrix(p, seg, beta, rho / pieces, U, F, ready)
-                for _ in range(pieces):
-                    piece_step(W, G, U)
-                    kind[s] = 0
-                    rho_s[s] = rho / pieces
-                    seg_s[s] = seg
-                    r_s[s] = p[HEAD + SEGMENT_WIDTH * seg + 2] / mbar
-                    rot_s[s] = segment_rotary(p, seg)
-                    x_s[s + 1] = x_s[s] + rho / pieces
-                    for r in range(2):
-                        for c in range(2):
-                            Gbuf[s, r, c] = G[r, c]
-                    s += 1
-                    for r in range(4):
-                        for c in range(2):
-                            Wbuf[s, r, c] = W[r, c]
-                x_s[s] = target / L
-                pos = target
-            if after == seg:
-                break
-            seg = after
-        if i == n_ev:
+    ev = 0  # the walk's next event
+    while True:  # the walk along the beam (``walk_next``)
+        sg, x, what, row, ev, seg = walk_next(p, ev, seg, pos, n_ev, math.inf)
+        rho = (x - pos) / L
+        if rho > 0.0:
+            pieces, ready = segment_pieces(p, sg, beta, rho, MARCH_STEP, F, ready)
+            ready = piece_matrix(p, sg, beta, rho / pieces, U, F, ready)
+            for _ in range(pieces):
+                piece_step(W, G, U)
+                kind[s] = 0
+                rho_s[s] = rho / pieces
+                seg_s[s] = sg
+                r_s[s] = p[HEAD + SEGMENT_WIDTH * sg + 2] / mbar
+                rot_s[s] = segment_rotary(p, sg)
+                x_s[s + 1] = x_s[s] + rho / pieces
+                for r in range(2):
+                    for c in range(2):
+                        Gbuf[s, r, c] = G[r, c]
+                s += 1
+                for r in range(4):
+                    for c in range(2):
+                        Wbuf[s, r, c] = W[r, c]
+            x_s[s] = x / L
+            pos = x
+        if what == STOP_END:
             break
-        nc, nq = event(p, rows[i], b4, Cz, Cq, Ad, B, ev_mass)
+        if what != STOP_EVENT:
+            continue
+        nc, nq = event(p, row, b4, Cz, Cq, Ad, B, ev_mass)
         nf = event_step(W, G, Cz, Cq, Ad, B, nc, nq)
-        if inertia(p, rows[i], Mp) != 0:
+        if inertia(p, row, Mp) != 0:
             for r in range(2):
                 for c in range(2):
                     Mbuf[s, r, c] = Mp[r, c]

@@ -173,6 +173,36 @@ def event_at(p, r, n_ev):
     return 0, p[0]
 
 
+#: What a step of the walk meets at its stop (``walk_next``).
+STOP_EVENT = 0  # a component (its row of the event table)
+STOP_SEGMENT = 1  # a segment's end: the walk goes on in the next segment
+STOP_EXTRA = 2  # the caller's own stop (the frequency response's load and outputs)
+STOP_END = 3  # x = L
+
+
+@njit(cache=True, inline="always")
+def walk_next(p, r, seg, pos, n_ev, extra):
+    """One step of the walk along the beam, the one every characteristic function, the
+    count, the mode-shape march, the frequency response and the Bloch cell take: from
+    ``pos`` (SI) in segment ``seg``, the walk's next event being its r-th, to the next
+    stop: that event's x, the end of segment seg, or ``extra`` (the caller's own stop,
+    if pos <= extra and it comes first; math.inf for none). Returns ``(s, stop, what,
+    row, r, seg)``: the piece from pos to ``stop`` lies in segment ``s`` (stop - pos is
+    0 where two stops coincide), ``what`` is met at ``stop`` (``STOP_*``; ``row`` the
+    event's row of p when it is STOP_EVENT), and ``(r, seg)`` is the walk's state past
+    it. The caller takes the piece and moves pos to stop (or leaves pos, merging a short
+    piece into the next), then handles what it met, until STOP_END."""
+    row, x = event_at(p, r, n_ev)
+    target, after = next_piece(p, seg, x)
+    if pos <= extra < target:
+        return seg, extra, STOP_EXTRA, row, r, seg
+    if after != seg:
+        return seg, target, STOP_SEGMENT, row, r, after
+    if r == n_ev:
+        return seg, target, STOP_END, row, r, seg
+    return seg, target, STOP_EVENT, row, r + 1, seg
+
+
 @njit(cache=True)
 def event_order(p):
     """Start of each row of the event table, in x order."""
