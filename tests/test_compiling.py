@@ -132,3 +132,73 @@ def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monk
         os.close(held)  # that helper exits
     assert not compiling.running("lowest")
     compiling.wait("lowest")  # returns at once
+
+
+_NEW_TOPOLOGY = """
+import json
+from numba.core import event
+compiled = []
+
+class Listener(event.Listener):
+    def on_start(self, e):
+        pass
+
+    def on_end(self, e):
+        compiled.append(e.data["dispatcher"].py_func.__qualname__)
+
+event.register("numba:compile", Listener())
+import mstmm
+scene = mstmm.scene_from_dict({
+    "name": "pinned_pinned",
+    "beam": {"length": 2.0, "EI": 1.0e4, "mass_per_length": 3.0, "left": "pinned",
+             "right": "pinned"},
+})
+sol = mstmm.solve(scene, modes=3)
+print(json.dumps({
+    "omega": [float(w) for w in sol.omega],
+    "certified": bool(sol.count_checked),
+    "shapes": [[list(map(float, s.x)), list(map(float, s.Y))] for s in sol.shapes],
+    "compiled": compiled,
+}))
+"""
+
+
+def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
+    """The shared drivers compiled on the machine, a topology never derived (an empty
+    ``MSTMM_CACHE``) compiled forced: the main process compiles its characteristic
+    function and count, a helper the kernel functions of ``KERNEL_BACKGROUND``, and the
+    roots and shapes are the pinned-pinned beam's closed forms."""
+    scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
+    budget = interpret._Process.budget
+    interpret.set_budget(0.0)
+    try:
+        mstmm.solve(scene, modes=2)  # the drivers compiled here, or by helpers: waited for
+    finally:
+        interpret.set_budget(budget)
+    for name in compiling.BACKGROUND:
+        compiling.wait(name)
+        assert compiling.cached(name), name
+    with tempfile.TemporaryDirectory() as kc:
+        env = dict(os.environ, MSTMM_CACHE=kc, MSTMM_INTERPRET_BUDGET="0")
+        env["MSTMM_COMPILE_HELPERS"] = "1"
+        done = subprocess.run(
+            [sys.executable, "-c", _NEW_TOPOLOGY],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+    out = json.loads(done.stdout.splitlines()[-1])
+    L, EI, mbar = 2.0, 1.0e4, 3.0
+    for n, w in enumerate(out["omega"], start=1):
+        assert abs(w / ((n * math.pi / L) ** 2 * math.sqrt(EI / mbar)) - 1.0) < 1e-12, n
+    assert out["certified"] and len(out["shapes"]) == 3
+    for n, (x, Y) in enumerate(out["shapes"], start=1):  # sin(n pi x / L), up to a factor
+        phi = [math.sin(n * math.pi * t / L) for t in x]
+        k = max(range(len(x)), key=lambda i: abs(phi[i]))
+        assert max(abs(y / Y[k] - f / phi[k]) for y, f in zip(Y, phi)) < 1e-9, n
+    if compiling.enabled():
+        qualnames = " ".join(out["compiled"])
+        assert ".delta_stable" in qualnames and ".count_below" in qualnames
+        for name in compiling.KERNEL_BACKGROUND:
+            assert not any(q.endswith("." + name) for q in out["compiled"]), name

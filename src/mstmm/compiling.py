@@ -14,6 +14,12 @@ lower priority (``nice`` 10), so that this process keeps a core. A helper that
 fails costs nothing but the wait: the driver then compiles here, as it would have
 without it.
 
+The first compiled run of a topology on a machine whose drivers are compiled is split
+the same way: a helper compiles the kernel functions of :data:`KERNEL_BACKGROUND` (its
+own frequencies, the rigid-body count, the mode-shape descriptor) while this process
+compiles the characteristic function and the count, and this process loads them from
+the cache when it needs them.
+
 Helpers start only when a driver is not in numba's cache yet (the first
 compiled run after installing, or after a change in ``mstmm.numerics``), and
 only on a machine with more than one core. One helper per driver and cache: it
@@ -39,6 +45,15 @@ except ImportError:  # not POSIX: no locks, each process starts its own helpers
 #: The drivers a default solve calls (``entry_<name>``), each compiled by a helper of
 #: its own when numba's cache does not hold it.
 BACKGROUND = ("lowest", "mode_shapes")
+#: The kernel functions a helper compiles on a topology's first compiled run while this
+#: process compiles its characteristic function and count (``start_kernel``).
+KERNEL_BACKGROUND = (
+    "oscillator_frequencies",
+    "rigid_body_modes",
+    "shape_event",
+    "shape_inertia",
+    "shape_sizes",
+)
 #: Seconds of driver work (the interpreted tier's estimate, ``interpret.estimated_cost``)
 #: below which a driver still compiling in a helper runs as Python instead of waiting.
 PYTHON_WHILE_COMPILING = 2.0
@@ -52,6 +67,9 @@ class _State:
     helpers: dict[str, subprocess.Popen] = {}
     #: Drivers another process's helper is compiling: the lock file it holds.
     elsewhere: dict[str, Path] = {}
+    #: Helpers compiling a kernel's functions, by the kernel module's name (None: none
+    #: needed or allowed).
+    kernels: dict[str, subprocess.Popen | None] = {}
 
 
 def enabled() -> bool:
@@ -165,6 +183,56 @@ def wait(name: str) -> None:
             os.close(fd)
 
 
+def start_kernel(module) -> None:
+    """Start a helper that compiles the kernel functions of :data:`KERNEL_BACKGROUND` of
+    ``module`` (a kernel whose functions numba has not cached) into numba's cache, unless
+    the drivers' helpers run (call :func:`start` first)."""
+    name = module.__name__
+    if name in _State.kernels:
+        return
+    _State.kernels[name] = None
+    if not enabled() or _State.helpers or _State.elsewhere:
+        # nothing compiled on this machine yet: the drivers' helpers hold the other core,
+        # and a kernel helper would compile the shared functions the kernel calls again
+        return
+    try:
+        if module.oscillator_frequencies._cache._cache_file._load_index():
+            return  # compiled before
+    except Exception:  # numba's private cache API: a change there must not break a solve
+        return
+    _State.kernels[name] = subprocess.Popen(
+        [sys.executable, "-m", "mstmm.compiling", "--kernel", module.__file__, name],
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+
+
+def wait_kernel(module, function: str) -> None:
+    """Wait until the helper compiling ``function`` of ``module`` (if any) is done."""
+    if function in KERNEL_BACKGROUND:
+        helper = _State.kernels.get(module.__name__)
+        if helper is not None:
+            helper.wait()
+
+
+def compile_kernel(path: str, name: str) -> None:
+    """Compile the functions of :data:`KERNEL_BACKGROUND` of the kernel module ``name`` (at
+    ``path``) for the signatures the shared drivers call them with."""
+    import importlib
+
+    from mstmm import kernels
+    from mstmm.numerics import entries
+
+    if name.startswith("mstmm.generated."):
+        module = importlib.import_module(name)
+    else:
+        module = kernels._load_file(Path(path), name)
+    for function in KERNEL_BACKGROUND:
+        ftype = entries.FUNCTION_TYPES[function][1]
+        getattr(module, function).compile(ftype.signature)  # as _get_wrapper_address asks
+
+
 def compile_driver(name: str) -> None:
     """Compile ``entry_<name>`` for the one signature the kernels call it with (numba
     writes it to its cache)."""
@@ -176,5 +244,8 @@ def compile_driver(name: str) -> None:
 if __name__ == "__main__":
     if hasattr(os, "nice"):
         os.nice(NICENESS)
-    for arg in sys.argv[1:]:
-        compile_driver(arg)
+    if sys.argv[1:2] == ["--kernel"]:
+        compile_kernel(sys.argv[2], sys.argv[3])
+    else:
+        for arg in sys.argv[1:]:
+            compile_driver(arg)

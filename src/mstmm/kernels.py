@@ -279,6 +279,8 @@ class Kernel:
     def _compiled(self, name: str):
         interpret.mark_compiled()
         compiling.start()  # the shared drivers compile in helpers meanwhile, if not cached
+        compiling.start_kernel(self.module)  # and some of this kernel's functions
+        compiling.wait_kernel(self.module, name)
         return getattr(self.module, name)
 
     #: The kernel functions the shared search calls (besides the characteristic function).
