@@ -17,8 +17,10 @@ import mstmm
 from mstmm import compiling, interpret
 from mstmm.numerics import entries
 
-_COLD = """
-import json, sys
+#: A child script's head: the qualified names of what numba compiles in it, in
+#: ``compiled``.
+_LISTENER = """
+import json
 from numba.core import event
 compiled = []
 
@@ -30,6 +32,11 @@ class Listener(event.Listener):
         compiled.append(e.data["dispatcher"].py_func.__qualname__)
 
 event.register("numba:compile", Listener())
+"""
+
+_COLD = (
+    _LISTENER
+    + """
 import mstmm
 from mstmm import compiling
 scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
@@ -42,6 +49,7 @@ print(json.dumps({
     "cached": [compiling.wait(n) or compiling.cached(n) for n in compiling.BACKGROUND],
 }))
 """
+)
 
 
 def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
@@ -134,19 +142,9 @@ def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monk
     compiling.wait("lowest")  # returns at once
 
 
-_NEW_TOPOLOGY = """
-import json
-from numba.core import event
-compiled = []
-
-class Listener(event.Listener):
-    def on_start(self, e):
-        pass
-
-    def on_end(self, e):
-        compiled.append(e.data["dispatcher"].py_func.__qualname__)
-
-event.register("numba:compile", Listener())
+_NEW_TOPOLOGY = (
+    _LISTENER
+    + """
 import mstmm
 scene = mstmm.scene_from_dict({
     "name": "pinned_pinned",
@@ -161,6 +159,7 @@ print(json.dumps({
     "compiled": compiled,
 }))
 """
+)
 
 
 def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
