@@ -48,6 +48,8 @@ def _first_run_remark(first: dict, key: str) -> str:
     from .workprecision import fmt_time
 
     remark = "numba compiles the topology's kernel; the shared numerics once per machine"
+    if key == "numerics_compiled":
+        remark += "; a helper process compiles part of the kernel meanwhile (mstmm.compiling)"
     alone = first.get("nothing_compiled_one_process")
     if key == "nothing_compiled" and alone:
         remark += (

@@ -226,6 +226,7 @@ def measure_derive(res: Results, ns, log) -> None:
             env = dict(os.environ)
             env["MSTMM_CACHE"] = str(Path(tmp) / f"cache-{n}")
             env["MSTMM_INTERPRET_BUDGET"] = "0"  # compiled: what is measured here
+            env["MSTMM_COMPILE_HELPERS"] = "1"  # as a user's process compiles
             t = time.perf_counter()
             proc = subprocess.run(
                 [sys.executable, "-c", _DERIVE_CODE, str(path)],

@@ -32,6 +32,7 @@ process exits goes on and leaves its driver in the cache for the next run.
 
 from __future__ import annotations
 
+import atexit
 import os
 import subprocess
 import sys
@@ -214,6 +215,26 @@ def wait_kernel(module, function: str) -> None:
         helper = _State.kernels.get(module.__name__)
         if helper is not None:
             helper.wait()
+
+
+def wait_all() -> None:
+    """Wait for every helper this process started (drivers' and kernels')."""
+    for name in list(_State.helpers):
+        wait(name)
+    for helper in _State.kernels.values():
+        if helper is not None:
+            helper.wait()
+
+
+@atexit.register
+def _stop_kernel_helpers() -> None:
+    """A kernel's helper still compiling when this process exits (a solve without mode
+    shapes needs only part of its work) is stopped: what it compiled is in the cache, the
+    rest costs the next run its compile, and no process outlives a solve but the drivers'
+    helpers of a machine's first run."""
+    for helper in _State.kernels.values():
+        if helper is not None and helper.poll() is None:
+            helper.terminate()
 
 
 def compile_kernel(path: str, name: str) -> None:
