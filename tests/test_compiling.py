@@ -201,3 +201,26 @@ def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
         assert ".delta_stable" in qualnames and ".count_below" in qualnames
         for name in compiling.KERNEL_BACKGROUND:
             assert not any(q.endswith("." + name) for q in out["compiled"]), name
+
+
+def test_a_driver_runs_as_python_while_compiling_within_a_budget(monkeypatch):
+    """While a helper compiles a driver, its calls run as Python as long as their Python
+    time together stays within ``PYTHON_WHILE_COMPILING``; then they wait for it."""
+
+    class Fresh:
+        started = True
+        helpers: dict = {}
+        elsewhere: dict = {}
+        python: dict = {}
+        kernels: dict = {}
+
+    monkeypatch.setattr(compiling, "_State", Fresh)
+    monkeypatch.setattr(compiling, "running", lambda name: True)
+    budget = compiling.PYTHON_WHILE_COMPILING
+    assert compiling.python_instead("lowest", 0.75 * budget)
+    compiling.charge("lowest", 0.75 * budget)
+    assert compiling.python_instead("lowest", 0.2 * budget)
+    assert not compiling.python_instead("lowest", 0.3 * budget)  # past the budget: wait
+    assert compiling.python_instead("mode_shapes", 0.3 * budget)  # each driver its own
+    monkeypatch.setattr(compiling, "running", lambda name: False)
+    assert not compiling.python_instead("mode_shapes", 0.0)  # compiled: no Python

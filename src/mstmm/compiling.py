@@ -8,7 +8,8 @@ first-class function values), so a helper process can compile them into
 numba's on-disk cache while this process compiles the kernel. When this process
 reaches a driver its helper has not finished, the driver runs as Python around the
 compiled kernel (the interpreted tier's copy of it, :mod:`mstmm.interpret`) if that
-is estimated to take under :data:`PYTHON_WHILE_COMPILING`; a bigger problem waits
+is estimated to keep its Python time within :data:`PYTHON_WHILE_COMPILING`, all
+its calls together; past that (a bigger problem, many calls) the process waits
 for the helper and loads the machine code from the cache. The helpers run at a
 lower priority (``nice`` 10), so that this process keeps a core. A helper that
 fails costs nothing but the wait: the driver then compiles here, as it would have
@@ -55,8 +56,9 @@ KERNEL_BACKGROUND = (
     "shape_inertia",
     "shape_sizes",
 )
-#: Seconds of driver work (the interpreted tier's estimate, ``interpret.estimated_cost``)
-#: below which a driver still compiling in a helper runs as Python instead of waiting.
+#: Seconds of Python a driver still compiling in a helper may take in this process, all
+#: its calls together (those spent, plus the interpreted tier's estimate of the next,
+#: ``interpret.estimated_cost``); past it, the next call waits for the helper.
 PYTHON_WHILE_COMPILING = 2.0
 #: The helpers' niceness (added to this process's).
 NICENESS = 10
@@ -68,6 +70,8 @@ class _State:
     helpers: dict[str, subprocess.Popen] = {}
     #: Drivers another process's helper is compiling: the lock file it holds.
     elsewhere: dict[str, Path] = {}
+    #: Seconds each driver has run as Python while its helper compiled it.
+    python: dict[str, float] = {}
     #: Helpers compiling a kernel's functions, by the kernel module's name (None: none
     #: needed or allowed).
     kernels: dict[str, subprocess.Popen | None] = {}
@@ -168,6 +172,19 @@ def running(name: str) -> bool:
     os.close(fd)
     del _State.elsewhere[name]
     return False
+
+
+def python_instead(name: str, estimate: float) -> bool:
+    """Whether to run the driver ``entry_<name>`` as Python now: its helper is still
+    compiling it, and the Python time spent on it so far plus ``estimate`` (seconds)
+    stays within :data:`PYTHON_WHILE_COMPILING`."""
+    spent = _State.python.get(name, 0.0)
+    return spent + estimate <= PYTHON_WHILE_COMPILING and running(name)
+
+
+def charge(name: str, seconds: float) -> None:
+    """Count ``seconds`` of the driver ``entry_<name>`` run as Python."""
+    _State.python[name] = _State.python.get(name, 0.0) + seconds
 
 
 def wait(name: str) -> None:

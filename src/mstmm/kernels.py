@@ -295,12 +295,6 @@ class Kernel:
         )
         return (lambda w, p: delta(float(w), p), lambda w, p: count(float(w), p), osc, rigid)
 
-    def _driver_compiling(self, name: str, python_seconds: float) -> bool:
-        """Whether the shared driver ``entry_<name>`` is still compiling in a helper
-        (:mod:`mstmm.compiling`) and its Python copy is estimated to take at most
-        ``compiling.PYTHON_WHILE_COMPILING``: it then runs as Python meanwhile."""
-        return python_seconds <= compiling.PYTHON_WHILE_COMPILING and compiling.running(name)
-
     def _search_functions(self, formulation: str) -> tuple:
         """The search's functions as plain Python (the interpreted path)."""
         names = (f"delta_{formulation}",) + self.SEARCH
@@ -373,10 +367,12 @@ class Kernel:
             k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
         elif modes <= BLOCK_MODES:
             fa, at = self._search(formulation)
-            if self._driver_compiling("lowest", interpret.estimated_cost(modes, 0)):
+            if compiling.python_instead("lowest", interpret.estimated_cost(modes, 0)):
                 f = self._compiled_search(formulation)
                 lowest = self._python_function("lowest")
+                t0 = time.perf_counter()
                 k = lowest(*f, p, modes, out, flags, state, certify, rtol)
+                compiling.charge("lowest", time.perf_counter() - t0)
             else:
                 k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
@@ -508,9 +504,9 @@ class Kernel:
         m = int(m)
         python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
         cost = interpret.estimated_cost(m * interpret.SHAPE_COST_FACTOR, self.attachments(p))
-        python = python or self._driver_compiling("mode_shapes", cost)
+        while_compiling = not python and compiling.python_instead("mode_shapes", cost)
         names = ("shape_event", "shape_inertia", "shape_sizes")
-        if python:
+        if python or while_compiling:
             event, inertia, sizes = (self._python_function(n) for n in names)
         else:
             event, inertia, sizes = (self._compiled(n) for n in names)
@@ -527,6 +523,10 @@ class Kernel:
         args += (ratio,)
         if python:
             interpret.timed_call(self._python_function("mode_shapes"), event, inertia, sizes, *args)
+        elif while_compiling:  # the driver compiles in a helper (mstmm.compiling)
+            t0 = time.perf_counter()
+            self._python_function("mode_shapes")(event, inertia, sizes, *args)
+            compiling.charge("mode_shapes", time.perf_counter() - t0)
         else:
             self._entry("mode_shapes")(fa, *args)
             self.warmed.add("mode_shapes")
