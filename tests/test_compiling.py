@@ -10,6 +10,7 @@ import os
 import subprocess
 import sys
 import tempfile
+from pathlib import Path
 
 from test_cli import _cantilever_omega
 
@@ -52,9 +53,25 @@ print(json.dumps({
 )
 
 
+def _fresh_state(monkeypatch, started: bool):
+    """A fresh ``compiling._State`` for this test (no helper, nothing spent)."""
+
+    class Fresh:
+        drivers = None
+        helpers: dict = {}
+        elsewhere: dict = {}
+        python: dict = {}
+        kernels: dict = {}
+
+    Fresh.started = started
+    monkeypatch.setattr(compiling, "_State", Fresh)
+    return Fresh
+
+
 def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
-    """``entries.SIGNATURES`` (what a helper compiles) is what a solve calls: a solve
-    forced to run compiled, mode shapes on, adds no other signature to the drivers."""
+    """``entries.SIGNATURES`` (what a helper compiles) is what a solve calls: an undamped
+    and a damped solve forced to run compiled, mode shapes on, add no other signature to
+    the drivers."""
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     budget = interpret._Process.budget
     interpret.set_budget(0.0)
@@ -63,7 +80,14 @@ def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
     finally:
         interpret.set_budget(budget)
     assert sol.count_checked and len(sol.shapes) == 3
-    for name in compiling.BACKGROUND:
+    damped = mstmm.load_scene(Path(__file__).parents[1] / "examples" / "tmd_den_hartog.toml")
+    interpret.set_budget(0.0)
+    try:
+        sol = mstmm.solve(damped, modes=3)  # a damped solve: damped_shapes, and lowest
+    finally:
+        interpret.set_budget(budget)
+    assert sol.count_checked and len(sol.shapes) == 3
+    for name in (*compiling.BACKGROUND, "damped_shapes"):
         dispatcher = getattr(entries, f"entry_{name}")
         assert dispatcher.signatures == [entries.SIGNATURES[name]], name
 
@@ -119,13 +143,7 @@ def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monk
     if compiling.fcntl is None:
         return  # no locks on this platform: nothing to check
     lock = tmp_path / "entry_lowest.nbi.compiling"
-
-    class Fresh:
-        started = False
-        helpers: dict = {}
-        elsewhere: dict = {}
-
-    monkeypatch.setattr(compiling, "_State", Fresh)
+    state = _fresh_state(monkeypatch, started=False)
     monkeypatch.setattr(compiling, "BACKGROUND", ("lowest",))
     monkeypatch.setattr(compiling, "enabled", lambda: True)
     monkeypatch.setattr(compiling, "cached", lambda name: False)
@@ -134,7 +152,7 @@ def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monk
     assert held is not None
     try:
         compiling.start()
-        assert Fresh.helpers == {} and Fresh.elsewhere == {"lowest": lock}
+        assert state.helpers == {} and state.elsewhere == {"lowest": lock}
         assert compiling.running("lowest")
     finally:
         os.close(held)  # that helper exits
@@ -206,15 +224,7 @@ def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
 def test_a_driver_runs_as_python_while_compiling_within_a_budget(monkeypatch):
     """While a helper compiles a driver, its calls run as Python as long as their Python
     time together stays within ``PYTHON_WHILE_COMPILING``; then they wait for it."""
-
-    class Fresh:
-        started = True
-        helpers: dict = {}
-        elsewhere: dict = {}
-        python: dict = {}
-        kernels: dict = {}
-
-    monkeypatch.setattr(compiling, "_State", Fresh)
+    _fresh_state(monkeypatch, started=True)
     monkeypatch.setattr(compiling, "running", lambda name: True)
     budget = compiling.PYTHON_WHILE_COMPILING
     assert compiling.python_instead("lowest", 0.75 * budget)
@@ -224,3 +234,19 @@ def test_a_driver_runs_as_python_while_compiling_within_a_budget(monkeypatch):
     assert compiling.python_instead("mode_shapes", 0.3 * budget)  # each driver its own
     monkeypatch.setattr(compiling, "running", lambda name: False)
     assert not compiling.python_instead("mode_shapes", 0.0)  # compiled: no Python
+
+
+def test_a_damped_solve_asks_helpers_for_its_own_drivers(monkeypatch):
+    """A damped solve registers the drivers it calls (the search for its undamped start,
+    ``damped_shapes``), so that a machine's first run does not compile ``mode_shapes``
+    in a helper for nothing."""
+
+    _fresh_state(monkeypatch, started=False)
+    spawned = []
+    monkeypatch.setattr(compiling, "enabled", lambda: True)
+    monkeypatch.setattr(compiling, "cached", lambda name: False)
+    monkeypatch.setattr(compiling, "_lock_path", lambda name: None)
+    monkeypatch.setattr(compiling.subprocess, "Popen", lambda args, **kw: spawned.append(args[-1]))
+    compiling.register(("lowest", "damped_shapes"))
+    compiling.start()
+    assert spawned == ["lowest", "damped_shapes"]

@@ -66,6 +66,8 @@ NICENESS = 10
 
 class _State:
     started: bool = False
+    #: The drivers :func:`start` gives helpers (``register``; default :data:`BACKGROUND`).
+    drivers: tuple[str, ...] | None = None
     #: This process's helpers, by driver.
     helpers: dict[str, subprocess.Popen] = {}
     #: Drivers another process's helper is compiling: the lock file it holds.
@@ -122,16 +124,23 @@ def _try_lock(path: Path) -> int | None:
     return fd
 
 
+def register(drivers: tuple[str, ...]) -> None:
+    """The drivers this process's work calls, for :func:`start` (a damped solve calls the
+    search and ``damped_shapes``, not ``mode_shapes``): before anything is compiled."""
+    if not _State.started and _State.drivers is None:
+        _State.drivers = tuple(drivers)
+
+
 def start() -> None:
-    """Start a helper for each driver of :data:`BACKGROUND` numba has not cached and no
-    other process is compiling (once per process). The helper inherits the driver's lock
-    and holds it until it exits."""
+    """Start a helper for each driver the process's work calls (:func:`register`, else
+    :data:`BACKGROUND`) that numba has not cached and no other process is compiling (once
+    per process). The helper inherits the driver's lock and holds it until it exits."""
     if _State.started:
         return
     _State.started = True
     if not enabled():
         return
-    for name in BACKGROUND:
+    for name in BACKGROUND if _State.drivers is None else _State.drivers:
         if cached(name):
             continue
         path = _lock_path(name)

@@ -1055,11 +1055,14 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
     damping values are all 0 is solved in it too)."""
     import time
 
+    from . import compiling
     from .kernels import load_kernel
     from .topology import parameter_vector, topology_of
 
     if modes is None and band is None:
         modes = 10
+    # the drivers a damped solve calls, if a machine's first run compiles them (helpers)
+    compiling.register(("lowest", "damped_shapes") if shapes else ("lowest",))
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     if kernel is None:

@@ -86,6 +86,7 @@ SIGNATURES = {
     "lowest": (_I1, _i8, _A1, _i8, _A1, _I1, _A1, types.boolean, _f8),
     "mode_shapes": (_I1, _I1, _f8, _A1, _i8, _A1, types.float64[:, :, ::1], _A2, _A1, _A2, _A2)
     + (_A1, _A1),
+    "damped_shapes": (_I1, _I1, types.boolean, _c16, _A1, _A2, _A2, _C2, _A1),
 }
 
 
