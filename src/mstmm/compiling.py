@@ -37,6 +37,7 @@ import atexit
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 try:
@@ -92,13 +93,20 @@ def _cache_file(name: str):
     return getattr(entries, f"entry_{name}")._cache._cache_file
 
 
-def cached(name: str) -> bool:
-    """Whether numba's cache holds machine code of ``entry_<name>`` for the current sources
+def _holds(dispatcher) -> bool:
+    """Whether numba's cache holds machine code of ``dispatcher`` for the current sources
     (an unreadable cache counts as holding it: no helper then)."""
     try:
-        return bool(_cache_file(name)._load_index())
+        return bool(dispatcher._cache._cache_file._load_index())
     except Exception:  # numba's private cache API: a change there must not break a solve
         return True
+
+
+def cached(name: str) -> bool:
+    """Whether numba's cache holds machine code of ``entry_<name>`` (``_holds``)."""
+    from mstmm.numerics import entries
+
+    return _holds(getattr(entries, f"entry_{name}"))
 
 
 def _lock_path(name: str) -> Path | None:
@@ -112,16 +120,28 @@ def _lock_path(name: str) -> Path | None:
         return None
 
 
-def _try_lock(path: Path) -> int | None:
-    """A descriptor holding the exclusive lock on ``path``, or None if another holds it."""
+def _try_lock(path: Path, block: bool = False) -> int | None:
+    """A descriptor holding the exclusive lock on ``path``, or None if another holds it
+    (``block``: wait until it is released instead)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        fcntl.flock(fd, fcntl.LOCK_EX if block else fcntl.LOCK_EX | fcntl.LOCK_NB)
     except OSError:
         os.close(fd)
         return None
     return fd
+
+
+def _spawn(*args: str, fds: tuple[int, ...] = ()) -> subprocess.Popen:
+    """A helper: ``python -m mstmm.compiling ARGS``, silent, inheriting ``fds``."""
+    return subprocess.Popen(
+        [sys.executable, "-m", "mstmm.compiling", *args],
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        pass_fds=fds,
+    )
 
 
 def register(drivers: tuple[str, ...]) -> None:
@@ -155,13 +175,7 @@ def start() -> None:
                 continue
         try:
             if fd is None or not cached(name):
-                _State.helpers[name] = subprocess.Popen(
-                    [sys.executable, "-m", "mstmm.compiling", name],
-                    stdin=subprocess.DEVNULL,
-                    stdout=subprocess.DEVNULL,
-                    stderr=subprocess.DEVNULL,
-                    pass_fds=() if fd is None else (fd,),
-                )
+                _State.helpers[name] = _spawn(name, fds=() if fd is None else (fd,))
         finally:
             if fd is not None:
                 os.close(fd)
@@ -196,6 +210,15 @@ def charge(name: str, seconds: float) -> None:
     _State.python[name] = _State.python.get(name, 0.0) + seconds
 
 
+def timed_call(name: str, fn, *args):
+    """``fn(*args)`` (the driver ``entry_<name>`` as Python), its time charged to it."""
+    t0 = time.perf_counter()
+    try:
+        return fn(*args)
+    finally:
+        charge(name, time.perf_counter() - t0)
+
+
 def wait(name: str) -> None:
     """Wait until the helper compiling ``entry_<name>`` (if any) is done."""
     helper = _State.helpers.pop(name, None)
@@ -203,10 +226,8 @@ def wait(name: str) -> None:
         helper.wait()
     path = _State.elsewhere.pop(name, None)
     if path is not None:
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX)  # released when its helper exits
-        finally:
+        fd = _try_lock(path, block=True)  # released when its helper exits
+        if fd is not None:
             os.close(fd)
 
 
@@ -222,17 +243,9 @@ def start_kernel(module) -> None:
         # nothing compiled on this machine yet: the drivers' helpers hold the other core,
         # and a kernel helper would compile the shared functions the kernel calls again
         return
-    try:
-        if module.oscillator_frequencies._cache._cache_file._load_index():
-            return  # compiled before
-    except Exception:  # numba's private cache API: a change there must not break a solve
-        return
-    _State.kernels[name] = subprocess.Popen(
-        [sys.executable, "-m", "mstmm.compiling", "--kernel", module.__file__, name],
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-    )
+    first = getattr(module, KERNEL_BACKGROUND[0], None)  # a damped kernel has none of them
+    if first is not None and not _holds(first):  # compiled before: no helper
+        _State.kernels[name] = _spawn("--kernel", module.__file__, name)
 
 
 def wait_kernel(module, function: str) -> None:

@@ -370,9 +370,8 @@ class Kernel:
             if compiling.python_instead("lowest", interpret.estimated_cost(modes, 0)):
                 f = self._compiled_search(formulation)
                 lowest = self._python_function("lowest")
-                t0 = time.perf_counter()
-                k = lowest(*f, p, modes, out, flags, state, certify, rtol)
-                compiling.charge("lowest", time.perf_counter() - t0)
+                args = (p, modes, out, flags, state, certify, rtol)
+                k = compiling.timed_call("lowest", lowest, *f, *args)
             else:
                 k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
@@ -524,9 +523,8 @@ class Kernel:
         if python:
             interpret.timed_call(self._python_function("mode_shapes"), event, inertia, sizes, *args)
         elif while_compiling:  # the driver compiles in a helper (mstmm.compiling)
-            t0 = time.perf_counter()
-            self._python_function("mode_shapes")(event, inertia, sizes, *args)
-            compiling.charge("mode_shapes", time.perf_counter() - t0)
+            shapes = self._python_function("mode_shapes")
+            compiling.timed_call("mode_shapes", shapes, event, inertia, sizes, *args)
         else:
             self._entry("mode_shapes")(fa, *args)
             self.warmed.add("mode_shapes")
