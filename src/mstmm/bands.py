@@ -11,10 +11,12 @@ Band edges are the frequencies where a pair turns propagating at k L = 0 or pi: 
 eigenvalues of the cell closed on itself periodically or antiperiodically. Each is found
 with its multiplicity by bisection on a Wittrick-Williams count (the cell clamped at
 both ends, ``Kernel.count_below``, plus the negative eigenvalues of the closed cell's
-2x2 joint stiffness) and polished by Brent on det(X_L -+ X_0): none is missed. A pass band
-can also end where two propagating pairs meet at an interior k (the pairs turn complex;
-possible when two pairs propagate, e.g. a Timoshenko segment above its cut-off): such an
-edge is found from the dispersion grid only and marked uncertified.
+2x2 joint stiffness) and polished by Brent on det(X_L -+ X_0): none is missed. A band
+can also end where two propagating pairs meet at an interior k and turn complex (at the
+edges of a locally resonant gap, above a Timoshenko cut-off): between consecutive edges
+the pairs propagating at the two ends prove whether that happens, and once (``_gaps``);
+where two propagate at both ends it is not proved, and an edge found there is marked
+uncertified.
 """
 
 from __future__ import annotations
@@ -52,7 +54,7 @@ class Edge:
     """A band edge: ``omega`` (rad/s) where a wave pair turns propagating or evanescent at
     k L = 0 (``kind`` "periodic") or pi ("antiperiodic"), with its ``multiplicity`` (2
     where two branches meet and no gap opens); "coalescence" where two pairs meet at an
-    interior k (found on the dispersion grid, ``certified`` False)."""
+    interior k (``certified`` where ``_gaps`` proves it the only one of its stretch)."""
 
     omega: float
     kind: str
@@ -75,11 +77,11 @@ class Bands:
     where every wave decays). ``edges``: every band edge in ``band`` (undamped cells),
     ``gaps``: the stop bands in ``band`` as (lo, hi) pairs (a gap reaching an end of
     ``band`` is cut there). ``count_checked``: the count proved every edge at k L = 0 or
-    pi (none missed, multiplicities exact) and, between them, that no band ends at an
-    interior k (``_gaps``: proved where one pair or none propagates at a stretch's ends,
-    but for EDGE_SLIVER of it beside each edge); False when a pass band ends where two
-    propagating pairs meet (an uncertified "coalescence" edge) or where two pairs
-    propagate between edges (``notes`` says where)."""
+    pi (none missed, multiplicities exact) and, between them, every band end at an
+    interior k (a "coalescence": two pairs meet and turn complex), by ``_gaps``' argument
+    (but for EDGE_SLIVER of a stretch beside each edge); False where two pairs propagate
+    at both ends of a stretch, which that argument does not settle (``notes`` says where;
+    an edge found there is not certified)."""
 
     cell: Scene
     omega: np.ndarray
@@ -430,13 +432,18 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
       anywhere in [a', b']: a stop band, proved;
     * one pair at a' and at b': one branch w_n(theta) crosses [a', b'] and no other enters
       it; the branch is monotone (a turn would give three propagating pairs), so exactly
-      one pair propagates throughout: a pass band, proved.
+      one pair propagates throughout: a pass band, proved;
+    * none at one end and two at the other: D = 1 between the two waves' theta and 0
+      elsewhere, so one branch dips into [a', b'] from beyond the end with two, and turns
+      there exactly once (twice more would give four propagating values of theta): the
+      two pairs meet at an interior k at exactly one frequency, a band edge inside the
+      zone ("coalescence", proved; located by bisection on the number of pairs).
 
-    Two pairs at a' and b' prove nothing of that kind (they may meet at an interior k and
-    turn complex, and part again): such a stretch is read at a few points, said in a
-    note, and not proved. Where the number of pairs read at the points changes, two
-    pairs meet inside: located by bisection on the pattern (an uncertified "coalescence"
-    edge)."""
+    Two pairs at both ends prove nothing of that kind (they may meet and part again
+    inside): such a stretch is read at a few points, said in a note, and not proved,
+    and a change found between the points is an uncertified "coalescence" edge; so is any
+    other pattern of the ends (one pair at one end only would need an edge at k L = 0
+    or pi inside: a misread)."""
     cuts = sorted({lo, hi, *(e.omega for e in edges if lo <= e.omega <= hi)})
     found = list(edges)
     notes: list[str] = []
@@ -444,18 +451,29 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
     for a, b in zip(cuts, cuts[1:]):
         if b <= a:
             continue
-        at = np.array([EDGE_SLIVER, 0.05, 0.25, 0.5, 0.75, 0.95, 1.0 - EDGE_SLIVER])
-        probe = a + (b - a) * at
+        ea, eb = a + (b - a) * EDGE_SLIVER, b - (b - a) * EDGE_SLIVER
+        na, nb = (int(v) for v in c.propagating(np.array([ea, eb])))
+        if na == nb and na < 2:  # proved: none or one pair throughout
+            spans.append((a, b, na))
+            continue
+        if {na, nb} == {0, 2}:  # proved: two pairs meet at exactly one frequency inside
+            x = _bisect_change(c, ea, eb, na)
+            found.append(Edge(x, "coalescence", 1, certified=True))
+            spans += [(a, x, na), (x, b, nb)]
+            continue
+        probe = a + (b - a) * np.array(
+            [EDGE_SLIVER, 0.05, 0.25, 0.5, 0.75, 0.95, 1.0 - EDGE_SLIVER]
+        )
         n = c.propagating(probe)
         if np.all(n == n[0]):
             spans.append((a, b, int(n[0])))
-            if n[0] >= 2:
-                notes.append(
-                    f"two wave pairs propagate between {a:.12g} and {b:.12g} rad/s: that"
-                    " they do not meet at an interior k there (a gap inside) is not proved"
-                )
+            notes.append(
+                f"two wave pairs propagate between {a:.12g} and {b:.12g} rad/s: that they"
+                " do not meet at an interior k there (a gap inside) is not proved"
+            )
             continue
-        # two pairs meet inside: split at each change, found by bisection on the pattern
+        # pairs meet inside, not proved how often: split at each change found between
+        # the points, by bisection on the pattern
         xs = [a]
         for i in range(len(probe) - 1):
             if n[i] != n[i + 1]:
@@ -478,9 +496,8 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
 
 
 #: The stretch beside each edge left out of ``_gaps``' proof (relative to the stretch): the
-#: propagating pairs are read from the signs of P(+-2), which the edge itself zeroes (read
-#: closer than ~1e-6 of the stretch, they came out wrong beside a narrow gap's edge).
-EDGE_SLIVER = 1e-4
+#: propagating pairs are read there from the signs of P(+-2), which the edge zeroes.
+EDGE_SLIVER = 1e-9
 
 
 def _bisect_change(c: _Cell, a: float, b: float, na: int) -> float:
