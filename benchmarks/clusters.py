@@ -17,10 +17,16 @@ the small sizes only, nothing recorded).
   the multiplicity at w0 (exactly N - 1) and the other roots against the beam with ONE
   spring-mass (N k, N m) at that point (the same, by ``tests/test_clusters.py``'s proof):
   missed = the roots that differ;
-* **identical, evenly spaced**: the same N spring-masses at x = (i + 1/2) L / N: every
-  root of the cluster (``--modes`` up to w0 (1 + 1e-6), plus 2); missed: the reference
-  count in windows w0 (1 -+ d) against the roots found there (N = 1,000; at 10,000 one
-  window, the reference count costing about 10 s).
+* **identical, evenly spaced**: the same N spring-masses at x = (i + 1/2) L / N, written
+  as what they are, N cells of L / N with one at the middle (``repeat = N``: the count and
+  characteristic function in O(log N), ``mstmm.repeated``): every root of the cluster
+  (``--modes`` up to w0 (1 + 1e-6), plus 2), N = 1,000, 10,000 and 100,000; missed: the
+  reference count in windows w0 (1 -+ d) against the roots found there (N = 1,000; at
+  10,000 one window, the reference count costing about 10 s; at 100,000 none). The same
+  N = 1,000 written out as N attachments goes through the general search, for comparison;
+* **metamaterial**: ``examples/metamaterial.toml``'s cell repeated N = 10,000 and 100,000
+  times: every root of the pass band below the gap (the count below 3141 rad/s); missed:
+  the reference count there (N = 10,000).
 
 The time of a whole cluster against N: log-log slope between the two N.
 """
@@ -32,11 +38,13 @@ import math
 import platform
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 import mstmm
-from mstmm import interpret
+from mstmm import interpret, repeated
+from mstmm.scene import scene_to_dict
 
 from . import figures
 from .cases import rm as ref
@@ -75,8 +83,14 @@ def identical(n: int, where: str):
     w0 = math.sqrt(EI / mbar) / L**2 * BETA0**2
     m = MASS_RATIO * mbar * L / n
     k = m * w0**2
-    xs = [0.37 * L] * n if where == "one point" else [(i + 0.5) * L / n for i in range(n)]
     name = f"identical_{n}_{where.replace(' ', '_')}"
+    if where == "cells":  # the spaced ones as N cells, each with one at its middle
+        cell = {"length": L / n, "EI": EI, "mass_per_length": mbar}
+        cell |= {"left": "clamped", "right": "free"}
+        sm = {"type": "spring_mass", "x": 0.5 * L / n, "k": k, "m": m}
+        d = {"name": name, "repeat": n, "beam": cell, "attachments": [sm]}
+        return mstmm.scene_from_dict(d), w0, k, m
+    xs = [0.37 * L] * n if where == "one point" else [(i + 0.5) * L / n for i in range(n)]
     return spring_masses([(x, k, m) for x in xs], name), w0, k, m
 
 
@@ -167,11 +181,11 @@ def one_point(n: int) -> dict:
     }
 
 
-def spaced(n: int, windows) -> dict:
-    scene, w0, _, _ = identical(n, "spaced")
+def spaced(n: int, windows, general: bool = False) -> dict:
+    scene, w0, _, _ = identical(n, "cells")
     kernel = mstmm.kernel_for(scene)
-    p = mstmm.parameter_vector(scene)
-    modes = int(kernel.count_below(np.array([w0 * (1.0 + 1e-6)]), p)[0]) + 2
+    chain = repeated.chain_of(scene)
+    modes = int(chain.count_below(np.array([w0 * (1.0 + 1e-6)]))[0]) + 2
     sol, t, runs = timed(
         lambda: mstmm.solve(scene, modes=modes, shapes=False, kernel=kernel), 2.0, 3
     )
@@ -184,15 +198,48 @@ def spaced(n: int, windows) -> dict:
         missed += abs(want - got)
         checked.append([d, got, want])
     distinct, counts = np.unique(sol.omega, return_counts=True)
+    out = {
+        "n": n,
+        "modes": modes,
+        "seconds": t,
+        "runs": runs,
+        "path": sol.kernel_mode,
+        "distinct": int(distinct.size),
+        "largest_multiplicity": int(counts.max()),
+        "windows": checked,
+        "missed": missed,
+        "count_checked": bool(sol.count_checked),
+    }
+    if general:  # the same structure written out: the general search
+        explicit, _, _, _ = identical(n, "spaced")
+        k2 = mstmm.kernel_for(explicit)
+        other, t2, _ = timed(
+            lambda: mstmm.solve(explicit, modes=modes, shapes=False, kernel=k2), 2.0, 3
+        )
+        out["general_seconds"] = t2
+        out["general_max_difference"] = float(np.max(np.abs(other.omega - sol.omega) / sol.omega))
+    return out
+
+
+def metamaterial(n: int, reference: bool) -> dict:
+    scene = mstmm.load_scene(Path(__file__).resolve().parents[1] / "examples" / "metamaterial.toml")
+    d = scene_to_dict(scene.cell) | {"repeat": n, "name": f"metamaterial_{n}"}
+    scene = mstmm.scene_from_dict(d)
+    kernel = mstmm.kernel_for(scene)
+    below = 3141.0  # in the pass band just below the gap (3141.41 to 3847.63 rad/s)
+    modes = int(repeated.chain_of(scene).count_below(np.array([below]))[0])
+    sol, t, runs = timed(
+        lambda: mstmm.solve(scene, modes=modes, shapes=False, kernel=kernel), 2.0, 3
+    )
+    missed = ref.count_below(scene, below, dps=30) - modes if reference else 0
     return {
         "n": n,
         "modes": modes,
         "seconds": t,
         "runs": runs,
-        "distinct": int(distinct.size),
-        "largest_multiplicity": int(counts.max()),
-        "windows": checked,
-        "missed": missed,
+        "path": sol.kernel_mode,
+        "missed": int(missed),
+        "missed_by": "reference (mpmath)" if reference else "the count",
         "count_checked": bool(sol.count_checked),
     }
 
@@ -206,16 +253,28 @@ def measure(quick: bool) -> dict:
     interpret.set_budget(0.0)  # compiled throughout
     warm, _, _, _ = identical(50, "spaced")
     mstmm.solve(warm, modes=300, shapes=False)  # compiles every entry point the runs use
+    warm, _, _, _ = identical(50, "cells")
+    mstmm.solve(warm, modes=60, shapes=False)  # and those of repeated cells
     sizes = (1_000, 3_000) if quick else (10_000, 100_000)
     band = [in_band(n, reference=not quick and n <= 10_000) for n in sizes]
     ns = (300, 1_000) if quick else (1_000, 10_000)
     one = [one_point(n) for n in ns]
-    spread = [spaced(n, WINDOWS if n <= 1_000 else WINDOWS[:1]) for n in ns]
+    cells = (1_000, 3_000) if quick else (1_000, 10_000, 100_000)
+    spread = [
+        spaced(n, WINDOWS if n <= 1_000 else WINDOWS[:1] if n <= 10_000 else (), n == cells[0])
+        for n in cells
+    ]
+    meta = [metamaterial(n, not quick and n <= 10_000) for n in cells[-2:]]
     return {
         "in_band": band,
         "one_point": one,
         "spaced": spread,
-        "slopes": {"one_point": slope(one), "spaced": slope(spread)},
+        "metamaterial": meta,
+        "slopes": {
+            "one_point": slope(one),
+            "spaced": slope(spread),
+            "metamaterial": slope(meta),
+        },
     }
 
 
@@ -253,16 +312,32 @@ def report(fig: dict) -> None:
             f" certified {r['count_checked']}"
         )
     print(f"  log-log slope: {fig['slopes']['one_point']:.2f}")
-    print("\nidentical spring-masses at evenly spaced points, every root of the cluster:")
+    print(
+        "\nidentical spring-masses at evenly spaced points (N cells, repeat = N), every root"
+        " of the cluster:"
+    )
     for r in fig["spaced"]:
         windows = "; ".join(f"{d:.0e}: {g} (reference {w})" for d, g, w in r["windows"])
         print(
-            f"  N = {r['n']:>6}: {r['modes']} modes in {fmt_time(r['seconds'])};"
+            f"  N = {r['n']:>6}: {r['modes']} modes in {fmt_time(r['seconds'])} ({r['path']});"
             f" {r['distinct']} distinct values (largest multiplicity"
-            f" {r['largest_multiplicity']}); roots within w0 (1 -+ d): {windows};"
+            f" {r['largest_multiplicity']}); roots within w0 (1 -+ d): {windows or 'not checked'};"
             f" missed {r['missed']}; certified {r['count_checked']}"
         )
+        if "general_seconds" in r:
+            print(
+                f"             the same written out as {r['n']} attachments, general search:"
+                f" {fmt_time(r['general_seconds'])}; largest difference"
+                f" {r['general_max_difference']:.1e}"
+            )
     print(f"  log-log slope: {fig['slopes']['spaced']:.2f}")
+    print("\nmetamaterial (examples/metamaterial.toml's cell), every root below the gap:")
+    for r in fig["metamaterial"]:
+        print(
+            f"  N = {r['n']:>6}: {r['modes']} modes in {fmt_time(r['seconds'])} ({r['path']});"
+            f" missed {r['missed']} ({r['missed_by']}); certified {r['count_checked']}"
+        )
+    print(f"  log-log slope: {fig['slopes']['metamaterial']:.2f}")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -274,8 +349,8 @@ def main(argv: list[str] | None = None) -> int:
     fig = measure(args.quick)
     report(fig)
     print(f"\n({time.perf_counter() - t0:.0f} s)")
-    ok = all(r["missed"] == 0 and r["count_checked"] for k in ("in_band", "one_point", "spaced")
-             for r in fig[k])  # fmt: skip
+    kinds = ("in_band", "one_point", "spaced", "metamaterial")
+    ok = all(r["missed"] == 0 and r["count_checked"] for k in kinds for r in fig[k])
     if args.record and not args.quick:
         path = figures.record("clusters", fig, command="python -m benchmarks.clusters --record")
         print(f"recorded in {path}")

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import repeated
 from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
@@ -35,8 +36,10 @@ class Solution:
     count_checked: bool = False
     shapes: list[ModeShape] | None = None
     warnings: list[str] = field(default_factory=list)
-    #: How the kernel's root search ran: ``"compiled"`` (numba) or ``"interpreted"``
-    #: (plain Python, for a small first solve: :mod:`mstmm.interpret`).
+    #: How the kernel's root search ran: ``"compiled"`` (numba), ``"interpreted"``
+    #: (plain Python, for a small first solve: :mod:`mstmm.interpret`) or ``"repeated
+    #: cells"`` (N identical cells, their count and characteristic function by doubling
+    #: the cell: :mod:`mstmm.repeated`).
     kernel_mode: str = "compiled"
     #: True when the lowest ``modes`` end inside a multiple root: its multiplicity
     #: (the true one, in :attr:`multiplicity`) exceeds the copies in :attr:`omega`.
@@ -144,12 +147,23 @@ def solve_undamped(
             [stability.message()],
             buckling=stability,
         )
-    interpreted = modes is not None and formulation == "stable" and kernel.interprets(p, modes)
-    if not interpreted:
-        kernel.warm_up(p, formulation)
-    t2 = time.perf_counter()
-    timings["compile"] = t2 - t1
-    found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+    # N identical cells: the count and the characteristic function by doubling the cell
+    chain = repeated.chain_of(scene) if formulation == "stable" else None
+    found = None
+    if chain is not None:
+        t2 = time.perf_counter()
+        timings["compile"] = t2 - t1
+        rigid = kernel.rigid_body_modes(p)
+        found = repeated.find_roots(scene, chain, rigid, modes=modes, band=band)
+    interpreted = False
+    if found is None:
+        chain = None
+        interpreted = modes is not None and formulation == "stable" and kernel.interprets(p, modes)
+        if not interpreted:
+            kernel.warm_up(p, formulation)
+        t2 = time.perf_counter()
+        timings["compile"] = t2 - t1
+        found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
     roots = found.roots
     t3 = time.perf_counter()
     timings["scan_refine"] = t3 - t2
@@ -187,7 +201,7 @@ def solve_undamped(
         found.count_checked,
         shape_list,
         warnings,
-        "interpreted" if interpreted else "compiled",
+        "repeated cells" if chain is not None else "interpreted" if interpreted else "compiled",
         truncated,
         stability,
     )

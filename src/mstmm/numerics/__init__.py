@@ -11,7 +11,8 @@ from its differential equation), ``segment`` (a piece's transfer, whichever the 
 kind), ``paper`` (the paper's determinant), ``characteristic`` (a topology's characteristic
 functions, bound to the functions its kernel prints), ``search`` (the certified scan),
 ``shapes`` (mode shapes), ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch
-conditions), ``entries`` (the drivers called from Python).
+conditions), ``repeated`` (N identical cells by doubling), ``entries`` (the drivers called
+from Python).
 """
 
 from mstmm.generated.euler_bernoulli import *  # noqa: F403
@@ -26,6 +27,7 @@ from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .paper import *  # noqa: F403
+from .repeated import *  # noqa: F403
 from .search import *  # noqa: F403
 from .segment import *  # noqa: F403
 from .shapes import *  # noqa: F403

@@ -23,6 +23,12 @@ from .bloch import (
 from .frf import (
     frf_march,
 )
+from .repeated import (
+    levels_of,
+    repeated_roots,
+    repeated_work,
+    structure_at,
+)
 from .search import (
     STATE_CERTIFIED,
     STATE_SIZE,
@@ -293,3 +299,40 @@ def entry_subspace(fa, damped, w, p):
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
     return cell_subspace(event, sizes, w, p, damped)
+
+
+@njit(cache=True)
+def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
+    """``repeated.structure_at`` of n_cells cells at every real ws[k]: out[k] = (J,
+    mantissa, log, ok) (``fa``: the kernel of the cell clamped at both ends)."""
+    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
+    sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
+    work = bloch_work(p, sizes)
+    mats = repeated_work(levels_of(n_cells))
+    for k in range(ws.shape[0]):
+        J, fm, fl, ok = structure_at(event, count, ws[k], p, n_cells, ends, free, work, mats)
+        out[k, 0] = J
+        out[k, 1] = fm
+        out[k, 2] = fl
+        out[k, 3] = 1.0 if ok else 0.0
+
+
+@njit(cache=True)
+def entry_repeated_roots(fa, p, n_cells, ends, free, lo, hi, out, mult, flags):
+    """``repeated.repeated_roots`` with the cell kernel's functions."""
+    return repeated_roots(
+        as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1]),
+        as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
+        as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1]),
+        as_osc(fa[FA_OSC], fa[FA_OSC + 1]),
+        p,
+        n_cells,
+        ends,
+        free,
+        lo,
+        hi,
+        out,
+        mult,
+        flags,
+    )
