@@ -204,3 +204,27 @@ def test_weakly_coupled_root_gets_its_own_sign_change():
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(pytest.main([__file__, "-q"]))
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_brent_across_a_bracket_whose_scale_moves_by_more_than_the_doubles_reach(compiled):
+    """The characteristic functions come as (mantissa, log): across a bracket whose log
+    moves by 2000 (e^2000: next to a component's own frequency, the repeated cells' next to
+    their resonators) the end scaled by exp(-2000) was flushed to zero and Brent's method
+    returned it as the root, converged. The closed form: a sign change at 1.2345."""
+    r = 1.2345
+
+    def delta(x, p):
+        return (x - r) / (1.0 + abs(x - r)), 2000.0 * (x - 1.0)
+
+    kernel = mstmm.kernel_for(mstmm.load_scene(mstmm.example_path("wu_chou_1998")))
+    if compiled:
+        from numba import njit
+
+        from mstmm.numerics import refine
+
+        root, _, conv = refine(njit(delta), 1.0, 2.0, np.zeros(8), 0.0, 200)
+    else:
+        ns = interpret.python_copy(kernel.module)
+        root, _, conv = ns["refine"](delta, 1.0, 2.0, np.zeros(8), 0.0, 200)
+    assert conv and abs(root - r) <= 4e-16 * r, root

@@ -52,6 +52,7 @@ from .layout import (
     POLE_GUARD,
 )
 from .search import (
+    at_scale,
     near_pole,
     pole_data,
 )
@@ -601,12 +602,11 @@ def guarded(own, w):
 
 @njit(cache=True)
 def value_at(event, count, x, p, n_cells, ends, free, work, mats, ref):
-    """The characteristic function at x as mantissa exp(log - ref), the exponent clipped to
-    [-700, 700] (never zero where the function is not: across a bracket next to a
-    component's own frequency its log moves by hundreds, and a value flushed to zero
-    would stop Brent's method there), and whether it exists."""
+    """The characteristic function at x as mantissa exp(log - ref) (``search.at_scale``:
+    never zero where the function is not; next to a component's own frequency its log
+    moves by hundreds across a bracket), and whether it exists."""
     _, fm, fl, ok = structure_at(event, count, x, p, n_cells, ends, free, work, mats)
-    return fm * math.exp(max(-700.0, min(fl - ref, 700.0))), ok
+    return at_scale(fm, fl, ref), ok
 
 
 @njit(cache=True)
@@ -706,8 +706,8 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
             continue
         if Jb - Ja == 1 and (ma > 0.0) != (mb > 0.0) and not own_inside(own, a, b):
             ref = max(la, lb)
-            fa = ma * math.exp(max(-700.0, min(la - ref, 700.0)))
-            fb = mb * math.exp(max(-700.0, min(lb - ref, 700.0)))
+            fa = at_scale(ma, la, ref)
+            fb = at_scale(mb, lb, ref)
             root, conv = brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref)
             out[k] = root
             mult[k] = 1

@@ -23,11 +23,19 @@ def evaluate(delta, omegas, p, mant, logs):
         mant[i], logs[i] = delta(omegas[i], p)
 
 
+@njit(cache=True, inline="always")
+def at_scale(m, g, ref):
+    """The value (mantissa m, log g) times exp(-ref), the exponent clipped to [-700, 700]:
+    finite, and never zero where the value is not (a bracket across which the scale moves
+    by more than e^745 flushed one end to zero, and Brent took it for the root)."""
+    return m * math.exp(max(-700.0, min(g - ref, 700.0)))
+
+
 @njit(cache=True)
 def scaled(delta, omega, p, ref):
-    """mantissa * exp(log - ref), clipped to stay finite: continuous in omega, exact sign."""
+    """mantissa * exp(log - ref), clipped (``at_scale``): continuous in omega, exact sign."""
     m, g = delta(omega, p)
-    return m * math.exp(min(g - ref, 700.0))
+    return at_scale(m, g, ref)
 
 
 @njit(cache=True, inline="always")
@@ -161,8 +169,8 @@ def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, r
     ma, ga = divide(ma, ga, a, poles, skip_lo, skip_hi)
     mb, gb = divide(mb, gb, b, poles, skip_lo, skip_hi)
     ref = max(ga, gb)
-    fa = ma * math.exp(ga - ref)
-    fb = mb * math.exp(gb - ref)
+    fa = at_scale(ma, ga, ref)
+    fb = at_scale(mb, gb, ref)
     if fa == 0.0:
         return a, 0, True
     if fb == 0.0:
@@ -182,7 +190,7 @@ def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, r
     fc = fa
     if x3 == x3:
         m3, g3 = divide(m3, g3, x3, poles, skip_lo, skip_hi)
-        f3 = m3 * math.exp(min(g3 - ref, 700.0))
+        f3 = at_scale(m3, g3, ref)
         if f3 == f3 and (f3 > 0.0) == (fb > 0.0) and abs(f3) > abs(fb) and f3 != fc and x3 != b:
             a = x3
             fa = f3
@@ -235,7 +243,7 @@ def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, r
         else:
             b += tol if m > 0.0 else -tol
         mb, gb = divided(delta, b, p, poles, skip_lo, skip_hi)
-        fb = mb * math.exp(min(gb - ref, 700.0))
+        fb = at_scale(mb, gb, ref)
     return b, maxiter, False
 
 
@@ -669,8 +677,8 @@ def pair_probe(xa, ma, ga, xb, mb, gb, lo, hi):
     outside its two nodes then has a sign change of its own instead of sharing a bracket
     with its neighbour's root. Returns the probe, or nan."""
     ref = max(ga, gb)
-    fa = ma * math.exp(ga - ref)
-    fb = mb * math.exp(gb - ref)
+    fa = at_scale(ma, ga, ref)
+    fb = at_scale(mb, gb, ref)
     if fa == fb or fa == 0.0 or fb == 0.0 or (fa > 0.0) != (fb > 0.0):
         return np.nan
     r = xb - fb * (xb - xa) / (fb - fa)
