@@ -15,7 +15,7 @@ import pytest
 import reference_model as ref
 
 import mstmm
-from mstmm import repeated
+from mstmm import compiling, repeated
 from mstmm.scene import scene_to_dict
 
 RTOL = 1e-12
@@ -166,8 +166,8 @@ def test_scenes_it_does_not_serve_keep_the_general_search():
     supported = repeated_scene(
         _beam("free", "free"), [{"type": "support", "x": 0.1}], 5, "supported"
     )
-    assert repeated.chain_of(supported) is None
-    sol = mstmm.solve(supported, modes=6, shapes=False)
+    sol = mstmm.solve(supported, modes=6, shapes=False)  # the cells' search cannot start
+    assert sol.kernel_mode != "repeated cells"
     exact = [float(w) for w in ref.frequencies(supported, 6, dps=30)]
     assert np.allclose(sol.omega, exact, rtol=RTOL, atol=0.0)
     scene = metamaterial(10)
@@ -197,3 +197,24 @@ def test_the_default_threshold(monkeypatch):
     assert repeated.MIN_CELLS == 500
     assert mstmm.solve(metamaterial(200), modes=5, shapes=False).kernel_mode != "repeated cells"
     assert mstmm.solve(metamaterial(1000), modes=5, shapes=False).kernel_mode == "repeated cells"
+
+
+def test_the_driver_compiles_for_the_signature_a_solve_calls_and_runs_as_python(monkeypatch):
+    """A machine's first run compiles ``entry_repeated_search`` in a helper for
+    ``entries.SIGNATURES`` (``mstmm.compiling``): a solve calls it with exactly that; while
+    the helper compiles, its Python copy runs around the cell kernel's compiled functions
+    and gives the reference's roots too."""
+    from mstmm.numerics import entries
+
+    scene = metamaterial(12)
+    sol = mstmm.solve(scene, modes=10, shapes=False)
+    assert sol.kernel_mode == "repeated cells"
+    assert entries.entry_repeated_search.signatures == [entries.SIGNATURES["repeated_search"]]
+    monkeypatch.setattr(compiling, "python_instead", lambda name, estimate: True)
+    scene = metamaterial(13)
+    sol = mstmm.solve(scene, modes=10, shapes=False)
+    exact = np.array([float(w) for w in ref.frequencies(scene, 10, dps=30)])
+    assert sol.kernel_mode == "repeated cells" and sol.count_checked
+    elastic = exact > 0.0
+    assert np.all(sol.omega[~elastic] == 0.0)
+    assert np.max(np.abs(sol.omega[elastic] - exact[elastic]) / exact[elastic]) <= RTOL

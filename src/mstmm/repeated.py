@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from . import compiling
 from .catalog import KNOWN_ZERO, unknown
 from .kernels import Kernel, load_kernel, numerics
 from .scan import BAND_EDGE, Root, Roots
@@ -29,11 +30,15 @@ from .topology import parameter_vector, topology_of
 #: 25 ns a component in the general walk, so below some hundreds of cells the general
 #: search is as fast, and it needs no more compiling on a machine's first run.
 MIN_CELLS = DEFAULT_MIN_CELLS = 500
-#: The lowest frequency searched starts this far below a scale of the structure's first
-#: (``_start``), divided by 100 until the count there holds only the rigid-body modes.
-START = 1e-3
-#: How many times ``_start`` may divide it.
-START_TRIES = 12
+
+
+#: The shared driver of this path (``numerics.entries.entry_repeated_search``), and the cell
+#: kernel's functions it calls.
+DRIVER = "repeated_search"
+_FUNCTIONS = ("shape_event_c", "count_below", "shape_sizes", "oscillator_frequencies")
+#: Python time a root of this path costs while its driver compiles in a helper, for
+#: ``compiling.python_instead`` (measured: 12 ms a root, 1,000 metamaterial cells).
+PYTHON_SECONDS_PER_ROOT = 0.02
 
 
 class Chain:
@@ -57,8 +62,8 @@ class Chain:
             [pairs.index(unknown(scene.beam.left)), pairs.index(KNOWN_ZERO[scene.beam.right])],
             dtype=np.int64,
         )
-        names = ("shape_event_c", "shape_sizes", "count_below", "oscillator_frequencies")
-        self.fa = self.kernel._addresses(*names)
+        self.scale = _scale(scene)
+        self.fa = self.kernel._addresses(*_FUNCTIONS)
         self.n = numerics()
 
     def at(self, omegas: np.ndarray) -> np.ndarray:
@@ -69,53 +74,62 @@ class Chain:
         self.n.entry_repeated_at(self.fa, ws, self.p, self.n_cells, self.ends, self.free, out)
         return out
 
+    def search(
+        self, rigid: int, want: int, lo: float, hi: float, most: int
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None:
+        """The natural frequencies in (lo, hi], or (hi = 0) the lowest ``want`` of them
+        counted with the ``rigid`` zero ones, at most ``most`` distinct values: (omega,
+        multiplicity, not converged, certified); None where the search cannot start
+        (``numerics.repeated.repeated_search``). Its driver compiles in a helper process
+        on a machine's first run (``mstmm.compiling``)."""
+        out = np.zeros(most)
+        mult = np.zeros(most, dtype=np.int64)
+        flags = np.zeros(most, dtype=np.int64)
+        args = (self.p, self.n_cells, self.ends, self.free, int(rigid), int(want), float(lo))
+        args += (float(hi), self.scale, out, mult, flags)
+        if compiling.python_instead(DRIVER, PYTHON_SECONDS_PER_ROOT * max(most, 1)):
+            # the driver's helper is still compiling it: its Python copy meanwhile, around
+            # the cell kernel's compiled functions
+            kernel = self.kernel
+            names = ("shape_event_c", "shape_sizes", "oscillator_frequencies")
+            event, sizes, osc = (kernel._compiled(n) for n in names)
+            count = kernel._compiled("count_below")
+            driver = kernel._python_function(DRIVER)
+            k, certified, started = compiling.timed_call(
+                DRIVER, driver, event, lambda w, p: count(float(w), p), sizes, osc, *args
+            )
+        else:
+            k, certified, started = self.kernel._entry(DRIVER)(self.fa, *args)
+        if not started:
+            return None
+        return out[:k], mult[:k], flags[:k].astype(bool), bool(certified)
+
     def count_below(self, omegas: np.ndarray) -> np.ndarray:
         """The natural frequencies of the whole structure below each omega (-1: not
         defined there, a clamped-clamped frequency of a power of the cell)."""
         r = self.at(omegas)
         return np.where(r[:, 3] == 1.0, r[:, 0], -1).astype(np.int64)
 
-    def roots(
-        self, lo: float, hi: float, most: int
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
-        """The lowest ``most`` natural frequencies in (lo, hi]: (omega, multiplicity, not
-        converged, certified)."""
-        out = np.zeros(most)
-        mult = np.zeros(most, dtype=np.int64)
-        flags = np.zeros(most, dtype=np.int64)
-        k, certified = self.n.entry_repeated_roots(
-            self.fa,
-            self.p,
-            self.n_cells,
-            self.ends,
-            self.free,
-            float(lo),
-            float(hi),
-            out,
-            mult,
-            flags,
-        )
-        return out[:k], mult[:k], flags[:k].astype(bool), bool(certified)
 
-
-def chain_of(scene: Scene) -> Chain | None:
-    """The :class:`Chain` of a scene the doubling applies to (kept on the scene), else None."""
-    known = scene.__dict__.get("_chain")
-    if known is not None:
-        return known or None
-    chain: Chain | bool = False
-    if (
+def qualifies(scene: Scene) -> bool:
+    """Whether :func:`mstmm.solve` takes this path for ``scene`` (in the stable formulation):
+    at least :data:`MIN_CELLS` cells of one cell, not graded, undamped. A cell without a
+    transfer matrix is found out by the search itself (:func:`find_roots` returns None)."""
+    return (
         getattr(scene, "repeat", 1) >= max(2, MIN_CELLS)
         and scene.cell is not None
         and not scene.graded
         and not topology_of(scene).damped
-    ):
-        c = Chain(scene)
-        probe = c.at(_scale(scene) * np.array([0.37, 1.91, 7.3]))
-        if probe[:, 3].all():  # a stiffness between the end displacements exists
-            chain = c
-    object.__setattr__(scene, "_chain", chain)
-    return chain or None
+    )
+
+
+def chain_of(scene: Scene) -> Chain | None:
+    """The :class:`Chain` of a scene that :func:`qualifies` (kept on the scene), else None."""
+    known = scene.__dict__.get("_chain")
+    if known is None:
+        known = Chain(scene) if qualifies(scene) else False
+        object.__setattr__(scene, "_chain", known)
+    return known or None
 
 
 def _scale(scene: Scene) -> float:
@@ -125,17 +139,6 @@ def _scale(scene: Scene) -> float:
     EI = b.segments[0].EI if b.segments else b.EI
     mbar = b.segments[0].mass_per_length if b.segments else b.mass_per_length
     return (math.pi / b.length) ** 2 * math.sqrt(EI / mbar)
-
-
-def _start(chain: Chain, scene: Scene, rigid: int) -> float | None:
-    """A frequency > 0 below every elastic root: the count there is the rigid-body modes."""
-    own = chain.kernel.oscillator_frequencies(chain.p)
-    lo = START * min([_scale(scene), *(float(w) for w in own[own > 0.0])])
-    for _ in range(START_TRIES):
-        if int(chain.count_below(np.array([lo]))[0]) == rigid:
-            return lo
-        lo *= 0.01
-    return None
 
 
 def find_roots(
@@ -148,26 +151,25 @@ def find_roots(
 ) -> Roots | None:
     """The lowest ``modes`` natural frequencies, or those in ``band`` (its edges inclusive
     by ``scan.BAND_EDGE``), as :func:`mstmm.scan.find_roots` gives them; ``rigid``: the
-    number of zero frequencies (the expanded kernel's ``rigid_body_modes``). None when the
-    doubling cannot start (the general search then runs)."""
-    lo = _start(chain, scene, rigid)
-    if lo is None:
-        return None
+    number of zero frequencies (the expanded kernel's ``rigid_body_modes``). None where
+    the cells' path cannot start (a cell without a transfer matrix): the general search
+    runs instead."""
     roots: list[Root] = []
     if band is None:
         want = int(modes)
-        roots += [Root(0.0, rigid, True, "rigid")] if rigid and want > 0 else []
-        hi = max(lo * 4.0, _scale(scene))
-        while int(chain.count_below(np.array([hi]))[0]) < want:
-            hi *= 2.0
-        w, m, bad, certified = chain.roots(lo, hi, max(want - rigid, 0))
+        if rigid and want > 0:
+            roots.append(Root(0.0, rigid, True, "rigid"))
+        found = chain.search(rigid, want, 0.0, 0.0, max(want - rigid, 0))
     else:
         a, b = band
         a, b = a * (1.0 - BAND_EDGE), b * (1.0 + BAND_EDGE)
         if a <= 0.0 and rigid:
             roots.append(Root(0.0, rigid, True, "rigid"))
         n_band = int(chain.count_below(np.array([b]))[0])
-        w, m, bad, certified = chain.roots(max(a, lo), b, max(n_band, 1))
+        found = chain.search(rigid, 0, max(a, 0.0), b, max(n_band, 1))
+    if found is None:
+        return None
+    w, m, bad, certified = found
     roots += [Root(float(x), int(k), not f) for x, k, f in zip(w, m, bad)]
     notes: list[str] = []
     if band is None:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import repeated
+from . import compiling, repeated
 from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, mode_shapes
@@ -120,6 +120,9 @@ def solve_undamped(
     if modes is None and band is None:
         modes = 10
     timings: dict[str, float] = {}
+    cells = formulation == "stable" and repeated.qualifies(scene)
+    if cells:  # a machine's first run compiles these drivers in helpers, not the search
+        compiling.register(("repeated_search",) + (("mode_shapes",) if shapes else ()))
     t0 = time.perf_counter()
     if kernel is None:
         kernel = load_kernel(topology)
@@ -148,7 +151,7 @@ def solve_undamped(
             buckling=stability,
         )
     # N identical cells: the count and the characteristic function by doubling the cell
-    chain = repeated.chain_of(scene) if formulation == "stable" else None
+    chain = repeated.chain_of(scene) if cells else None
     found = None
     if chain is not None:
         t2 = time.perf_counter()

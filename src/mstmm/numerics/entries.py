@@ -25,7 +25,7 @@ from .frf import (
 )
 from .repeated import (
     levels_of,
-    repeated_roots,
+    repeated_search,
     repeated_work,
     structure_at,
 )
@@ -93,6 +93,7 @@ SIGNATURES = {
     "mode_shapes": (_I1, _I1, _f8, _A1, _i8, _A1, types.float64[:, :, ::1], _A2, _A1, _A2, _A2)
     + (_A1, _A1),
     "damped_shapes": (_I1, _I1, types.boolean, _c16, _A1, _A2, _A2, _C2, _A1),
+    "repeated_search": (_I1, _A1, _i8, _I1, _I1, _i8, _i8, _f8, _f8, _f8, _A1, _I1, _I1),
 }
 
 
@@ -319,9 +320,9 @@ def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
 
 
 @njit(cache=True)
-def entry_repeated_roots(fa, p, n_cells, ends, free, lo, hi, out, mult, flags):
-    """``repeated.repeated_roots`` with the cell kernel's functions."""
-    return repeated_roots(
+def entry_repeated_search(fa, p, n_cells, ends, free, rigid, want, lo, hi, scale, out, mult, flags):
+    """``repeated.repeated_search`` with the cell kernel's functions."""
+    return repeated_search(
         as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1]),
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
         as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1]),
@@ -330,8 +331,11 @@ def entry_repeated_roots(fa, p, n_cells, ends, free, lo, hi, out, mult, flags):
         n_cells,
         ends,
         free,
+        rigid,
+        want,
         lo,
         hi,
+        scale,
         out,
         mult,
         flags,

@@ -72,6 +72,13 @@ MAX_LEVELS = 62
 #: at most 1 down to round-off well within this).
 MAX_HALVINGS = 200
 EPS = 2.220446049250313e-16
+#: The search starts this far below the first frequency's scale (``repeated_search``), and
+#: 100 times lower at each of at most START_TRIES tries, until the count there holds only
+#: the rigid-body modes.
+START = 1e-3
+START_TRIES = 12
+#: Most doublings of the top of the search until the count there holds the modes asked for.
+MAX_DOUBLINGS = 200
 #: Most Brent iterations on the characteristic function in a bracket holding one root.
 MAX_BRENT = 100
 
@@ -750,3 +757,49 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
         sl[top, 0], sl[top, 1] = la, lm
         top += 1
     return k, certified
+
+
+@njit(cache=True)
+def repeated_search(
+    event, count, sizes, osc, p, n_cells, ends, free, rigid, want, lo, hi, scale, out, mult,
+    flags,
+):  # fmt: skip
+    """``repeated_roots`` from a start below every elastic root (START times the smaller of
+    ``scale`` and the lowest own frequency, lowered until the count there is ``rigid``, the
+    rigid-body modes) up to hi, or (hi <= 0) up to where the count reaches ``want`` (the
+    top doubled from ``scale``); from max(lo, start) in the first case. Returns (k,
+    certified, started): started False where the cells have no transfer matrix (a
+    component that constrains the state) or no start was found: the general search runs
+    instead."""
+    own = pole_data(osc(p))[0]
+    work = bloch_work(p, sizes)
+    mats = repeated_work(levels_of(n_cells))
+    first = min(scale, own[0]) if own.shape[0] > 0 else scale
+    start = START * first
+    found = False
+    for _ in range(START_TRIES):
+        J, _, _, ok = structure_at(event, count, start, p, n_cells, ends, free, work, mats)
+        if not ok:
+            return 0, False, False
+        if J == rigid:
+            found = True
+            break
+        start *= 0.01
+    if not found:
+        return 0, False, False
+    if hi > 0.0:
+        k, certified = repeated_roots(
+            event, count, sizes, osc, p, n_cells, ends, free, max(lo, start), hi, out, mult,
+            flags,
+        )  # fmt: skip
+        return k, certified, True
+    top = max(4.0 * start, scale)
+    for _ in range(MAX_DOUBLINGS):
+        J, _, _, ok = structure_at(event, count, top, p, n_cells, ends, free, work, mats)
+        if ok and J >= want:
+            break
+        top *= 2.0
+    k, certified = repeated_roots(
+        event, count, sizes, osc, p, n_cells, ends, free, start, top, out, mult, flags
+    )
+    return k, certified, True
