@@ -461,10 +461,9 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
             found.append(Edge(x, "coalescence", 1, certified=True))
             spans += [(a, x, na), (x, b, nb)]
             continue
-        probe = a + (b - a) * np.array(
-            [EDGE_SLIVER, 0.05, 0.25, 0.5, 0.75, 0.95, 1.0 - EDGE_SLIVER]
-        )
-        n = c.propagating(probe)
+        inner = a + (b - a) * np.array([0.05, 0.25, 0.5, 0.75, 0.95])
+        probe = np.concatenate(([ea], inner, [eb]))
+        n = np.concatenate(([na], c.propagating(inner), [nb]))
         if np.all(n == n[0]):
             spans.append((a, b, int(n[0])))
             notes.append(

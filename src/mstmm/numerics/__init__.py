@@ -5,14 +5,15 @@ printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star-imp
 package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
-table), ``chain`` (kinds of stages in series), ``generic`` (what differs between the real
-and the complex walk), ``count`` (Wittrick-Williams), ``field`` (a segment's field matrix
-from its differential equation), ``segment`` (a piece's transfer, whichever the segment's
-kind), ``paper`` (the paper's determinant), ``characteristic`` (a topology's characteristic
-functions, bound to the functions its kernel prints), ``search`` (the certified scan),
-``shapes`` (mode shapes), ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch
-conditions), ``repeated`` (N identical cells by doubling), ``entries`` (the drivers called
-from Python).
+table), ``chain`` (kinds of stages in series), ``generic`` (what differs between the
+real and the complex walk), ``linalg`` (a pivot, a small solve), ``count``
+(Wittrick-Williams), ``field`` (a segment's field matrix from its differential
+equation), ``segment`` (a piece's transfer, whichever the segment's kind), ``paper``
+(the paper's determinant), ``characteristic`` (a topology's characteristic functions,
+bound to the functions its kernel prints), ``search`` (the certified scan), ``shapes``
+(mode shapes), ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch
+conditions), ``repeated`` (N identical cells by doubling), ``entries`` (the drivers
+called from Python).
 """
 
 from mstmm.generated.euler_bernoulli import *  # noqa: F403
@@ -26,6 +27,7 @@ from .entries import *  # noqa: F403
 from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
 from .layout import *  # noqa: F403
+from .linalg import *  # noqa: F403
 from .paper import *  # noqa: F403
 from .repeated import *  # noqa: F403
 from .search import *  # noqa: F403

@@ -38,6 +38,10 @@ from mstmm.jit import njit
 from .frf import (
     eliminate_c,
 )
+from .linalg import (
+    pivot_row,
+    solve_in_place,
+)
 from .segment import (
     segment_piece_c,
 )
@@ -62,12 +66,7 @@ def lu_logdet_c(A):
     phase = 1.0 + 0.0j
     log = 0.0
     for k in range(n):
-        piv = k
-        big = abs(A[k, k])
-        for r in range(k + 1, n):
-            if abs(A[r, k]) > big:
-                big = abs(A[r, k])
-                piv = r
+        piv, big = pivot_row(A, k)
         if big == 0.0:
             return 0.0j, 0.0
         if piv != k:
@@ -346,37 +345,8 @@ def closed_stiffness(X, s, K):
             A[2 + a, c] = X[a, c].real
     R[2, 0] = 1.0
     R[3, 1] = 1.0
-    for k in range(4):  # Gaussian elimination with partial pivoting, two right-hand sides
-        piv = k
-        big = abs(A[k, k])
-        for r in range(k + 1, 4):
-            if abs(A[r, k]) > big:
-                big = abs(A[r, k])
-                piv = r
-        if big == 0.0:
-            return False
-        if piv != k:
-            for j in range(4):
-                tmp = A[k, j]
-                A[k, j] = A[piv, j]
-                A[piv, j] = tmp
-            for j in range(2):
-                tmp = R[k, j]
-                R[k, j] = R[piv, j]
-                R[piv, j] = tmp
-        for r in range(k + 1, 4):
-            f = A[r, k] / A[k, k]
-            if f != 0.0:
-                for j in range(k + 1, 4):
-                    A[r, j] -= f * A[k, j]
-                for j in range(2):
-                    R[r, j] -= f * R[k, j]
-    for j in range(2):
-        for k in range(3, -1, -1):
-            acc = R[k, j]
-            for c in range(k + 1, 4):
-                acc -= A[k, c] * R[c, j]
-            R[k, j] = acc / A[k, k]
+    if not solve_in_place(A, R, 2):
+        return False
     for j in range(2):
         fm = 0.0
         fq = 0.0

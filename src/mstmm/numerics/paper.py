@@ -13,6 +13,9 @@ from mstmm.jit import njit
 from .field import (
     expm_short,
 )
+from .linalg import (
+    pivot_row,
+)
 from .segment import (
     balance,
     is_general,
@@ -58,12 +61,7 @@ def lu_logdet(A):
     sign = 1.0
     log = 0.0
     for k in range(n):
-        piv = k
-        big = abs(A[k, k])
-        for r in range(k + 1, n):
-            if abs(A[r, k]) > big:
-                big = abs(A[r, k])
-                piv = r
+        piv, big = pivot_row(A, k)
         if big == 0.0:
             return 0.0, 0.0
         if piv != k:

@@ -51,8 +51,12 @@ from .bloch import (
 from .layout import (
     POLE_GUARD,
 )
+from .linalg import (
+    solve_in_place,
+)
 from .search import (
     at_scale,
+    brent_step,
     near_pole,
     pole_data,
 )
@@ -81,41 +85,6 @@ START_TRIES = 12
 MAX_DOUBLINGS = 200
 #: Most Brent iterations on the characteristic function in a bracket holding one root.
 MAX_BRENT = 100
-
-
-@njit(cache=True)
-def solve_in_place(A, R, n_rhs):
-    """R <- A^-1 R for the n x n A (real or complex) by Gaussian elimination with partial
-    pivoting, ``n_rhs`` columns of R; A is overwritten. False when A is singular."""
-    n = A.shape[0]
-    for k in range(n):
-        piv = k
-        big = abs(A[k, k])
-        for r in range(k + 1, n):
-            if abs(A[r, k]) > big:
-                big = abs(A[r, k])
-                piv = r
-        if big == 0.0 or not math.isfinite(big):
-            return False
-        if piv != k:
-            for j in range(n):
-                A[k, j], A[piv, j] = A[piv, j], A[k, j]
-            for j in range(n_rhs):
-                R[k, j], R[piv, j] = R[piv, j], R[k, j]
-        for r in range(k + 1, n):
-            f = A[r, k] / A[k, k]
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    A[r, j] -= f * A[k, j]
-                for j in range(n_rhs):
-                    R[r, j] -= f * R[k, j]
-    for j in range(n_rhs):
-        for k in range(n - 1, -1, -1):
-            acc = R[k, j]
-            for c in range(k + 1, n):
-                acc -= A[k, c] * R[c, j]
-            R[k, j] = acc / A[k, k]
-    return True
 
 
 @njit(cache=True)
@@ -633,29 +602,7 @@ def brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref):
         m = 0.5 * (c - b)
         if abs(m) <= tol or fb == 0.0:
             return b, True
-        if abs(e) >= tol and abs(fa) > abs(fb):
-            s = fb / fa
-            if a == c:
-                pp = 2.0 * m * s
-                q = 1.0 - s
-            else:
-                q = fa / fc
-                r = fb / fc
-                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
-                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
-            if pp > 0.0:
-                q = -q
-            else:
-                pp = -pp
-            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
-                e = d
-                d = pp / q
-            else:
-                d = m
-                e = m
-        else:
-            d = m
-            e = m
+        d, e = brent_step(a, b, c, fa, fb, fc, d, e, m, tol)
         a, fa = b, fb
         b = b + (d if abs(d) > tol else (tol if m > 0.0 else -tol))
         fb, ok = value_at(event, count, b, p, n_cells, ends, free, work, mats, ref)

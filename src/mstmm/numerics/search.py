@@ -146,6 +146,31 @@ def refine(delta, a, b, p, rtol, maxiter):
     )
 
 
+@njit(cache=True, inline="always")
+def brent_step(a, b, c, fa, fb, fc, d, e, m, tol):
+    """Brent's step from b, the best end of the bracket [b, c] (a: the previous b; m = (c -
+    b) / 2; d, e: the last two steps): inverse quadratic interpolation through a, b, c (a
+    secant when a == c) where it falls well inside the bracket and shrinks fast enough,
+    else bisection. Returns the new (d, e)."""
+    if abs(e) >= tol and abs(fa) > abs(fb):
+        s = fb / fa
+        if a == c:
+            pp = 2.0 * m * s
+            q = 1.0 - s
+        else:
+            q = fa / fc
+            r = fb / fc
+            pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+            q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+        if pp > 0.0:
+            q = -q
+        else:
+            pp = -pp
+        if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
+            return pp / q, d
+    return m, m
+
+
 @njit(cache=True)
 def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, rtol, maxiter):
     """Brent's method on a sign change in [a, b] whose values (mantissa, log) are known
@@ -213,29 +238,7 @@ def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, r
         m = 0.5 * (c - b)
         if abs(m) <= tol or fb == 0.0:
             return b, it, True
-        if abs(e) >= tol and abs(fa) > abs(fb):
-            s = fb / fa
-            if a == c:
-                pp = 2.0 * m * s
-                q = 1.0 - s
-            else:
-                q = fa / fc
-                r = fb / fc
-                pp = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
-                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
-            if pp > 0.0:
-                q = -q
-            else:
-                pp = -pp
-            if 2.0 * pp < min(3.0 * m * q - abs(tol * q), abs(e * q)):
-                e = d
-                d = pp / q
-            else:
-                d = m
-                e = d
-        else:
-            d = m
-            e = d
+        d, e = brent_step(a, b, c, fa, fb, fc, d, e, m, tol)
         a = b
         fa = fb
         if abs(d) > tol:
