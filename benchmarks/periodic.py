@@ -7,8 +7,11 @@ Run: ``python -m benchmarks.periodic [--record]`` (about a minute).
   ``mstmm.bands(cell, points=10000, edges=False)`` warm, both cores, median of rounds;
   and the edges with their count over the default band;
 * **edges**: the cells of ``tests/test_bands_reference.py`` (every kind, supports,
-  chains, segment physics, random cells) against ``tests/reference_bloch.py`` (mpmath,
-  its own count): the worst relative error of an edge, and edges missed or spurious;
+  chains, segment physics, random cells, and Timoshenko cells up to three times their
+  cut-off, where two pairs propagate) against ``tests/reference_bloch.py`` (mpmath, its
+  own count): the worst relative error of an edge, edges missed or spurious, and the
+  proved meetings of two pairs (band ends inside the zone) where mpmath's two mu turn
+  from real to a complex pair within 1e-9;
 * **attenuation**: a free-free beam of 60 cells (``repeat = 60``, the cell of
   ``tests/test_bands.py``) driven at one end at a frequency in the gap (``mstmm.frf``):
   the decay per cell of the response against the cell's Im k L.
@@ -60,15 +63,20 @@ def dispersion() -> dict:
 
 def edges_against_reference() -> dict:
     sys.path.insert(0, str(ROOT / "tests"))
+    import math
+
     import reference_bloch as ref
-    from test_bands_reference import CASES, DPS, W_BRAGG
+    from test_bands_reference import ABOVE, CASES, DPS, W_BRAGG
 
     import mstmm
     from mstmm.bands import bands
 
     worst, n_edges, missed, checked = 0.0, 0, 0, True
-    for name, data in CASES:
-        hi = 1.6 * W_BRAGG
+    meetings, confirmed = 0, 0
+    for name, data in CASES + ABOVE:
+        beam = data["beam"]
+        cut = math.sqrt(beam["kappa_GA"] / beam["rho_I"]) if (name, data) in ABOVE else 0.0
+        hi = 3.0 * cut if cut else 1.6 * W_BRAGG
         got = bands(mstmm.scene_from_dict({"name": name} | data), band=(0.0, hi), points=2)
         checked = checked and got.count_checked
         want = ref.band_edges(data, 0.0, hi, dps=DPS)
@@ -79,11 +87,20 @@ def edges_against_reference() -> dict:
                 missed += 1
             worst = max(worst, abs(e.omega - float(w)) / float(w))
         n_edges += len(want)
+        for e in got.edges:  # mpmath's two mu: real on one side, a complex pair on the other
+            if e.kind == "coalescence" and e.certified:
+                meetings += 1
+                sides = [ref.bloch_mu(data, e.omega * (1.0 + h), dps=DPS) for h in (-1e-9, 1e-9)]
+                pair = [abs(complex(m[0]).imag) > 0.0 for m in sides]
+                confirmed += int(pair[0] != pair[1])
     return {
-        "cells": len(CASES),
+        "cells": len(CASES) + len(ABOVE),
+        "above_cut_off": len(ABOVE),
         "edges": n_edges,
         "worst": worst,
         "missed_or_spurious": missed,
+        "meetings": meetings,
+        "meetings_confirmed": confirmed,
         "count_checked": checked,
     }
 

@@ -243,29 +243,52 @@ def timoshenko_cell() -> dict:
 
 def test_coalescence_edges_above_a_timoshenko_cut_off():
     """Above a Timoshenko cell's cut-off two pairs propagate, and a pass band can end where
-    they meet at an interior k (mu_1 = mu_2 inside (-2, 2)) and turn complex: such edges
-    are found on the dispersion grid, printed NOT CERTIFIED, and count_checked is False.
-    At each, the mpmath reference's two mu coincide inside (-2, 2)."""
+    they meet at an interior k (mu_1 = mu_2 inside (-2, 2)) and turn complex: between two
+    edges with two pairs at both ends, ``bands._two_pairs`` proves whether they meet
+    (once at most) and brackets the complex quartet. The two such gaps in this band are
+    proved (count_checked): at each of their ends mpmath's two mu are real inside (-2, 2)
+    on one side and a complex pair on the other, 1e-9 away; at their middle a complex
+    pair."""
     import reference_bloch as ref
 
     data = timoshenko_cell()
     b = bands(mstmm.scene_from_dict(data), band=(100.0, 170.0), points=300)
     odd = [e for e in b.edges if e.kind == "coalescence"]
-    assert odd and not b.count_checked and all(not e.certified for e in odd)
+    assert len(odd) == 4 and b.count_checked and all(e.certified for e in odd), b.notes
+    inner = [g for g in b.gaps if g[0] in {e.omega for e in odd}]
+    assert [(lo, hi) for lo, hi in inner] == [
+        (odd[0].omega, odd[1].omega),
+        (odd[2].omega, odd[3].omega),
+    ]
     for e in odd:
-        m1, m2 = (complex(v) for v in ref.bloch_mu(data, e.omega, dps=30))
-        assert abs(m1 - m2) < 1e-5 and abs(m1.real) < 2.0, (e.omega, m1, m2)
+        sides = [[complex(v) for v in ref.bloch_mu(data, e.omega * (1.0 + d), dps=30)]
+                 for d in (-1e-9, 1e-9)]  # fmt: skip
+        pair = [abs(m[0].imag) > 0.0 for m in sides]
+        assert pair[0] != pair[1], (e.omega, sides)
+        assert all(abs(m.real) < 2.0 for m in sides[pair.index(False)]), (e.omega, sides)
+    for lo, hi in inner:
+        m1, m2 = (complex(v) for v in ref.bloch_mu(data, 0.5 * (lo + hi), dps=30))
+        assert m1 == m2.conjugate() and abs(m1.imag) > 0.0, (m1, m2)
 
 
-def test_two_propagating_pairs_between_edges_are_not_claimed_proved():
-    """Between the certified edges of a stretch where two pairs propagate (the Timoshenko
-    cell above, 126.49 to 129.40 rad/s), the pairs could meet at an interior k and part
-    again between the points read: nothing proves they do not, so the stretch is said in
-    a note and count_checked is False, though no edge is found inside. Where one pair or
-    none propagates at the stretch's ends, the Bloch-phase argument of ``bands._gaps``
-    proves the stretch (the Sugino and Mead tests above: count_checked True)."""
+def test_two_propagating_pairs_between_edges_are_proved_or_said():
+    """Between the certified edges 126.49 and 129.40 rad/s of the Timoshenko cell above two
+    pairs propagate throughout: ``_two_pairs`` proves they do not meet (their phases at
+    the two ends and the closed cell's count at a phase between them), count_checked.
+    Where its phases cannot be told apart (PHASE_GAP made larger than the zone), the
+    argument is not used: the stretch is said in a note and count_checked is False."""
+    import importlib
+
+    module = importlib.import_module("mstmm.bands")
     data = timoshenko_cell()
     b = bands(mstmm.scene_from_dict(data), band=(127.0, 129.0), points=50)
     assert not b.edges and np.all(b.propagating == 2)
+    assert b.count_checked and not b.notes, b.notes
+    saved = module.PHASE_GAP
+    module.PHASE_GAP = 10.0
+    try:
+        b = bands(mstmm.scene_from_dict(data), band=(127.0, 129.0), points=50)
+    finally:
+        module.PHASE_GAP = saved
     assert not b.count_checked
     assert any("two wave pairs propagate" in n for n in b.notes), b.notes

@@ -11,11 +11,15 @@ Band edges are the frequencies where a pair turns propagating at k L = 0 or pi: 
 eigenvalues of the cell closed on itself periodically or antiperiodically. Each is found
 with its multiplicity by bisection on a Wittrick-Williams count (the cell clamped at
 both ends, ``Kernel.count_below``, plus the negative eigenvalues of the closed cell's
-2x2 joint stiffness) and polished by Brent on det(X_L -+ X_0): none is missed. A band
+2x2 joint stiffness) and polished by Brent on det(X_L -+ X_0), kept where the count
+steps beside it (that sign also flips where the subspace's basis turns over): none is
+missed. A band
 can also end where two propagating pairs meet at an interior k and turn complex (at the
 edges of a locally resonant gap, above a Timoshenko cut-off): between consecutive edges
 the pairs propagating at the two ends prove whether that happens, and once (``_gaps``);
-where two propagate at both ends it is not proved, and an edge found there is marked
+where two propagate at both ends, their Krein signatures and the cell closed with a
+Bloch phase between theirs prove whether they meet and part again (``_two_pairs``).
+Where neither decides, the stretch is said in a note and an edge found there is marked
 uncertified.
 """
 
@@ -45,6 +49,9 @@ _NEAR_EDGE = (0.0, *(sgn * 10.0**-j for j in range(2, 8) for sgn in (-1.0, 1.0))
 #: Roots of one edge function closer than this (relative) are one multiple root: a
 #: double root's count can step twice by one within round-off of it.
 MERGE_RTOL = 1e-12
+#: An edge from Brent is kept where the count steps within this of it (relative); else the
+#: count alone locates it.
+CONFIRM_RTOL = 1e-12
 #: mu within this of the real interval [-2, 2] counts as propagating.
 MU_TOL = 1e-9
 
@@ -79,9 +86,8 @@ class Bands:
     ``band`` is cut there). ``count_checked``: the count proved every edge at k L = 0 or
     pi (none missed, multiplicities exact) and, between them, every band end at an
     interior k (a "coalescence": two pairs meet and turn complex), by ``_gaps``' argument
-    (but for EDGE_SLIVER of a stretch beside each edge); False where two pairs propagate
-    at both ends of a stretch, which that argument does not settle (``notes`` says where;
-    an edge found there is not certified)."""
+    (but for EDGE_SLIVER of a stretch beside each edge); False where that argument does
+    not settle a stretch (``notes`` says where; an edge found there is not certified)."""
 
     cell: Scene
     omega: np.ndarray
@@ -250,6 +256,51 @@ class _Cell:
     def count(self, w: float, s: float) -> int | None:
         return self.edge_function(w, s)[2]
 
+    def phase_count(self, w: float, theta: float) -> int | None:
+        """Eigenvalues below w of the cell closed with Z_L = exp(i theta) Z_0 (Wittrick-
+        Williams: the clamped cell's count plus the negative eigenvalues of the Hermitian
+        joint stiffness, :func:`phase_stiffness`); None where that is not defined (a
+        frequency of the clamped cell) or not Hermitian to round-off."""
+        X = self.n.entry_subspace(self.fa, False, complex(float(w), 0.0), self.p)
+        K = phase_stiffness(X, theta) if X.shape[0] == 8 else None
+        if K is None:
+            return None
+        H = 0.5 * (K + K.conj().T)
+        if not np.abs(K - K.conj().T).max() <= HERMITIAN_RTOL * np.abs(H).max():
+            return None
+        j0 = int(self.kernel.count_below(np.array([float(w)]), self.p)[0])
+        return j0 + int(np.sum(np.linalg.eigvalsh(H) < 0.0))
+
+    def phase_span(self, a: float, b: float, theta: float) -> int | None:
+        """D(theta): how many eigenvalues of the cell closed with phase theta lie in (a, b)."""
+        na, nb = self.phase_count(a, theta), self.phase_count(b, theta)
+        return None if na is None or nb is None else nb - na
+
+
+#: The closed cell's joint stiffness at a Bloch phase is Hermitian: a larger skew part
+#: (relative) means the subspace lost its accuracy, and the count is not used.
+HERMITIAN_RTOL = 1e-8
+
+
+def phase_stiffness(X: np.ndarray, theta: float) -> np.ndarray | None:
+    """The 2x2 Hermitian joint stiffness of the cell closed on itself with the Bloch phase
+    theta (Z_L = s Z_0 on the displacements Y, theta; s = exp(i theta)): the pairs of
+    X = [X0; XL] (``cell_subspace``) with (Y, theta) = d at x = 0 and s d at x = L need
+    the joint forces F = (M, Q)_L - s (M, Q)_0, which virtual work pairs with the joint's
+    displacement s d: K d = conj(s) F (rows -Q, M). ``numerics.bloch.closed_stiffness``
+    is the real case s = +-1. None where no pair has a given d."""
+    s = complex(math.cos(theta), math.sin(theta))
+    A = np.concatenate((X[4:6, :] - s * X[0:2, :], X[0:2, :]))
+    R = np.zeros((4, 2), dtype=np.complex128)
+    R[2, 0] = R[3, 1] = 1.0
+    try:
+        C = np.linalg.solve(A, R)
+    except np.linalg.LinAlgError:
+        return None
+    F = (X[6:8, :] - s * X[2:4, :]) @ C  # rows: M, Q
+    K = np.conj(s) * np.stack((-F[1], F[0]))
+    return K if np.all(np.isfinite(K)) else None
+
 
 def propagating_pairs(mu: np.ndarray) -> np.ndarray:
     """Whether each pair (entry of mu) propagates: undamped, mu real within [-2, 2]."""
@@ -390,7 +441,13 @@ def _isolate(c: _Cell, s: float, f, a, b, na, nb, fa, fb) -> tuple[list, bool]:
     if d == 1 and (fa > 0.0) != (fb > 0.0):
         from scipy.optimize import brentq  # here: importing SciPy costs every process 0.35 s
 
-        return [(brentq(f, a, b, xtol=1e-300, rtol=1e-15, maxiter=200), 1)], True
+        x = brentq(f, a, b, xtol=1e-300, rtol=1e-15, maxiter=200)
+        h = CONFIRM_RTOL * x
+        if c.count(x - h, s) == na and c.count(x + h, s) == nb:
+            return [(x, 1)], True
+        # not where the count steps: the sign of det(X_L - s X_0) also flips where the
+        # subspace's basis turns over (a component's elimination changes its pivot), and
+        # Brent found such a flip: bisection on the count alone
     if b - a <= CLUSTER_RTOL * b:
         return [(0.5 * (a + b), d)], True
     m = 0.5 * (a + b)
@@ -425,7 +482,10 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
     antiperiodically do not change (the edges are all their jumps). For a Bloch phase
     theta in [0, pi] the cell closed with Z_L = exp(i theta) Z_0 is a self-adjoint problem
     with eigenvalues w_n(theta) continuous in theta, and D(theta), how many lie in [a', b']
-    (a' = a + EDGE_SLIVER (b - a), b' = b - EDGE_SLIVER (b - a)), changes only at a theta
+    (a' = a + h, b' = b - h, h = EDGE_SLIVER (b - a) but at least SLIVER_FLOOR b: beside
+    an edge the pairs are read from the signs of P(+-2), which it zeroes; stretches
+    shorter than MERGE_RTOL b, the edges' own accuracy, are read at their middle),
+    changes only at a theta
     where a wave propagates at a' or at b' with k L = theta; D(0) = D(pi) = 0. So:
 
     * no pair propagates at a' nor at b': D = 0 for every theta, no wave propagates
@@ -437,13 +497,15 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
       elsewhere, so one branch dips into [a', b'] from beyond the end with two, and turns
       there exactly once (twice more would give four propagating values of theta): the
       two pairs meet at an interior k at exactly one frequency, a band edge inside the
-      zone ("coalescence", proved; located by bisection on the number of pairs).
+      zone ("coalescence", proved; located by bisection on the number of pairs);
+    * two at both ends: they may meet and part again inside; ``_two_pairs`` decides
+      from their phases at a' and b' and the cell closed with a phase between them:
+      no meeting, or exactly one stretch of none (two proved "coalescence" edges).
 
-    Two pairs at both ends prove nothing of that kind (they may meet and part again
-    inside): such a stretch is read at a few points, said in a note, and not proved,
-    and a change found between the points is an uncertified "coalescence" edge; so is any
-    other pattern of the ends (one pair at one end only would need an edge at k L = 0
-    or pi inside: a misread)."""
+    Where it does not decide (phases that cannot be told apart), the stretch is read at a
+    few points, said in a note, and not proved, and a change found between the points
+    is an uncertified "coalescence" edge; so is any other pattern of the ends (one pair at
+    one end only would need an edge at k L = 0 or pi inside: a misread)."""
     cuts = sorted({lo, hi, *(e.omega for e in edges if lo <= e.omega <= hi)})
     found = list(edges)
     notes: list[str] = []
@@ -451,7 +513,11 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
     for a, b in zip(cuts, cuts[1:]):
         if b <= a:
             continue
-        ea, eb = a + (b - a) * EDGE_SLIVER, b - (b - a) * EDGE_SLIVER
+        if b - a <= MERGE_RTOL * b:  # two edges within their own accuracy: nothing between
+            spans.append((a, b, int(c.propagating(np.array([0.5 * (a + b)]))[0])))
+            continue
+        h = max((b - a) * EDGE_SLIVER, SLIVER_FLOOR * b)  # not within round-off of an edge
+        ea, eb = a + h, b - h
         na, nb = (int(v) for v in c.propagating(np.array([ea, eb])))
         if na == nb and na < 2:  # proved: none or one pair throughout
             spans.append((a, b, na))
@@ -461,6 +527,18 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
             found.append(Edge(x, "coalescence", 1, certified=True))
             spans += [(a, x, na), (x, b, nb)]
             continue
+        if na == nb == 2:
+            verdict = _two_pairs(c, ea, eb)
+            if verdict is not None:  # proved: no meeting, or exactly one stretch of none
+                if verdict:
+                    wa, wb = verdict
+                    if wa < wb:
+                        found += [Edge(wa, "coalescence", 1), Edge(wb, "coalescence", 1)]
+                        spans += [(a, wa, 2), (wa, wb, 0), (wb, b, 2)]
+                        continue
+                    found.append(Edge(wa, "coalescence", 2))  # they meet and part at once
+                spans.append((a, b, 2))
+                continue
         inner = a + (b - a) * np.array([0.05, 0.25, 0.5, 0.75, 0.95])
         probe = np.concatenate(([ea], inner, [eb]))
         n = np.concatenate(([na], c.propagating(inner), [nb]))
@@ -497,6 +575,67 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
 #: The stretch beside each edge left out of ``_gaps``' proof (relative to the stretch): the
 #: propagating pairs are read there from the signs of P(+-2), which the edge zeroes.
 EDGE_SLIVER = 1e-9
+#: ... and at least this of the frequency (relative): nearer, P(+-2) is round-off.
+SLIVER_FLOOR = 1e-13
+
+
+#: Phases (rad) of the waves at a stretch's two ends closer than this are not told apart
+#: (``_two_pairs``; beside an edge, where k L ~ sqrt(omega - edge), round-off in mu moves
+#: them by ~1e-8).
+PHASE_GAP = 1e-6
+
+
+def _two_pairs(c: _Cell, ea: float, eb: float) -> tuple[float, ...] | None:
+    """Two pairs propagate at both ends ea < eb of a stretch with no edge inside: () where
+    they propagate throughout (proved), (wa, wb) where they meet at wa, are a complex
+    quartet (no wave propagates) up to wb and part there (proved: the only such
+    interval; wa == wb where they meet and part at once), None where the argument below
+    does not decide (the caller says so).
+
+    Each propagating wave exp(i theta) (theta in (0, pi)) has a Krein signature, the
+    sign of d theta / d omega, and its branch theta(omega) turns only where it meets a
+    wave of the other signature (a multiplier leaves the unit circle only through such a
+    meeting, and a turn is one). So two branches of one signature never meet; two of
+    opposite signatures that move apart never meet; two that approach each other meet
+    once, become a quartet (or part at once), and come back (no edge inside) moving apart,
+    to meet no more. D(theta), how many frequencies of (ea, eb) carry a wave of phase
+    theta (the eigenvalues there of the cell closed with that phase, ``phase_span``),
+    changes only at the four end phases p1 < p2 < p3 < p4, is 1 between p1 and p2 and
+    between p3 and p4 (one branch ends in each), and between p2 and p3 tells the cases
+    apart: with no meeting each branch runs from an ea phase to an eb phase, so D = 2
+    there when both ea phases lie on one side (p1, p2 from ea) and 0 when they are
+    interleaved or nested; a meeting covers the span of the ea phases (the branches
+    approaching theta_a) and that of the eb phases (leaving theta_b): D = 0 or 2 the other
+    way round. The quartet is then bracketed by bisection: at a frequency where two pairs
+    propagate with phases f1 < f2, D over (ea, omega) at (f1 + f2) / 2 is 0 before the
+    meeting (the branches approach from outside [f1, f2]) and at least 1 after it (they
+    left theta_b inside it); its two ends by bisection on the number of pairs."""
+    w = np.minimum(np.abs(c.waves(np.array([ea, eb]))[:, 2:4].real), math.pi)  # mu ~ -2 - 0
+    ends = sorted([(t, 0) for t in w[0]] + [(t, 1) for t in w[1]])
+    th = [t for t, _ in ends]
+    if not th[2] - th[1] > PHASE_GAP:  # which end p1, p2 come from is what decides
+        return None
+    d = [c.phase_span(ea, eb, 0.5 * (th[i] + th[i + 1])) for i in range(3)]
+    close = [th[1] - th[0] <= PHASE_GAP, False, th[3] - th[2] <= PHASE_GAP]
+    if any(d[i] != 1 and not close[i] for i in (0, 2)) or d[1] not in (0, 2):
+        return None
+    apart = ends[0][1] == ends[1][1]  # the ea phases on one side of the eb phases
+    if (d[1] == 2) == apart:
+        return ()
+    lo, hi = ea, eb  # two pairs approaching at lo, moving apart at hi
+    while True:
+        m = 0.5 * (lo + hi)
+        if not lo < m < hi:
+            return (m, m)
+        row = c.waves(np.array([m]))[0]
+        n = int(row[4].real)
+        if n == 0:
+            return _bisect_change(c, lo, m, 2), _bisect_change(c, m, hi, 0)
+        t = 0.5 * (min(abs(row[2].real), math.pi) + min(abs(row[3].real), math.pi))
+        after = c.phase_span(ea, m, t) if n == 2 else None
+        if after is None:
+            return None
+        lo, hi = (m, hi) if after == 0 else (lo, m)
 
 
 def _bisect_change(c: _Cell, a: float, b: float, na: int) -> float:
