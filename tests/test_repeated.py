@@ -218,3 +218,62 @@ def test_the_driver_compiles_for_the_signature_a_solve_calls_and_runs_as_python(
     elastic = exact > 0.0
     assert np.all(sol.omega[~elastic] == 0.0)
     assert np.max(np.abs(sol.omega[elastic] - exact[elastic]) / exact[elastic]) <= RTOL
+
+
+#: Cells found by a random comparison of this path with the general search (each solve of
+#: 40 modes with both, on 60 random repeated scenes).
+BAND_EDGE_CLUSTER = (  # spring-masses at the joints, clamped-clamped: 7 roots 5e-6 apart
+    {"length": 0.4195996524381598, "EI": 4.371006677597008,
+     "mass_per_length": 2.718651221412076, "left": "clamped", "right": "clamped"},
+    [{"type": "spring_mass", "x": 0.0, "k": 907.0537217223642, "m": 0.22529846179032412}],
+    33,
+)  # fmt: skip
+GROUNDED = (  # a grounded spring in every cell: waves grow by e^2.4 a cell below cut-on
+    {"length": 0.5848312242364058, "EI": 3.719113849386831,
+     "mass_per_length": 2.309062619466498, "left": "sliding", "right": "sliding"},
+    [{"type": "spring_mass", "x": 0.00048183554710160025, "k": 12.618071870014498,
+      "m": 0.08469990483312193},
+     {"type": "rotational_spring", "x": 0.10822703924036331, "k": 54.6003987628558},
+     {"type": "spring", "x": 0.169133048440601, "k": 78.81143062033762},
+     {"type": "mass", "x": 0.28162005498195586, "m": 0.193649143472023,
+      "J": 0.000623697980132001}],
+    70,
+)  # fmt: skip
+LONG_CELLS = (  # 8 cells in tension, 40 modes: lam h = 14 across a cell at the last
+    {"length": 0.15894991317812304, "EI": 4.388353638999503,
+     "mass_per_length": 2.4890512689121684, "axial_force": 7.487646522429452,
+     "left": "clamped", "right": "clamped"},
+    [{"type": "rotational_spring", "x": 0.08635006687916792, "k": 50.6949844928657},
+     {"type": "mass", "x": 0.09133974882080835, "m": 0.27537088390121217,
+      "J": 0.00048427545940356743}],
+    8,
+)  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "name, cells, modes, path",
+    [
+        ("band_edge_cluster", BAND_EDGE_CLUSTER, 40, "repeated cells"),
+        ("grounded", GROUNDED, 12, "repeated cells"),
+        ("long_cells", LONG_CELLS, 40, None),
+    ],
+)
+def test_roots_where_the_count_or_the_function_loses_digits(name, cells, modes, path):
+    """Against the mpmath reference to 1e-12, through the default path (mode shapes on):
+
+    * a cluster at a band edge of the cells, where the characteristic function lost six
+      digits (Brent put a root 9e-11 off; the count is exact there): a Brent root is kept
+      only where the count steps beside it, else the count's bisection;
+    * cells whose waves grow by e^2.4 each, where the count flips within 3e-10 of a root
+      and the function does not (the count's bisection put it 4e-10 off): the function's
+      root, clean on both sides, is kept;
+    * cells across which a wave grows by e^14 at the 40th mode (its transfer keeps eps
+      e^14 of its small terms: 1.7e-11 off): the general search runs
+      (``repeated.MAX_GROWTH``)."""
+    beam, atts, n = cells
+    scene = repeated_scene(beam, atts, n, name)
+    sol = mstmm.solve(scene, modes=modes)
+    assert sol.kernel_mode == path if path else sol.kernel_mode != "repeated cells"
+    assert sol.count_checked and sol.converged.all() and not sol.warnings, sol.warnings
+    exact = np.array([float(w) for w in ref.frequencies(scene, modes, dps=30)])
+    assert np.max(np.abs(sol.omega - exact) / exact) < RTOL

@@ -5,8 +5,10 @@ O(N log N) instead of N walks over N components.
 
 :func:`mstmm.solve` takes this path for a repeated scene of at least :data:`MIN_CELLS`
 cells, all the same (not graded), undamped, in the stable formulation, whose cell has a
-transfer matrix (no component that constrains the state: a support, a pinned joint); any
-other scene, and one where this path cannot start, goes through the general search.
+transfer matrix (no component that constrains the state: a support, a pinned joint), and
+whose waves grow by at most exp(MAX_GROWTH) across a cell up to the top root (else its
+transfer keeps too few digits: thousands of modes of 500 cells); any other scene, and one
+where this path cannot start, goes through the general search.
 Every root is isolated by the Wittrick-Williams count over the cells (each cell clamped at
 both ends: its kernel's own count) and certified as in the general search; Brent's method
 on the characteristic function refines it. Mode shapes, modal masses and everything after
@@ -132,6 +134,29 @@ def chain_of(scene: Scene) -> Chain | None:
     return known or None
 
 
+#: The most a wave may grow across one cell, as ln: the cell's transfer, its second
+#: compound and its stiffness are formed from entries ~exp(lam h) and keep eps exp(lam h)
+#: of their smaller terms (a root 1.7e-11 off at lam h = 13.8, 8 cells, the 40th mode).
+#: Above, the general search runs (thousands of modes of 500 cells).
+MAX_GROWTH = 6.0
+
+
+def growth(cell: Scene, w: float) -> float:
+    """An upper bound on ln of how much a wave of the beam grows across ``cell`` at w
+    (rad/s): the sum over its segments of lam l, lam = sqrt(T / EI) + ((mbar w^2 + k_w) /
+    EI)^(1/4) with T the tension-like terms (a tensile axial force, a Pasternak layer) and
+    k_w a Winkler foundation; shear deformation, rotary inertia and compression only lower
+    it."""
+    b = cell.beam
+    total = 0.0
+    for s in b.segments or (b,):
+        T = max(s.axial_force, 0.0) + max(s.foundation_kG, 0.0)
+        k_w = abs(s.foundation_k)
+        lam = math.sqrt(T / s.EI) + ((s.mass_per_length * w * w + k_w) / s.EI) ** 0.25
+        total += lam * s.length
+    return total
+
+
 def _scale(scene: Scene) -> float:
     """The first bending frequency's scale of the whole bare beam, (pi / L)^2 sqrt(EI /
     mbar) (rad/s), of its first segment's properties."""
@@ -152,8 +177,9 @@ def find_roots(
     """The lowest ``modes`` natural frequencies, or those in ``band`` (its edges inclusive
     by ``scan.BAND_EDGE``), as :func:`mstmm.scan.find_roots` gives them; ``rigid``: the
     number of zero frequencies (the expanded kernel's ``rigid_body_modes``). None where
-    the cells' path cannot start (a cell without a transfer matrix): the general search
-    runs instead."""
+    the cells' path cannot start (a cell without a transfer matrix) or would not be
+    accurate (a wave grows by more than exp(MAX_GROWTH) across a cell below the top root):
+    the general search runs instead."""
     roots: list[Root] = []
     if band is None:
         want = int(modes)
@@ -165,11 +191,15 @@ def find_roots(
         a, b = a * (1.0 - BAND_EDGE), b * (1.0 + BAND_EDGE)
         if a <= 0.0 and rigid:
             roots.append(Root(0.0, rigid, True, "rigid"))
+        if growth(chain.cell, b) > MAX_GROWTH:
+            return None
         n_band = int(chain.count_below(np.array([b]))[0])
         found = chain.search(rigid, 0, max(a, 0.0), b, max(n_band, 1))
     if found is None:
         return None
     w, m, bad, certified = found
+    if w.size and growth(chain.cell, float(w[-1])) > MAX_GROWTH:
+        return None
     roots += [Root(float(x), int(k), not f) for x, k, f in zip(w, m, bad)]
     notes: list[str] = []
     if band is None:

@@ -611,6 +611,53 @@ def brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref):
     return b, False
 
 
+#: A root from Brent is kept where the count steps within this of it (relative).
+CONFIRM = 64.0 * EPS
+
+
+@njit(cache=True)
+def clean(event, count, x, Ja, ma, p, n_cells, ends, free, work, mats, scales):
+    """Whether the count (``scales`` > 0) or the characteristic function's sign (< 0) is
+    what a simple root at x makes it on both sides, at |scales| distances: CONFIRM (one),
+    else 1e-13 ... 1e-10 of x (the count Ja below and Ja + 1 above; the function the sign
+    ``ma`` below and the other above)."""
+    n = abs(scales)
+    for i in range(n):
+        h = (CONFIRM if n == 1 else 10.0 ** (i - 13)) * x
+        for side in (-1.0, 1.0):
+            J, fm, _, ok = structure_at(
+                event, count, x + side * h, p, n_cells, ends, free, work, mats
+            )
+            if not ok:
+                return False
+            if scales > 0 and J != (Ja if side < 0.0 else Ja + 1):
+                return False
+            if scales < 0 and ((fm > 0.0) == (ma > 0.0)) != (side < 0.0):
+                return False
+    return True
+
+
+@njit(cache=True)
+def count_bisect(event, count, a, b, Ja, p, n_cells, ends, free, work, mats):
+    """The one root in (a, b] (the count Ja at a, Ja + 1 at b) by bisection on the count
+    down to round-off: (root, converged)."""
+    for _ in range(MAX_HALVINGS):
+        mid = 0.5 * (a + b)
+        if not (a < mid < b) or b - a <= 4.0 * EPS * b:
+            return mid, True
+        J, _, _, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
+        if not ok:  # a clamped-clamped frequency of a block: step beside it
+            mid = mid * (1.0 + 64.0 * EPS)
+            J, _, _, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
+            if not ok or not (a < mid < b):
+                return 0.5 * (a + b), False
+        if J <= Ja:
+            a = mid
+        else:
+            b = mid
+    return 0.5 * (a + b), False
+
+
 @njit(cache=True)
 def own_inside(own, a, b):
     """Whether a component's own frequency (a pole of the characteristic function) lies in
@@ -624,10 +671,12 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
     """The natural frequencies of the structure in (lo, hi] (rad/s), the lowest out.size of
     them: isolated by bisection on the count (a piece holding one root, or a cluster
     narrower than round-off), each then refined by Brent on the characteristic function
-    where it changes sign across its piece and no component's own frequency lies in it,
-    else by bisection on the count to round-off. Writes out[k] (the root), mult[k] (its
-    multiplicity), flags[k] (1: not converged); returns (k, certified): how many distinct
-    roots were written and whether every count could be taken."""
+    where it changes sign across its piece and no component's own frequency lies in it
+    (kept where the count steps within CONFIRM of it; else the count's bisection where the
+    count is clean around its root, else Brent's where the function's sign is, else
+    Brent's not trusted), else by bisection on the count to round-off. Writes out[k] (the
+    root), mult[k] (its multiplicity), flags[k] (1: not converged); returns (k, certified):
+    how many distinct roots were written and whether every count could be taken."""
     own = pole_data(osc(p))[0]
     work = bloch_work(p, sizes)
     mats = repeated_work(levels_of(n_cells))
@@ -663,6 +712,19 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
             fa = at_scale(ma, la, ref)
             fb = at_scale(mb, lb, ref)
             root, conv = brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref)
+            if not clean(event, count, root, Ja, ma, p, n_cells, ends, free, work, mats, 1):
+                # the count does not step there: either the function lost its digits beside
+                # this root (a cluster at a band edge of the cells) or the count did (waves
+                # that grow by e^2 a cell); the one that is clean around its root wins
+                by_count, c_conv = count_bisect(
+                    event, count, a, b, Ja, p, n_cells, ends, free, work, mats
+                )
+                if c_conv and clean(
+                    event, count, by_count, Ja, ma, p, n_cells, ends, free, work, mats, 4
+                ):
+                    root = by_count
+                elif not clean(event, count, root, Ja, ma, p, n_cells, ends, free, work, mats, -4):
+                    conv = False  # neither: not trusted
             out[k] = root
             mult[k] = 1
             flags[k] = 0 if conv else 1

@@ -264,9 +264,13 @@ STATE_LAST = 3
 STATE_CERTIFIED = 4
 STATE_FAILED = 5
 STATE_SIZE = 6
-#: Blocks in a row that may end without a new root before the search gives up
-#: (a beam has a natural frequency in every stretch of a few pi of beta = lam L).
+#: Blocks in a row that may end without a new root before the search gives up, where the
+#: count cannot certify them (a beam has a natural frequency in every stretch of a few pi
+#: of beta = lam L; below a foundation's cut-on it has none, which the count proves: those
+#: blocks are skipped, ``skip_empty``).
 MAX_STALLED_BLOCKS = 4
+#: Doublings of the frequency over a stretch the count proves empty (``skip_empty``).
+MAX_SKIPS = 200
 #: Flag of a root in ``flags``: 0 trusted; 1 the count holds exactly one root in a piece
 #: of round-off width across which the function does not change sign, or Brent's
 #: method did not converge (the caller checks it again, and reports it NOT TRUSTED
@@ -918,10 +922,45 @@ def lowest_run(
             continue
         if k < 0:
             return -1
+        if k == k_before and certify:
+            # no root in the block, and the count proves it: not a stall (a foundation,
+            # grounded springs: no root below their cut-on, which may lie many blocks up);
+            # jump by doubling while the count stays
+            skip_empty(count, p, state, w_stop)
+            continue
         stalled = stalled + 1 if k == k_before else 0
         if stalled > MAX_STALLED_BLOCKS:
             return -1
     return k
+
+
+@njit(cache=True)
+def skip_empty(count, p, state, w_stop):
+    """Advance state[STATE_W] over frequencies the count proves empty: doubled while the
+    count there equals state[STATE_COUNT] (and stays below ``w_stop``), then halved by
+    bisection on the count to within pi of beta = lam L below the next root."""
+    w = state[STATE_W]
+    n = int(state[STATE_COUNT])
+    hi = w_stop
+    for _ in range(MAX_SKIPS):
+        w2 = 2.0 * w
+        if not w2 < w_stop:
+            break
+        if count(w2, p) != n:
+            hi = w2
+            break
+        w = w2
+    if math.isfinite(hi):
+        scale = math.sqrt(p[1] / p[2]) / (p[0] * p[0])
+        for _ in range(MAX_SKIPS):
+            if math.sqrt(hi / scale) - math.sqrt(w / scale) <= math.pi:
+                break
+            mid = 0.5 * (w + hi)
+            if count(mid, p) == n:
+                w = mid
+            else:
+                hi = mid
+    state[STATE_W] = w
 
 
 @njit(cache=True)
