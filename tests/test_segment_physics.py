@@ -132,6 +132,43 @@ def test_free_beam_on_a_winkler_foundation_has_no_rigid_modes():
     assert mstmm.kernel_for(sol.scene).rigid_body_modes(mstmm.parameter_vector(sol.scene)) == 0
 
 
+@pytest.mark.parametrize("kw", [1e4, 1e8, 1e14])
+def test_a_stiff_winkler_foundation_puts_every_root_far_above_the_first_blocks(kw):
+    """A stiff foundation lifts the lowest root of a long beam to sqrt(k_w / mbar), many
+    pi of lam L above zero: the search's blocks find nothing there, which the count proves,
+    and it must go on (it gave up after four empty blocks: no root, 'stalled', for k_w =
+    1e4 on this 10 m beam). Simply supported closed form ``w^2 = (EI k^4 + k_w) / mbar``:
+    the lowest modes (default path, mode shapes on) and a band around the cut-on. The
+    modes crowd (2e-9 apart at k_w = 1e8, closer than double precision at 1e14): each
+    shape is sin(n pi x / L) within 1e-5, or its cluster's shapes are said not resolved
+    (the shapes of distinct roots 2e-9 apart came out as one cluster's garbage, modal
+    mass 1e15 kg, with no warning)."""
+    beam = dict(length=10.0, EI=EI, mass_per_length=MBAR, left="pinned", right="pinned")
+    scene = scene_from_dict({"name": "wink", "beam": beam | {"foundation_k": kw}})
+
+    def exact(n):
+        return math.sqrt(((n * math.pi / 10.0) ** 4 * EI + kw) / MBAR)
+
+    sol = mstmm.solve(scene, modes=4)
+    want = np.array([exact(n) for n in range(1, 5)])
+    assert sol.count_checked
+    assert np.max(np.abs(sol.omega - want) / want) < 1e-12
+    said = [w for w in sol.warnings if "not resolved" in w]
+    assert len(said) == len(sol.warnings), sol.warnings
+    for n, shape in enumerate(sol.shapes, start=1):
+        ref = np.sin(n * math.pi * shape.x / 10.0)
+        i = np.argmax(np.abs(ref))
+        err = np.max(np.abs(shape.Y * (ref[i] / shape.Y[i]) - ref))
+        assert err < 1e-5 or (shape.multiplicity > 1 and said), (n, err)
+    if kw <= 1e8:
+        assert not said
+    top = exact(12)
+    band = mstmm.solve(scene, band=(0.5 * exact(1), top), shapes=False)
+    want = np.array([exact(n) for n in range(1, 13)])
+    assert band.count_checked and len(band.omega) == 12
+    assert np.max(np.abs(band.omega - want) / want) < 1e-12
+
+
 def test_tension_takes_the_rigid_rotation_of_a_free_beam():
     sol = mstmm.solve(_scene(dict(axial_force=5.0), "free", "free"), modes=3)
     assert sol.count_checked

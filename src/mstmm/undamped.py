@@ -16,7 +16,7 @@ import numpy as np
 from . import compiling, repeated
 from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
-from .modes import ModeShape, mode_shapes
+from .modes import ModeShape, mode_shapes, unresolved
 from .scan import TRUST, find_roots
 from .scene import Scene
 from .topology import parameter_vector, topology_of
@@ -192,6 +192,7 @@ def solve_undamped(
     shape_list = None
     if shapes:
         shape_list = mode_shapes(kernel, p, omega)
+        warnings += unresolved(shape_list)
         timings["shapes"] = time.perf_counter() - t3
     return Solution(
         scene,
