@@ -611,8 +611,9 @@ def brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref):
     return b, False
 
 
-#: A root from Brent is kept where the count steps within this of it (relative).
-CONFIRM = 64.0 * EPS
+#: A root from Brent is kept where the count steps within this of it (relative): the count
+#: of 1,000 spaced resonators steps 4e-14 beside the root that the function puts right.
+CONFIRM = 1e-12
 
 
 @njit(cache=True)
