@@ -160,10 +160,13 @@ FLIPPING = {
     ],
 }
 
+#: Cells taken to three times their cut-off (``benchmarks.periodic`` takes them all; the test
+#: two random ones and the flipping one).
 ABOVE = [(f"timoshenko_{i}", _timoshenko_cell(i)) for i in range(4)] + [("flipping", FLIPPING)]
+TESTED = ABOVE[:2] + ABOVE[-1:]
 
 
-@pytest.mark.parametrize("name, data", ABOVE, ids=[c[0] for c in ABOVE])
+@pytest.mark.parametrize("name, data", TESTED, ids=[c[0] for c in TESTED])
 def test_two_propagating_pairs_above_a_cut_off_against_reference(name, data):
     """Up to three times the Timoshenko cut-off, where two pairs propagate over most of the
     band and meet at interior k: every edge at k L = 0, pi against the mpmath reference to
