@@ -617,25 +617,63 @@ CONFIRM = 1e-12
 
 
 @njit(cache=True)
-def clean(event, count, x, Ja, ma, p, n_cells, ends, free, work, mats, scales):
-    """Whether the count (``scales`` > 0) or the characteristic function's sign (< 0) is
-    what a simple root at x makes it on both sides, at |scales| distances: CONFIRM (one),
-    else 1e-13 ... 1e-10 of x (the count Ja below and Ja + 1 above; the function the sign
-    ``ma`` below and the other above)."""
-    n = abs(scales)
-    for i in range(n):
-        h = (CONFIRM if n == 1 else 10.0 ** (i - 13)) * x
-        for side in (-1.0, 1.0):
-            J, fm, _, ok = structure_at(
-                event, count, x + side * h, p, n_cells, ends, free, work, mats
-            )
-            if not ok:
-                return False
-            if scales > 0 and J != (Ja if side < 0.0 else Ja + 1):
-                return False
-            if scales < 0 and ((fm > 0.0) == (ma > 0.0)) != (side < 0.0):
-                return False
+def both_sides(event, count, x, h, p, n_cells, ends, free, work, mats):
+    """The count and the characteristic function's mantissa at x - h and x + h: (J1, f1,
+    J2, f2, ok)."""
+    J1, f1, _, ok1 = structure_at(event, count, x - h, p, n_cells, ends, free, work, mats)
+    J2, f2, _, ok2 = structure_at(event, count, x + h, p, n_cells, ends, free, work, mats)
+    return J1, f1, J2, f2, ok1 and ok2
+
+
+@njit(cache=True)
+def steps_at(event, count, x, h, Ja, p, n_cells, ends, free, work, mats):
+    """Whether the count is Ja at x - h and Ja + 1 at x + h (one root between)."""
+    J1, _, J2, _, ok = both_sides(event, count, x, h, p, n_cells, ends, free, work, mats)
+    return ok and J1 == Ja and J2 == Ja + 1
+
+
+@njit(cache=True)
+def flips_at(event, count, x, h, ma, p, n_cells, ends, free, work, mats):
+    """Whether the characteristic function has the sign of ``ma`` at x - h and the other
+    at x + h."""
+    _, f1, _, f2, ok = both_sides(event, count, x, h, p, n_cells, ends, free, work, mats)
+    return ok and (f1 > 0.0) == (ma > 0.0) and (f2 > 0.0) != (ma > 0.0)
+
+
+#: The distances (relative) at which a root's count or function is read for being clean
+#: around it: a root is taken from the one that is clean at all of them.
+CLEAN = (1e-13, 1e-12, 1e-11, 1e-10)
+
+
+@njit(cache=True)
+def clean_count(event, count, x, Ja, p, n_cells, ends, free, work, mats):
+    """``steps_at`` at every distance of CLEAN."""
+    for r in CLEAN:
+        if not steps_at(event, count, x, r * x, Ja, p, n_cells, ends, free, work, mats):
+            return False
     return True
+
+
+@njit(cache=True)
+def clean_sign(event, count, x, ma, p, n_cells, ends, free, work, mats):
+    """``flips_at`` at every distance of CLEAN."""
+    for r in CLEAN:
+        if not flips_at(event, count, x, r * x, ma, p, n_cells, ends, free, work, mats):
+            return False
+    return True
+
+
+@njit(cache=True)
+def structure_beside(event, count, mid, a, b, p, n_cells, ends, free, work, mats):
+    """``structure_at`` at mid, or just above it where mid is a clamped-clamped frequency
+    of a block (no stiffness there): (mid, J, mantissa, log, ok), not ok where neither
+    exists inside (a, b)."""
+    J, fm, fl, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
+    if not ok:
+        mid = mid * (1.0 + 64.0 * EPS)
+        J, fm, fl, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
+        ok = ok and a < mid < b
+    return mid, J, fm, fl, ok
 
 
 @njit(cache=True)
@@ -646,12 +684,11 @@ def count_bisect(event, count, a, b, Ja, p, n_cells, ends, free, work, mats):
         mid = 0.5 * (a + b)
         if not (a < mid < b) or b - a <= 4.0 * EPS * b:
             return mid, True
-        J, _, _, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
-        if not ok:  # a clamped-clamped frequency of a block: step beside it
-            mid = mid * (1.0 + 64.0 * EPS)
-            J, _, _, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
-            if not ok or not (a < mid < b):
-                return 0.5 * (a + b), False
+        mid, J, _, _, ok = structure_beside(
+            event, count, mid, a, b, p, n_cells, ends, free, work, mats
+        )
+        if not ok:
+            return 0.5 * (a + b), False
         if J <= Ja:
             a = mid
         else:
@@ -713,18 +750,20 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
             fa = at_scale(ma, la, ref)
             fb = at_scale(mb, lb, ref)
             root, conv = brent(event, count, a, fa, b, fb, p, n_cells, ends, free, work, mats, ref)
-            if not clean(event, count, root, Ja, ma, p, n_cells, ends, free, work, mats, 1):
+            if not steps_at(
+                event, count, root, CONFIRM * root, Ja, p, n_cells, ends, free, work, mats
+            ):
                 # the count does not step there: either the function lost its digits beside
                 # this root (a cluster at a band edge of the cells) or the count did (waves
                 # that grow by e^2 a cell); the one that is clean around its root wins
                 by_count, c_conv = count_bisect(
                     event, count, a, b, Ja, p, n_cells, ends, free, work, mats
                 )
-                if c_conv and clean(
-                    event, count, by_count, Ja, ma, p, n_cells, ends, free, work, mats, 4
+                if c_conv and clean_count(
+                    event, count, by_count, Ja, p, n_cells, ends, free, work, mats
                 ):
                     root = by_count
-                elif not clean(event, count, root, Ja, ma, p, n_cells, ends, free, work, mats, -4):
+                elif not clean_sign(event, count, root, ma, p, n_cells, ends, free, work, mats):
                     conv = False  # neither: not trusted
             out[k] = root
             mult[k] = 1
@@ -738,17 +777,16 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
             flags[k] = 0
             k += 1
             continue
-        Jm, mm, lm, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
-        if not ok:  # a clamped-clamped frequency of a block on the node: step beside it
-            mid = mid * (1.0 + 64.0 * EPS)
-            Jm, mm, lm, ok = structure_at(event, count, mid, p, n_cells, ends, free, work, mats)
-            if not ok or not (a < mid < b):
-                certified = False
-                out[k] = 0.5 * (a + b)
-                mult[k] = Jb - Ja
-                flags[k] = 1
-                k += 1
-                continue
+        mid, Jm, mm, lm, ok = structure_beside(
+            event, count, mid, a, b, p, n_cells, ends, free, work, mats
+        )
+        if not ok:
+            certified = False
+            out[k] = 0.5 * (a + b)
+            mult[k] = Jb - Ja
+            flags[k] = 1
+            k += 1
+            continue
         if Jm < Ja or Jm > Jb:  # counts out of order: not certified
             certified = False
             Jm = max(Ja, min(Jb, Jm))
