@@ -347,7 +347,7 @@ def bands(
         out.edges = tuple(found)
         out.gaps = tuple(gaps)
         out.count_checked = checked and not more  # a coalescence is not proved
-        out.notes = notes + more
+        out.notes = notes + more + out.notes
         out.timings["edges"] = time.perf_counter() - t3
         if not given:  # the curves reach every edge and resolve every gap
             extra = [e.omega * (1.0 + d) for e in found for d in _NEAR_EDGE]
@@ -356,8 +356,11 @@ def bands(
             fine = _dispersion(c, np.unique(np.concatenate((omegas, extra))), (lo, hi))
             out.omega, out.k, out.mu = fine.omega, fine.k, fine.mu
             out.propagating = fine.propagating
+            out.notes = notes + more + fine.notes
     elif edges:  # nothing to certify
-        out.notes = ["damped cell: every wave decays, no sharp band edge (k is complex)"]
+        out.notes = [
+            "damped cell: every wave decays, no sharp band edge (k is complex)"
+        ] + out.notes
     return out
 
 
@@ -371,7 +374,33 @@ def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Band
     prop = waves[:, 4].real.astype(np.int64)
     if c.damped:
         prop[:] = -1
-    return Bands(c.cell, omegas, k, mu, prop, band, damped=c.damped)
+    out = Bands(c.cell, omegas, k, mu, prop, band, damped=c.damped)
+    out.notes += _evanescent_note(waves[:, 2:4])
+    return out
+
+
+#: Relative error of mu said in a note: the waves' k where both pairs are evanescent carry
+#: about eps exp(Im k_2 L) (k_2 the less attenuated pair): P's middle coefficient is then
+#: ~ exp(-Im k_2 L) of the others and known only to eps of them.
+MU_TRUSTED = 1e-8
+
+
+def _evanescent_note(kL: np.ndarray) -> list[str]:
+    """A note where both wave pairs decay by so much across a cell that their k lose
+    digits (a beam on a stiff foundation below its cut-on): mu is accurate to about
+    eps exp(min Im k L) relative (a pair with one propagating or one mildly evanescent
+    pair is accurate to round-off: c0 = det X0 is followed, ``cell_subspace_in``)."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        least = np.min(kL.imag, axis=1)
+        err = np.finfo(float).eps * np.exp(np.where(np.isfinite(least), least, 0.0))
+    bad = err > MU_TRUSTED
+    if not np.any(bad):
+        return []
+    return [
+        f"at {int(np.sum(bad))} of the frequencies both wave pairs decay by"
+        f" exp({np.min(least[bad]):.1f}) or more across a cell: their k are accurate to"
+        f" about {np.max(err[bad]):.0e} (relative to mu = 2 cos k L) only"
+    ]
 
 
 def _scaled(c: _Cell, s: float, ref: list[float]):

@@ -478,6 +478,14 @@ class Kernel:
         keeps its own counts off those points the same way: ``search.near_pole``)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.empty(omegas.shape, dtype=np.int64)
+        if self.interprets(p, 1, "counts"):
+            # a few counts of a small first solve: as plain Python, not worth loading
+            count, osc = (
+                self._python_function(n) for n in ("count_below", "oscillator_frequencies")
+            )
+            counts = self._python_function("counts_off_poles")
+            interpret.timed_call(counts, count, osc, omegas, _params(p), out)
+            return out
         fa = self._addresses("count_below", "oscillator_frequencies")
         self._entry("counts")(fa, omegas, _params(p), out)
         return out

@@ -16,7 +16,7 @@ import numpy as np
 from . import compiling, repeated
 from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
-from .modes import ModeShape, mode_shapes, unresolved
+from .modes import ModeShape, beside, mode_shapes, too_close, unresolved
 from .scan import TRUST, find_roots
 from .scene import Scene
 from .topology import parameter_vector, topology_of
@@ -193,6 +193,11 @@ def solve_undamped(
     if shapes:
         shape_list = mode_shapes(kernel, p, omega)
         warnings += unresolved(shape_list)
+        if chain is not None:
+            count = chain.count_below
+        else:
+            count = lambda w: kernel.count_below(w, p)  # noqa: E731
+        warnings += too_close(shape_list, *beside(count, omega))
         timings["shapes"] = time.perf_counter() - t3
     return Solution(
         scene,

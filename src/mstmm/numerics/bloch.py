@@ -90,7 +90,10 @@ def lu_logdet_c(A):
 def orthonormalise8(X):
     """The columns of X (8 x 4) made orthonormal (modified Gram-Schmidt, one pass: the
     subspace is what counts, orthogonality only keeps it well conditioned): the same
-    subspace, of states whose growth across the cell no longer swamps the others."""
+    subspace, of states whose growth across the cell no longer swamps the others. Returns
+    log det R of X = X_new R (the sum of the logs of the columns' norms; -inf for a zero
+    column), what det X0 is divided by."""
+    logdet = 0.0
     for c in range(4):
         for k in range(c):
             d = 0.0j
@@ -105,6 +108,10 @@ def orthonormalise8(X):
         if nrm > 0.0:
             for r in range(8):
                 X[r, c] /= nrm
+            logdet += math.log(nrm)
+        else:
+            logdet = -math.inf
+    return logdet
 
 
 @njit(cache=True, inline="always")
@@ -136,6 +143,7 @@ def bloch_work(p, sizes):
         np.zeros((8, 4), dtype=c),  # Y
         np.zeros((4, 4), dtype=c),  # U
         np.zeros((4, 4, 4), dtype=c),  # a general segment's powers of A
+        np.zeros(2, dtype=c),  # det X0 as (phase, log): ``cell_subspace_in``
     )
 
 
@@ -157,13 +165,24 @@ def cell_subspace_in(event, w, p, damped, work):
     decaying ones (a long cell, a high frequency). ``event`` is the kernel's complex
     descriptor (``shape_event_c``), ``work`` from ``bloch_work``; ``damped``: the
     segments' loss factors count. An empty array where a component leaves fewer than four
-    free parameters."""
+    free parameters.
+
+    work[-1] <- det X0 as (phase, log |det|) (phase 0: exactly singular, a support in the
+    cell), followed through the march rather than taken from X: X0 = X0_prev N_a at a
+    component (N_a the free parameters' rows of Z_0), divided by det R at each
+    re-orthonormalisation. It is P's leading coefficient c0 (``bloch_poly``), which is
+    ~ 1 / |lam| for a wave growing by lam across the cell: an LU of X0 (entries O(1))
+    gets it only to eps absolute, and an evanescent pair's Im k L (40 for a bare beam's
+    at lam L = 40) came out 9 % off; a supported cell's c0 = 0 came out as 1e-16, a
+    spurious pair with Im k L = 37."""
     L = p[0]
     EI = p[1]
     mbar = p[2]
     w1 = w * L * L * math.sqrt(mbar / EI)
     beta = cmath.sqrt(w1)
-    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work
+    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff, det0 = work
+    det0[0] = 1.0
+    det0[1] = -math.log(4.0)  # det X0 = SQRT_HALF^4
     n_ev = int(p[4])
     for a in range(8):
         for c in range(4):
@@ -182,7 +201,7 @@ def cell_subspace_in(event, w, p, damped, work):
             pieces, kh = segment_piece_c(p, sg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
             for _ in range(pieces):
                 if grown + kh > BLOCH_STEP:
-                    orthonormalise8(X)
+                    det0[1] -= orthonormalise8(X)
                     grown = 0.0
                 for a in range(4):
                     for c in range(4):
@@ -233,11 +252,17 @@ def cell_subspace_in(event, w, p, damped, work):
                 Y[4 + a, c] = zl
         if free < 4:
             return np.zeros((0, 0), dtype=np.complex128)
+        for a in range(4):  # X0 <- X0 N_a
+            for c in range(4):
+                S[a, c] = N[a, c]
+        ph, lg = lu_logdet_c(S)
+        det0[0] *= ph
+        det0[1] += lg
         X[:, :] = Y
-        orthonormalise8(X)
+        det0[1] -= orthonormalise8(X)
         grown = 0.0
     if grown > 0.0:
-        orthonormalise8(X)
+        det0[1] -= orthonormalise8(X)
     return X
 
 
@@ -252,10 +277,11 @@ def pencil_det(X, lam, A):
 
 
 @njit(cache=True)
-def bloch_poly(X, A):
-    """P(mu) = c0 mu^2 + c1 mu + c2 from det(XL - lam X0) at lam = 0, 1, -1 (A: 4x4
-    complex scratch), over a common scale: returns (c0, c1, c2, P(2), P(-2))."""
-    ph0, l0 = pencil_det(X, 0.0, A)
+def bloch_poly(X, A, det0):
+    """P(mu) = c0 mu^2 + c1 mu + c2 from det(XL - lam X0) at lam = 1, -1 and c0 = det X0
+    as ``cell_subspace_in`` followed it (``det0``: phase, log) (A: 4x4 complex scratch),
+    over a common scale: returns (c0, c1, c2, P(2), P(-2))."""
+    ph0, l0 = det0[0], det0[1].real
     ph1, l1 = pencil_det(X, 1.0, A)
     ph2, l2 = pencil_det(X, -1.0, A)
     ref = max(l0, max(l1, l2))
@@ -308,15 +334,17 @@ def bloch_k(mu):
     kL = cmath.acos(0.5 * mu)
     if kL.imag < 0.0:
         kL = -kL
+    if kL.real <= -math.pi:  # mu real below -2: pi, not -pi
+        kL = complex(kL.real + 2.0 * math.pi, kL.imag)
     return kL
 
 
 @njit(cache=True)
-def bloch_waves(X, A, out):
+def bloch_waves(X, A, det0, out):
     """out <- (mu_1, mu_2, k_1 L, k_2 L, n): ``bloch_mu`` and ``bloch_k``, the more
     attenuated pair first, and n the pairs that propagate (``propagating_count``;
     meaningful for an undamped cell) (A: 4x4 complex scratch)."""
-    c0, c1, c2, pp, pm = bloch_poly(X, A)
+    c0, c1, c2, pp, pm = bloch_poly(X, A, det0)
     mu1, mu2 = bloch_mu(c0, c1, c2)
     out[4] = propagating_count(c0, c1, c2, pp, pm)
     k1 = bloch_k(mu1)

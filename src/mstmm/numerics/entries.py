@@ -273,7 +273,7 @@ def entry_bloch_waves(fa, damped, ws, p, out):
         for k in range(j * n // chunks, (j + 1) * n // chunks):
             X = cell_subspace_in(event, ws[k], p, damped, work)
             if X.shape[0] == 8:
-                bloch_waves(X, A, out[k])
+                bloch_waves(X, A, work[-1], out[k])
             else:
                 out[k, :] = complex(math.nan, math.nan)
 

@@ -260,7 +260,7 @@ def cell_increment(event, w, p, E, work):
     L = p[0]
     w1 = w * L * L * math.sqrt(p[2] / p[1])
     beta = cmath.sqrt(complex(w1, 0.0))
-    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work
+    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff, _ = work
     Ec = np.zeros((4, 4), dtype=np.complex128)
     n_ev = int(p[4])
     pos = 0.0
