@@ -151,6 +151,45 @@ def test_identical_absorbers_against_each_other_leave_the_beam_at_rest():
     assert shape.mass_Y == pytest.approx([1.0, -1.0], abs=1e-12)
 
 
+@pytest.mark.parametrize("n", [3, 4, 6])
+def test_n_identical_absorbers_at_one_point_give_n_minus_1_independent_shapes(n):
+    """n identical damped absorbers at one point: their own root (k + i w c - m w^2 = 0)
+    has multiplicity n - 1, and its n - 1 shapes span the masses' motions that sum to zero
+    with the beam at rest. From the third on, the shapes repeated the second one (4
+    absorbers: [0, 1, -1, 0] twice, [0, 0, 1, -1] missing), with no word. Default path
+    (mode shapes on)."""
+    m, k, c = 1.0, 400.0, 2.0
+    atts = [{"type": "spring_mass", "x": 0.7, "k": k, "m": m, "c": c} for _ in range(n)]
+    beam = dict(length=1.0, EI=100.0, mass_per_length=5.0, left="clamped", right="free")
+    sol = mstmm.solve(mstmm.scene_from_dict({"beam": beam, "attachments": atts}), modes=n + 3)
+    own = complex(math.sqrt(4 * m * k - c * c) / (2 * m), c / (2 * m))
+    at = [i for i, w in enumerate(sol.omega) if abs(w - own) <= 1e-12 * abs(own)]
+    assert len(at) == n - 1 and all(sol.multiplicity[i] == n - 1 for i in at)
+    assert not sol.warnings, sol.warnings
+    V = np.array([sol.shapes[i].mass_Y for i in at])
+    for i in at:
+        assert np.abs(sol.shapes[i].Y).max() <= 1e-12
+    assert np.abs(V.sum(axis=1)).max() <= 1e-12  # the masses' forces cancel on the beam
+    sv = np.linalg.svd(V, compute_uv=False)
+    assert sv[-1] > 0.1 * sv[0]  # n - 1 independent shapes
+
+
+def test_unresolved_damped_shapes_are_said():
+    """A multiple root whose shapes repeat one another, or one the march could not give
+    (NaN), is said; independent shapes are not."""
+    x = np.linspace(0.0, 1.0, 5)
+
+    def shape(y, mult=2):
+        y = np.asarray(y, dtype=complex)
+        z = np.zeros(5, dtype=complex)
+        return damped.DampedModeShape(1.0 + 0.1j, x, y, z, z, z, x[:0], z[:0], 0.0, mult)
+
+    a, b = [0, 1, 0, 0, 0], [0, 0, 1, 0, 0]
+    assert damped.unresolved_damped([shape(a), shape(b)]) == []
+    assert len(damped.unresolved_damped([shape(a), shape(a)])) == 1
+    assert len(damped.unresolved_damped([shape(a), shape([np.nan] * 5)])) == 1
+
+
 def test_argument_principle_count_matches_the_reference():
     """The rectangle mstmm counted holds as many zeros for the reference's own count."""
     sc = SCENES["every_kind"]

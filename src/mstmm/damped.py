@@ -1142,6 +1142,7 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
     if shapes:
         t2 = time.perf_counter()
         shape_list = damped_shapes(kernel, p, omega_arr, mult)
+        warnings = warnings + unresolved_damped(shape_list)
         timings["shapes"] = time.perf_counter() - t2
     sol = DampedSolution(
         scene,
@@ -1195,9 +1196,36 @@ class DampedModeShape:
         return out
 
 
+def unresolved_damped(shapes: list) -> list[str]:
+    """Warnings for the multiple roots whose shapes the march does not resolve: a shape past
+    the ones it found (NaN), or m shapes that do not span m dimensions (relative singular
+    value below 1e-6 of the stacked [Y, mass_Y]). The frequencies stand."""
+    from .modes import eigenspaces
+
+    out = []
+    for a, b in eigenspaces(shapes):
+        if b - a < 2:
+            continue
+        V = np.array([np.concatenate([s.Y, s.mass_Y]) for s in shapes[a:b]])
+        ok = bool(np.all(np.isfinite(V)))
+        if ok:
+            V = V / np.linalg.norm(V, axis=1, keepdims=True)
+            sv = np.linalg.svd(V, compute_uv=False)
+            ok = bool(sv[-1] > 1e-6 * sv[0])
+        if not ok:
+            out.append(
+                f"the mode shapes of the root omega = {shapes[a].omega:.17g} rad/s of"
+                f" multiplicity {b - a} are not resolved: fewer than {b - a} independent"
+                " shapes were found (the frequency stands)"
+            )
+    return out
+
+
 def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity) -> list:
-    """One :class:`DampedModeShape` per entry of ``omega`` (a root of multiplicity 2 gets
-    the end's two singular directions; higher multiplicities repeat the last). The march
+    """One :class:`DampedModeShape` per entry of ``omega``: a root of multiplicity m gets m
+    shapes, the modes the march finds localised first (identical absorbers at one point:
+    their differences, the beam at rest), then the end's singular directions (two at
+    most; a shape beyond them is NaN, singular ratio inf: :func:`unresolved_damped`). The march
     of the frequency response without its load (``frf_march``, ``FRF_NULL``): the state
     at every sample and every hanging mass's displacement carried forward, the end's null
     vector applied at x = L. A rigid-body zero gets the rigid motion the ends allow."""
@@ -1221,7 +1249,7 @@ def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity
     while k < len(omega):
         w = complex(omega[k])
         m = int(multiplicity[k])
-        kinds = [-1, -2][: min(m, 2)] + [-2] * max(0, m - 2)
+        kinds = [-(j + 1) for j in range(m)]  # the root's j-th shape (frf.FRF_NULL)
         inputs = np.asarray([[kind, 0.0, 0.0, 1.0] for kind in kinds], dtype=np.float64)
         res = np.zeros((inputs.shape[0], outputs.shape[0]), dtype=np.complex128)
         singular = np.zeros(inputs.shape[0])

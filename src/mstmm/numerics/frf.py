@@ -39,9 +39,11 @@ FRF_MOMENT = 1  # input: a couple at x (M jumps by -C); output: theta at x
 FRF_MASS = 2  # a load on / the response of a component's unknown (hanging mass, rotary inertia)
 FRF_M = 3  # output: the moment M at x
 FRF_Q = 4  # output: the shear Q at x
-#: Inputs of a homogeneous march (a mode shape at a root): no load; the end's conditions
-#: E b = 0 taken along the right singular vector of E for its smaller (FRF_NULL) or larger
-#: (FRF_NULL2: the second shape of a double root) singular value.
+#: Inputs of a homogeneous march (a mode shape at a root): no load. Kind -(j + 1) asks for
+#: the root's j-th shape: the modes localised on the way (frozen, in the order the march
+#: meets them) first, then the end's conditions E b = 0 taken along the right singular
+#: vector of E for its smaller (FRF_NULL when no mode is localised) or larger singular
+#: value (FRF_NULL2: the second shape of a double root); NaN past those (singular inf).
 FRF_NULL = -1
 FRF_NULL2 = -2
 
@@ -443,9 +445,10 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     mo = mo[np.argsort(outputs[mo, 2], kind="mergesort")]
     for i_in in range(inputs.shape[0]):
         homogeneous = inputs[i_in, 0] < 0
-        frozen = np.zeros((2 if homogeneous else 0, n_out), dtype=np.complex128)
-        nf = 0
         kind_in = int(inputs[i_in, 0])
+        pick = -kind_in - 1 if homogeneous else 0  # the shape asked for (FRF_NULL: 0)
+        frozen = np.zeros((pick + 1 if homogeneous else 0, n_out), dtype=np.complex128)
+        nf = 0
         x_in = inputs[i_in, 1]
         q_in = int(inputs[i_in, 2])
         load = inputs[i_in, 3]
@@ -620,11 +623,15 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
         e01 = W[ends[2], 1]
         e10 = W[ends[3], 0]
         e11 = W[ends[3], 1]
-        pick = 0 if kind_in == FRF_NULL else 1
-        if homogeneous and pick < nf:  # a localised mode (orthonormalise_c)
+        if homogeneous and pick < nf:  # a localised mode (orthonormalise_c, carry_c)
             for j in range(n_out):
                 out[i_in, j] = frozen[pick, j] * outputs[j, 3]
             singular[i_in] = 0.0
+            continue
+        if homogeneous and pick - nf > 1:  # the end has two directions only
+            for j in range(n_out):
+                out[i_in, j] = complex(math.nan, math.nan)
+            singular[i_in] = math.inf
             continue
         if homogeneous:
             b0, b1, ratio = null_2x2(e00, e01, e10, e11, pick - nf == 1)
