@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "ddcbfa3c189833c9b96bcd72dba66cb2abd2ec0c"
+SIGNATURE = "4625ae1a6fa1ebd996151eabeb76afd193b543f8"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ()
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "08b59b1694cea0c77f99657ba54e8c2380f5ca54"
+NUMERICS = "99164bb1d3c30ff76e03c272687ac86605d8724e"
 
 
 @njit(cache=True, inline="always")

@@ -59,31 +59,55 @@ SQRT_HALF = math.sqrt(0.5)
 
 
 @njit(cache=True)
-def lu_logdet_c(A):
-    """Determinant of the complex square A by LU with partial pivoting, as (phase, log|det|)
-    with |phase| = 1 (phase 0 for a singular A); A is overwritten."""
+def lu_c(A):
+    """A (complex square) overwritten by its LU factors with partial pivoting (U on and
+    above the diagonal); returns the permutation's sign, 0 for a singular A."""
     n = A.shape[0]
-    phase = 1.0 + 0.0j
-    log = 0.0
+    sign = 1.0
     for k in range(n):
         piv, big = pivot_row(A, k)
         if big == 0.0:
-            return 0.0j, 0.0
+            return 0.0
         if piv != k:
-            phase = -phase
+            sign = -sign
             for j in range(n):
                 tmp = A[k, j]
                 A[k, j] = A[piv, j]
                 A[piv, j] = tmp
         d = A[k, k]
-        phase *= d / abs(d)
-        log += math.log(abs(d))
         for r in range(k + 1, n):
             f = A[r, k] / d
             if f != 0.0:
                 for j in range(k + 1, n):
                     A[r, j] -= f * A[k, j]
+    return sign
+
+
+@njit(cache=True)
+def lu_logdet_c(A):
+    """Determinant of the complex square A by LU with partial pivoting, as (phase, log|det|)
+    with |phase| = 1 (phase 0 for a singular A); A is overwritten."""
+    sign = lu_c(A)
+    if sign == 0.0:
+        return 0.0j, 0.0
+    phase = sign + 0.0j
+    log = 0.0
+    for k in range(A.shape[0]):
+        d = A[k, k]
+        phase *= d / abs(d)
+        log += math.log(abs(d))
     return phase, log
+
+
+@njit(cache=True)
+def lu_det_c(A):
+    """Determinant of a small complex square A with entries O(1) (no overflow); A is
+    overwritten."""
+    det = lu_c(A) + 0.0j
+    if det != 0.0:
+        for k in range(A.shape[0]):
+            det *= A[k, k]
+    return det
 
 
 @njit(cache=True)
@@ -93,7 +117,7 @@ def orthonormalise8(X):
     subspace, of states whose growth across the cell no longer swamps the others. Returns
     log det R of X = X_new R (the sum of the logs of the columns' norms; -inf for a zero
     column), what det X0 is divided by."""
-    logdet = 0.0
+    det = 1.0
     for c in range(4):
         for k in range(c):
             d = 0.0j
@@ -108,10 +132,8 @@ def orthonormalise8(X):
         if nrm > 0.0:
             for r in range(8):
                 X[r, c] /= nrm
-            logdet += math.log(nrm)
-        else:
-            logdet = -math.inf
-    return logdet
+        det *= nrm  # four norms of a basis grown by at most exp(BLOCH_STEP): no overflow
+    return math.log(det) if det > 0.0 else -math.inf
 
 
 @njit(cache=True, inline="always")
@@ -255,9 +277,12 @@ def cell_subspace_in(event, w, p, damped, work):
         for a in range(4):  # X0 <- X0 N_a
             for c in range(4):
                 S[a, c] = N[a, c]
-        ph, lg = lu_logdet_c(S)
-        det0[0] *= ph
-        det0[1] += lg
+        d = lu_det_c(S)
+        if d == 0.0:
+            det0[0] = 0.0
+        else:
+            det0[0] *= d / abs(d)
+            det0[1] += math.log(abs(d))
         X[:, :] = Y
         det0[1] -= orthonormalise8(X)
         grown = 0.0
