@@ -14,11 +14,23 @@ mstmm specializes on a literal value: a flag that selects code is a runtime bran
 
 from __future__ import annotations
 
+import os
+
+import numba
 from numba import njit as _numba_njit
 from numba import types
 from numba.core.dispatcher import Dispatcher
 
 __all__ = ["njit"]
+
+# mstmm's parallel loops (the search's refinement on a long beam, sweeps, the frequency
+# response, dispersion, damped contours) run on numba's threads: with GNU OpenMP (numba's
+# "omp" layer, picked first where libgomp is found) a process that forks after one of
+# them kills its children ("Terminating: fork() called from a process already using GNU
+# OpenMP"): a multiprocessing pool of solves after a solve of 1,000 spring-masses. A
+# fork-safe layer (TBB if installed, else numba's workqueue) unless the user chose one.
+if "NUMBA_THREADING_LAYER" not in os.environ:
+    numba.config.THREADING_LAYER = "forksafe"
 
 
 def _get_call_template(self, args, kws):
