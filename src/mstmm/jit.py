@@ -23,11 +23,11 @@ from numba.core.dispatcher import Dispatcher
 
 __all__ = ["njit"]
 
-# mstmm's parallel loops (the search's refinement on a long beam, sweeps, the frequency
-# response, dispersion, damped contours) run on numba's threads: with GNU OpenMP (numba's
+# mstmm's parallel loops (sweeps, the frequency response, dispersion, damped contours)
+# run on numba's threads: with GNU OpenMP (numba's
 # "omp" layer, picked first where libgomp is found) a process that forks after one of
 # them kills its children ("Terminating: fork() called from a process already using GNU
-# OpenMP"): a multiprocessing pool of solves after a solve of 1,000 spring-masses. A
+# OpenMP"): a multiprocessing pool of solves after a parameter sweep. A
 # fork-safe layer (TBB if installed, else numba's workqueue) unless the user chose one.
 if "NUMBA_THREADING_LAYER" not in os.environ:
     numba.config.THREADING_LAYER = "forksafe"

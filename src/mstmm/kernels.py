@@ -373,7 +373,6 @@ class Kernel:
                 args = (p, modes, out, flags, state, certify, rtol)
                 k = compiling.timed_call("lowest", lowest, *f, *args)
             else:
-                state[self.module.STATE_THREADS] = 1.0  # compiled: the roots on all cores
                 k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
         else:
             k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
@@ -412,7 +411,6 @@ class Kernel:
         fa, at = self._search(formulation)
         k = int(self._entry("lowest_start")(fa, p, modes, out, flags, state, certify))
         run = self._entry("lowest_run")
-        state[self.module.STATE_THREADS] = 1.0  # the roots on all cores
         bar = progress.Bar(modes, "modes")
         try:
             bar.update(max(k, 0))
@@ -458,7 +456,6 @@ class Kernel:
         if n_hi < n_lo:  # a count that decreases: nothing it says can be certified
             state[m.STATE_CERTIFIED], state[m.STATE_FAILED] = 0.0, lo
         if 0 <= k < size:
-            state[m.STATE_THREADS] = 1.0  # the roots on all cores
             run = self._entry("lowest_run")
             k = int(run(fa, at, p, size, out, flags, state, size, True, float(hi), rtol))
         return self._found(out, flags, state, k)

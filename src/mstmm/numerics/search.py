@@ -4,7 +4,6 @@ clusters, the rigid-body dimension (``lowest``: every root certified by the coun
 import math
 
 import numpy as np
-from numba import prange
 
 from mstmm.jit import njit
 
@@ -258,21 +257,13 @@ def refine_from(delta, a, ma, ga, b, mb, gb, xl, ml, gl, xr, mr, gr, poles, p, r
 #: when the lowest ``modes`` end inside a multiple root); state[STATE_CERTIFIED] is 1
 #: while the count certifies every root written, 0 once it could not (the search then
 #: goes on without it, and state[STATE_FAILED] is the frequency where it stopped).
-#: state[STATE_THREADS] = 1 lets the search refine a block's roots on all cores
-#: (``write_changes``); 0 where it runs inside a parallel loop already (a sweep: numba's
-#: workqueue threads do not nest) or as Python.
 STATE_W = 0
 STATE_COUNT = 1
 STATE_K = 2
 STATE_LAST = 3
 STATE_CERTIFIED = 4
 STATE_FAILED = 5
-STATE_THREADS = 6
-STATE_SIZE = 7
-#: Components from which a block's roots are refined in parallel (``write_changes``): one
-#: evaluation of the characteristic function then costs ~30 ns each, some 6 us, and
-#: Brent's ~6 of them a root outweigh waking the threads.
-PARALLEL_EVENTS = 200
+STATE_SIZE = 6
 #: Blocks in a row that may end without a new root before the search gives up, where the
 #: count cannot certify them (a beam has a natural frequency in every stretch of a few pi
 #: of beta = lam L; below a foundation's cut-on it has none, which the count proves: those
@@ -670,33 +661,10 @@ def node_root(delta, nd, i, n, poles, p, rtol):
     return root, 0 if ok else UNTRUSTED
 
 
-@njit(cache=True, parallel=True)
-def node_roots(delta, nd, at, n, poles, p, rtol, roots, rflags):
-    """``node_root`` of the sign change ending at each node at[t], on all cores."""
-    for t in prange(at.shape[0]):
-        roots[t], rflags[t] = node_root(delta, nd, at[t], n, poles, p, rtol)
-
-
 @njit(cache=True)
 def write_changes(delta, nd, i0, j0, n, poles, p, rtol, out, flags, k, modes, state):
     """Write the root of every sign change between nodes i0 and j0 (refined only now, and
-    only while fewer than ``modes`` are written); on all cores where state[STATE_THREADS]
-    allows it and the beam carries PARALLEL_EVENTS components or more (the same roots:
-    each is refined on its own). Returns the new k."""
-    if state[STATE_THREADS] == 1.0 and p[4] >= PARALLEL_EVENTS:
-        at = np.empty(max(0, min(j0 - i0, modes - k)), dtype=np.int64)
-        m = 0
-        for i in range(i0 + 1, j0 + 1):
-            if m < at.shape[0] and sign_change(nd, i) == 1:
-                at[m] = i
-                m += 1
-        if m >= 2:
-            roots = np.empty(m)
-            rflags = np.empty(m, dtype=np.int64)
-            node_roots(delta, nd, at[:m], n, poles, p, rtol, roots, rflags)
-            for t in range(m):
-                k = write_root(out, flags, k, modes, roots[t], rflags[t], 1, state)
-            return k
+    only while fewer than ``modes`` are written). Returns the new k."""
     for i in range(i0 + 1, j0 + 1):
         if k >= modes:
             break
