@@ -214,7 +214,9 @@ class _Cell:
         self.kernel: Kernel = load_kernel(topology_of(self.closed))
         self.p = np.ascontiguousarray(parameter_vector(self.closed), dtype=np.float64)
         self.damped = bool(self.kernel.topology.damped)
-        names = ("shape_event_c", "shape_sizes") + (() if self.damped else ("count_below",))
+        names = ("shape_event_c", "shape_sizes")
+        if not self.damped:  # the real march (``numerics.bloch``) and the count
+            names += ("shape_event", "count_below")
         self.fa = self.kernel._addresses(*names)
         self._K = np.zeros((2, 2))
         self.n = numerics()

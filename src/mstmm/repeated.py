@@ -37,7 +37,7 @@ MIN_CELLS = DEFAULT_MIN_CELLS = 500
 #: The shared driver of this path (``numerics.entries.entry_repeated_search``), and the cell
 #: kernel's functions it calls.
 DRIVER = "repeated_search"
-_FUNCTIONS = ("shape_event_c", "count_below", "shape_sizes", "oscillator_frequencies")
+_FUNCTIONS = ("shape_event", "count_below", "shape_sizes", "oscillator_frequencies")
 #: Python time a root of this path costs while its driver compiles in a helper, for
 #: ``compiling.python_instead`` (measured: 12 ms a root, 1,000 metamaterial cells).
 PYTHON_SECONDS_PER_ROOT = 0.02
@@ -93,7 +93,7 @@ class Chain:
             # the driver's helper is still compiling it: its Python copy meanwhile, around
             # the cell kernel's compiled functions
             kernel = self.kernel
-            names = ("shape_event_c", "shape_sizes", "oscillator_frequencies")
+            names = ("shape_event", "shape_sizes", "oscillator_frequencies")
             event, sizes, osc = (kernel._compiled(n) for n in names)
             count = kernel._compiled("count_below")
             driver = kernel._python_function(DRIVER)

@@ -32,6 +32,8 @@ import cmath
 import math
 
 import numpy as np
+from numba import types
+from numba.extending import overload
 
 from mstmm.jit import njit
 
@@ -43,7 +45,7 @@ from .linalg import (
     solve_in_place,
 )
 from .segment import (
-    segment_piece_c,
+    segment_piece,
 )
 from .walk import (
     STOP_END,
@@ -60,7 +62,7 @@ SQRT_HALF = math.sqrt(0.5)
 
 @njit(cache=True)
 def lu_c(A):
-    """A (complex square) overwritten by its LU factors with partial pivoting (U on and
+    """A (square, real or complex) overwritten by its LU factors with partial pivoting (U on and
     above the diagonal); returns the permutation's sign, 0 for a singular A."""
     n = A.shape[0]
     sign = 1.0
@@ -85,14 +87,15 @@ def lu_c(A):
 
 @njit(cache=True)
 def lu_logdet_c(A):
-    """Determinant of the complex square A by LU with partial pivoting, as (phase, log|det|)
-    with |phase| = 1 (phase 0 for a singular A); A is overwritten."""
+    """Determinant of the square A (real or complex) by LU with partial pivoting, as
+    (phase, log|det|) with |phase| = 1, of A's type (phase 0 for a singular A); A is
+    overwritten."""
     sign = lu_c(A)
     if sign == 0.0:
-        return 0.0j, 0.0
-    phase = sign + 0.0j
-    log = 0.0
-    for k in range(A.shape[0]):
+        return A[0, 0] * 0.0, 0.0
+    phase = A[0, 0] / abs(A[0, 0]) * sign
+    log = math.log(abs(A[0, 0]))
+    for k in range(1, A.shape[0]):
         d = A[k, k]
         phase *= d / abs(d)
         log += math.log(abs(d))
@@ -101,12 +104,14 @@ def lu_logdet_c(A):
 
 @njit(cache=True)
 def lu_det_c(A):
-    """Determinant of a small complex square A with entries O(1) (no overflow); A is
-    overwritten."""
-    det = lu_c(A) + 0.0j
-    if det != 0.0:
-        for k in range(A.shape[0]):
-            det *= A[k, k]
+    """Determinant of a small square A (real or complex) with entries O(1) (no overflow);
+    A is overwritten."""
+    sign = lu_c(A)
+    if sign == 0.0:
+        return A[0, 0] * 0.0
+    det = A[0, 0] * sign
+    for k in range(1, A.shape[0]):
+        det *= A[k, k]
     return det
 
 
@@ -120,8 +125,8 @@ def orthonormalise8(X):
     det = 1.0
     for c in range(4):
         for k in range(c):
-            d = 0.0j
-            for r in range(8):
+            d = X[0, k].conjugate() * X[0, c]
+            for r in range(1, 8):
                 d += X[r, k].conjugate() * X[r, c]
             for r in range(8):
                 X[r, c] -= d * X[r, k]
@@ -142,13 +147,26 @@ def times_end(M, a, X, c):
     return M[a, 0] * X[4, c] + M[a, 1] * X[5, c] + M[a, 2] * X[6, c] + M[a, 3] * X[7, c]
 
 
+def event_frequency(w1):
+    """What a kernel's descriptor takes: w1 = (lam_0 L)^2 (the complex ``shape_event_c``)
+    or b4 = w1^2 (the real ``shape_event``)."""
+    return w1 if isinstance(w1, complex) else w1 * w1
+
+
+@overload(event_frequency)
+def _event_frequency(w1):
+    if isinstance(w1, types.Complex):
+        return lambda w1: w1
+    return lambda w1: w1 * w1
+
+
 @njit(cache=True)
-def bloch_work(p, sizes):
+def bloch_work(p, sizes, c):
     """Scratch for ``cell_subspace_in`` (allocated once per thread, not per frequency): the
-    arrays of the march."""
+    arrays of the march, of type c (np.complex128, or np.float64 for the real march of an
+    undamped cell at a real frequency)."""
     nq_all, max_q = sizes(p)
     nb = max(1, max_q)
-    c = np.complex128
     return (
         np.zeros((8, 4), dtype=c),  # X
         np.zeros((4, 4), dtype=c),  # S
@@ -166,30 +184,34 @@ def bloch_work(p, sizes):
         np.zeros((4, 4), dtype=c),  # U
         np.zeros((4, 4, 4), dtype=c),  # a general segment's powers of A
         np.zeros(2, dtype=c),  # det X0 as (phase, log): ``cell_subspace_in``
+        np.empty(nb, dtype=np.int64),  # ``eliminate_c``'s pivot columns
+        np.empty(nb + 4, dtype=np.bool_),  # and its used columns
     )
 
 
 @njit(cache=True)
 def cell_subspace(event, sizes, w, p, damped):
-    """``cell_subspace_in`` with its own scratch."""
-    return cell_subspace_in(event, w, p, damped, bloch_work(p, sizes))
+    """``cell_subspace_in`` with its own scratch (complex)."""
+    return cell_subspace_in(event, w, p, damped, bloch_work(p, sizes, np.complex128))
 
 
 @njit(cache=True)
 def cell_subspace_in(event, w, p, damped, work):
     """The pairs (Z_0, Z_L) of states at the cell's ends that its beam and components admit,
-    at the complex frequency w (rad/s): a 4-dimensional subspace of C^8, returned as an
+    at the frequency w (rad/s; complex, or real with a real ``work`` and the kernel's real
+    descriptor for an undamped cell: the same march in real arithmetic, about a third of
+    the time): a 4-dimensional subspace of C^8, returned as an
     orthonormal basis X = [X0; XL] (8 x 4; ``work``'s array). Pieces carry XL by their
     transfer (lam h <= BLOCH_STEP), a component's constraints Cz Z + Cq q = 0 are solved
     for the free parameters (``eliminate_c``) and Z+ = A Z + B q; X is re-orthonormalised
     after every component and before a piece would carry more than BLOCH_STEP of lam h
     since the last time (short pieces share one), so the growing solutions never swamp the
     decaying ones (a long cell, a high frequency). ``event`` is the kernel's complex
-    descriptor (``shape_event_c``), ``work`` from ``bloch_work``; ``damped``: the
-    segments' loss factors count. An empty array where a component leaves fewer than four
-    free parameters.
+    descriptor (``shape_event_c``; real: ``shape_event``), ``work`` from ``bloch_work``;
+    ``damped``: the segments' loss factors count. An empty array where a component leaves
+    fewer than four free parameters.
 
-    work[-1] <- det X0 as (phase, log |det|) (phase 0: exactly singular, a support in the
+    work[-3] <- det X0 as (phase, log |det|) (phase 0: exactly singular, a support in the
     cell), followed through the march rather than taken from X: X0 = X0_prev N_a at a
     component (N_a the free parameters' rows of Z_0), divided by det R at each
     re-orthonormalisation. It is P's leading coefficient c0 (``bloch_poly``), which is
@@ -201,8 +223,8 @@ def cell_subspace_in(event, w, p, damped, work):
     EI = p[1]
     mbar = p[2]
     w1 = w * L * L * math.sqrt(mbar / EI)
-    beta = cmath.sqrt(w1)
-    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff, det0 = work
+    beta = np.sqrt(w1)  # real for the real march (w >= 0), else complex
+    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff, det0, piv, used = work
     det0[0] = 1.0
     det0[1] = -math.log(4.0)  # det X0 = SQRT_HALF^4
     n_ev = int(p[4])
@@ -220,7 +242,7 @@ def cell_subspace_in(event, w, p, damped, work):
         sg, stop, what, row, r, seg = walk_next(p, r, seg, pos, n_ev, math.inf)
         rho = (stop - pos) / L
         if rho > 0.0:
-            pieces, kh = segment_piece_c(p, sg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
+            pieces, kh = segment_piece(p, sg, w1, beta, damped, rho, BLOCH_STEP, U, Ff)
             for _ in range(pieces):
                 if grown + kh > BLOCH_STEP:
                     det0[1] -= orthonormalise8(X)
@@ -237,7 +259,7 @@ def cell_subspace_in(event, w, p, damped, work):
             break
         if what != STOP_EVENT:
             continue
-        nc, nq = event(p, row, w1, Cz, Cq, Ad, B, ev_mass)
+        nc, nq = event(p, row, event_frequency(w1), Cz, Cq, Ad, B, ev_mass)
         n = 4 + nq
         for a in range(nc):
             sc = 0.0
@@ -250,7 +272,7 @@ def cell_subspace_in(event, w, p, damped, work):
             rhs[a] = 0.0
             row_scale[a] = sc if sc > 0.0 else 1.0
         if nc > 0:
-            free = eliminate_c(C, rhs, row_scale, nc, n, N, xp)
+            free = eliminate_c(C, rhs, row_scale, nc, n, N, xp, piv, used)
         else:
             free = n
             for j in range(n):
@@ -263,9 +285,9 @@ def cell_subspace_in(event, w, p, damped, work):
                 S[a, j] = times_end(Ad, a, X, j)
         for c in range(4):
             for a in range(4):
-                z0 = 0.0j
-                zl = 0.0j
-                for j in range(4):
+                z0 = X[a, 0] * N[0, c]
+                zl = S[a, 0] * N[0, c]
+                for j in range(1, 4):
                     z0 += X[a, j] * N[j, c]
                     zl += S[a, j] * N[j, c]
                 for j in range(nq):
@@ -273,7 +295,7 @@ def cell_subspace_in(event, w, p, damped, work):
                 Y[a, c] = z0
                 Y[4 + a, c] = zl
         if free < 4:
-            return np.zeros((0, 0), dtype=np.complex128)
+            return X[:0]
         for a in range(4):  # X0 <- X0 N_a
             for c in range(4):
                 S[a, c] = N[a, c]
@@ -294,7 +316,7 @@ def cell_subspace_in(event, w, p, damped, work):
 @njit(cache=True)
 def pencil_det(X, lam, A):
     """det(XL - lam X0) as (phase, log|det|): g det(T - lam I), T the cell's transfer (A:
-    4x4 complex scratch)."""
+    4x4 scratch of X's type, real or complex)."""
     for a in range(4):
         for c in range(4):
             A[a, c] = X[4 + a, c] - lam * X[a, c]
@@ -304,7 +326,7 @@ def pencil_det(X, lam, A):
 @njit(cache=True)
 def bloch_poly(X, A, det0):
     """P(mu) = c0 mu^2 + c1 mu + c2 from det(XL - lam X0) at lam = 1, -1 and c0 = det X0
-    as ``cell_subspace_in`` followed it (``det0``: phase, log) (A: 4x4 complex scratch),
+    as ``cell_subspace_in`` followed it (``det0``: phase, log) (A: 4x4 scratch of X's type),
     over a common scale: returns (c0, c1, c2, P(2), P(-2))."""
     ph0, l0 = det0[0], det0[1].real
     ph1, l1 = pencil_det(X, 1.0, A)
@@ -367,14 +389,16 @@ def bloch_k(mu):
 @njit(cache=True)
 def bloch_waves(X, A, det0, out):
     """out <- (mu_1, mu_2, k_1 L, k_2 L, n): ``bloch_mu`` and ``bloch_k``, the more
-    attenuated pair first, and n the pairs that propagate (``propagating_count``;
-    meaningful for an undamped cell) (A: 4x4 complex scratch)."""
+    attenuated pair first (of a complex conjugate pair, Im mu > 0 first), and n the pairs
+    that propagate (``propagating_count``; meaningful for an undamped cell) (A: 4x4
+    scratch of X's type)."""
     c0, c1, c2, pp, pm = bloch_poly(X, A, det0)
     mu1, mu2 = bloch_mu(c0, c1, c2)
     out[4] = propagating_count(c0, c1, c2, pp, pm)
     k1 = bloch_k(mu1)
     k2 = bloch_k(mu2)
-    if k2.imag > k1.imag:
+    if k2.imag > k1.imag or (k2.imag == k1.imag and mu2.imag > mu1.imag):
+        # (a complex conjugate pair of mu in a gap, equally attenuated: Im mu > 0 first)
         mu1, mu2, k1, k2 = mu2, mu1, k2, k1
     out[0] = mu1
     out[1] = mu2

@@ -262,35 +262,55 @@ def entry_damped_shapes(fa, ends, damped, w, p, inputs, outputs, out, singular):
 def entry_bloch_waves(fa, damped, ws, p, out):
     """``bloch_waves`` of the cell at every frequency ws[k] (complex, rad/s), in parallel
     over chunks (scratch allocated once per chunk): out[k] = (mu_1, mu_2, k_1 L, k_2 L,
-    propagating pairs), the more attenuated pair first."""
+    propagating pairs), the more attenuated pair first. An undamped cell at real
+    frequencies is marched in real arithmetic (the kernel's real descriptor; fa holds
+    it then)."""
     event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
     n = ws.shape[0]
+    real = not damped
+    for k in range(n):
+        real = real and ws[k].imag == 0.0
     chunks = min(n, 64)
+    if real:
+        event_r = as_event(fa[FA_EVENT], fa[FA_EVENT + 1])
+        for j in prange(chunks):
+            work = bloch_work(p, sizes, np.float64)
+            A = np.empty((4, 4))
+            for k in range(j * n // chunks, (j + 1) * n // chunks):
+                bloch_at(event_r, ws[k].real, p, False, work, A, out[k])
+        return
     for j in prange(chunks):
-        work = bloch_work(p, sizes)
+        work = bloch_work(p, sizes, np.complex128)
         A = np.empty((4, 4), dtype=np.complex128)
         for k in range(j * n // chunks, (j + 1) * n // chunks):
-            X = cell_subspace_in(event, ws[k], p, damped, work)
-            if X.shape[0] == 8:
-                bloch_waves(X, A, work[-1], out[k])
-            else:
-                out[k, :] = complex(math.nan, math.nan)
+            bloch_at(event, ws[k], p, damped, work, A, out[k])
+
+
+@njit(cache=True)
+def bloch_at(event, w, p, damped, work, A, out):
+    """out <- ``bloch_waves`` of the cell at w (nan where a component leaves the cell
+    fewer than four free parameters)."""
+    X = cell_subspace_in(event, w, p, damped, work)
+    if X.shape[0] == 8:
+        bloch_waves(X, A, work[-3], out)
+    else:
+        out[:] = complex(math.nan, math.nan)
 
 
 @njit(cache=True)
 def entry_closed(fa, w, p, s, K):
     """At the real frequency w: (det M(s) as (sign, log)) and K <- the closed cell's joint
     stiffness (``closed_stiffness``; s = +1 periodic, -1 antiperiodic); returns (sign,
-    log, whether K exists)."""
-    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    log, whether K exists); the real march (the kernel's real descriptor)."""
+    event = as_event(fa[FA_EVENT], fa[FA_EVENT + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
-    X = cell_subspace(event, sizes, complex(w, 0.0), p, False)
+    X = cell_subspace_in(event, w, p, False, bloch_work(p, sizes, np.float64))
     if X.shape[0] != 8:
         return 0.0, 0.0, False
     ok = closed_stiffness(X, s, K)
-    phase, log = pencil_det(X, s, np.empty((4, 4), dtype=np.complex128))
-    return phase.real, log, ok
+    phase, log = pencil_det(X, s, np.empty((4, 4)))
+    return phase, log, ok
 
 
 @njit(cache=True)
@@ -306,10 +326,10 @@ def entry_subspace(fa, damped, w, p):
 def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
     """``repeated.structure_at`` of n_cells cells at every real ws[k]: out[k] = (J,
     mantissa, log, ok) (``fa``: the kernel of the cell clamped at both ends)."""
-    event = as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1])
+    event = as_event(fa[FA_EVENT], fa[FA_EVENT + 1])
     count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
     sizes = as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1])
-    work = bloch_work(p, sizes)
+    work = bloch_work(p, sizes, np.float64)
     mats = repeated_work(levels_of(n_cells))
     for k in range(ws.shape[0]):
         J, fm, fl, ok = structure_at(event, count, ws[k], p, n_cells, ends, free, work, mats)
@@ -323,7 +343,7 @@ def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
 def entry_repeated_search(fa, p, n_cells, ends, free, rigid, want, lo, hi, scale, out, mult, flags):
     """``repeated.repeated_search`` with the cell kernel's functions."""
     return repeated_search(
-        as_event_c(fa[FA_EVENT_C], fa[FA_EVENT_C + 1]),
+        as_event(fa[FA_EVENT], fa[FA_EVENT + 1]),
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),
         as_sizes(fa[FA_SIZES], fa[FA_SIZES + 1]),
         as_osc(fa[FA_OSC], fa[FA_OSC + 1]),

@@ -173,23 +173,21 @@ def lazy_apply(G, g, nep, ep, done, T, t):
 
 
 @njit(cache=True)
-def eliminate_c(C, rhs, scale, nc, n, X, xp):
-    """The solutions of C x = rhs (nc x n, complex) as x = xp + X a, X n x (n - rank):
-    Gauss-Jordan with complete pivoting; a row whose pivot falls below DEGENERATE times its
-    scale (its largest entry of Cz and Cq) depends on the others at this frequency (a
-    component exactly at its own frequency with the beam point held): it leaves one more
-    free parameter. Returns the number of free parameters (columns of X), or -1 when such
-    a row's right-hand side is not zero (the load drives a decoupled resonance)."""
-    M = np.empty((nc, n), dtype=np.complex128)
-    r_ = np.empty(nc, dtype=np.complex128)
-    sc = np.empty(nc)
-    for i in range(nc):
-        r_[i] = rhs[i]
-        sc[i] = scale[i]
-        for j in range(n):
-            M[i, j] = C[i, j]
-    piv_col = np.empty(nc, dtype=np.int64)
-    used = np.zeros(n, dtype=np.bool_)
+def eliminate_c(C, rhs, scale, nc, n, X, xp, piv_col, used):
+    """The solutions of C x = rhs (nc x n, real or complex) as x = xp + X a, X n x (n -
+    rank): Gauss-Jordan with complete pivoting; a row whose pivot falls below DEGENERATE
+    times its scale (its largest entry of Cz and Cq) depends on the others at this
+    frequency (a component exactly at its own frequency with the beam point held): it
+    leaves one more free parameter. Returns the number of free parameters (columns of X),
+    or -1 when such a row's right-hand side is not zero (the load drives a decoupled
+    resonance). C, rhs and scale are overwritten; ``piv_col`` (int) and ``used`` (bool),
+    of at least nc and n entries, are the caller's scratch (the marches call this at every
+    component and frequency: five allocations a call were a fifth of a Bloch cell's)."""
+    M = C
+    r_ = rhs
+    sc = scale
+    for j in range(n):
+        used[j] = False
     rank = 0
     for k in range(nc):
         best = -1.0
@@ -406,6 +404,8 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     C = np.zeros((nb, nb + 2), dtype=np.complex128)
     rhs = np.zeros(nb, dtype=np.complex128)
     row_scale = np.ones(nb)
+    piv_col = np.empty(nb, dtype=np.int64)  # ``eliminate_c``'s scratch
+    used = np.empty(nb + 2, dtype=np.bool_)
     X = np.zeros((nb + 2, nb + 2), dtype=np.complex128)
     SS = np.zeros((4, nb + 2), dtype=np.complex128)
     xp = np.zeros(nb + 2, dtype=np.complex128)
@@ -544,7 +544,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
                     for j in range(nq):
                         sc = max(sc, abs(Cq[a, j]))
                     row_scale[a] = sc if sc > 0.0 else 1.0
-                nn = eliminate_c(C, rhs, row_scale, nc, n, X, xp)
+                nn = eliminate_c(C, rhs, row_scale, nc, n, X, xp, piv_col, used)
                 if nn < 0 or (nn > 2 and not homogeneous):
                     failed = True  # a decoupled resonance: the response is infinite
                     break

@@ -38,7 +38,6 @@ Units are the cell kernel's (its first segment's L = EI = mbar = 1); counts and 
 not depend on them.
 """
 
-import cmath
 import math
 
 import numpy as np
@@ -62,7 +61,7 @@ from .search import (
 )
 from .segment import (
     is_general,
-    segment_piece_c,
+    segment_piece_r,
 )
 from .walk import (
     STOP_END,
@@ -259,9 +258,10 @@ def cell_increment(event, w, p, E, work):
     the state (no point matrix) or stands at its own frequency."""
     L = p[0]
     w1 = w * L * L * math.sqrt(p[2] / p[1])
-    beta = cmath.sqrt(complex(w1, 0.0))
-    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff, _ = work
-    Ec = np.zeros((4, 4), dtype=np.complex128)
+    beta = math.sqrt(w1)
+    X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work[:15]
+    Ec = E
+    Ec[:, :] = 0.0
     n_ev = int(p[4])
     pos = 0.0
     seg = 0
@@ -270,7 +270,7 @@ def cell_increment(event, w, p, E, work):
         sg, stop, what, row, r, seg = walk_next(p, r, seg, pos, n_ev, math.inf)
         rho = (stop - pos) / L
         if rho > 0.0:
-            pieces, kh = segment_piece_c(p, sg, complex(w1, 0.0), beta, False, rho, 1.0, U, Ff)
+            pieces, kh = segment_piece_r(p, sg, w1, beta, False, rho, 1.0, U, Ff)
             d = krylov_s_minus_1(kh) if not is_general(p, sg) else 0.0
             for i in range(4):
                 U[i, i] = d if not is_general(p, sg) else U[i, i] - 1.0
@@ -281,12 +281,12 @@ def cell_increment(event, w, p, E, work):
             break
         if what != STOP_EVENT:
             continue
-        nc, nq = event(p, row, complex(w1, 0.0), Cz, Cq, Ad, B, ev_mass)
+        nc, nq = event(p, row, w1 * w1, Cz, Cq, Ad, B, ev_mass)
         if nc != nq:
             return False
         if nq > 0:
-            Q = np.empty((nq, nq), dtype=np.complex128)
-            R = np.empty((nq, 4), dtype=np.complex128)
+            Q = np.empty((nq, nq))
+            R = np.empty((nq, 4))
             for i in range(nq):
                 for j in range(nq):
                     Q[i, j] = Cq[i, j]
@@ -301,9 +301,6 @@ def cell_increment(event, w, p, E, work):
                     acc -= B[i, k] * R[k, j]
                 U[i, j] = acc
         add_increment(U, Ec, S)
-    for i in range(4):
-        for j in range(4):
-            E[i, j] = Ec[i, j].real
     return True
 
 
@@ -716,7 +713,7 @@ def repeated_roots(event, count, sizes, osc, p, n_cells, ends, free, lo, hi, out
     root), mult[k] (its multiplicity), flags[k] (1: not converged); returns (k, certified):
     how many distinct roots were written and whether every count could be taken."""
     own = pole_data(osc(p))[0]
-    work = bloch_work(p, sizes)
+    work = bloch_work(p, sizes, np.float64)
     mats = repeated_work(levels_of(n_cells))
     certified = True
     lo = guarded(own, lo)
@@ -820,7 +817,7 @@ def repeated_search(
     component that constrains the state) or no start was found: the general search runs
     instead."""
     own = pole_data(osc(p))[0]
-    work = bloch_work(p, sizes)
+    work = bloch_work(p, sizes, np.float64)
     mats = repeated_work(levels_of(n_cells))
     first = min(scale, own[0]) if own.shape[0] > 0 else scale
     start = START * first

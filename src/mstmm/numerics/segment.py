@@ -13,6 +13,10 @@ Units are the kernel's, L = EI_0 = mbar_0 = 1; ``w2 = (lam_0 L)^4`` the squared 
 import cmath
 import math
 
+import numpy as np
+from numba import types
+from numba.extending import overload
+
 from mstmm.generated.euler_bernoulli import (
     beam_transfer_scaled,
     beam_transfer_scaled_c,
@@ -195,6 +199,44 @@ def segment_piece_c(p, seg, w1, beta, damped, rho, step, U, F):
     pieces = max(1, int(math.ceil(abs(bs) * rho / step)))
     piece_transfer_c(bs, e, rho / pieces, U)
     return pieces, abs(bs) * rho / pieces
+
+
+@njit(cache=True)
+def segment_piece_r(p, seg, w1, beta, damped, rho, step, U, F):
+    """``segment_piece_c`` in real arithmetic: an undamped segment at a real frequency (w1
+    = (lam_0 L)^2 >= 0, beta = sqrt(w1); ``damped`` unused), a quarter of the complex
+    twin's multiplications."""
+    if is_general(p, seg):
+        field_prepare(p, seg, w1 * w1, 1.0, F)
+        k = field_balance(F)
+        pieces = max(1, int(math.ceil(k * rho / step)))
+        field_exp(F, rho / pieces, U)
+        return pieces, k * rho / pieces
+    e, a = segment_scale(p, seg)
+    bs = beta * a
+    pieces = max(1, int(math.ceil(bs * rho / step)))
+    h = rho / pieces
+    shift = beam_transfer_scaled(bs, h, U)
+    f = math.exp(shift) if shift != 0.0 else 1.0
+    for r in range(4):
+        for c in range(4):
+            U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+    return pieces, bs * h
+
+
+def segment_piece(p, seg, w1, beta, damped, rho, step, U, F):
+    """``segment_piece_c`` or ``segment_piece_r`` by the type of U (complex or real): the
+    Bloch cell's march is written once for both (compiled: chosen when numba types it)."""
+    twin = segment_piece_c if np.iscomplexobj(U) else segment_piece_r
+    return twin(p, seg, w1, beta, damped, rho, step, U, F)
+
+
+@overload(segment_piece)
+def _segment_piece(p, seg, w1, beta, damped, rho, step, U, F):
+    twin = segment_piece_c if isinstance(U.dtype, types.Complex) else segment_piece_r
+    return lambda p, seg, w1, beta, damped, rho, step, U, F: twin(
+        p, seg, w1, beta, damped, rho, step, U, F
+    )
 
 
 @njit(cache=True)
