@@ -23,6 +23,7 @@ import importlib.metadata
 import importlib.util
 import os
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -42,6 +43,8 @@ FORMULATIONS = ("stable", "paper")
 
 #: Modes :meth:`Kernel.lowest` finds in one kernel call; more go block by block.
 BLOCK_MODES = 256
+#: Components from which ``Kernel.lowest`` refines its roots in parallel (``_defers``).
+DEFER_EVENTS = 200
 
 
 class KernelError(RuntimeError):
@@ -373,10 +376,36 @@ class Kernel:
                 args = (p, modes, out, flags, state, certify, rtol)
                 k = compiling.timed_call("lowest", lowest, *f, *args)
             else:
+                if self._defers(p):  # room for the brackets left pending
+                    state = np.full(state.size + self.module.PENDING_WIDTH * modes, np.nan)
+                    state[: self.module.STATE_SIZE] = 0.0
                 k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
+                self._refine_pending(fa, at, p, state, out, flags, k, rtol)
         else:
             k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
         return self._found(out, flags, state, int(k))
+
+    @staticmethod
+    def _defers(p: np.ndarray) -> bool:
+        """Whether ``lowest`` leaves its roots' refinement to ``_refine_pending`` (roots
+        refined in parallel): with at least :data:`DEFER_EVENTS` components (each
+        evaluation a walk long enough to outweigh starting the threads), and only on the
+        main thread (numba's workqueue threading layer, the fork-safe one ``mstmm.jit``
+        picks where TBB is missing, must not start parallel work from two threads at once;
+        a solve in another thread refines its roots itself)."""
+        return p[4] >= DEFER_EVENTS and threading.current_thread() is threading.main_thread()
+
+    def _refine_pending(self, fa, at, p, state, out, flags, k: int, rtol: float) -> None:
+        """Refine the roots ``lowest`` left pending (their brackets in ``state`` beyond
+        STATE_SIZE, ``numerics.search.PENDING_WIDTH``), in parallel over the roots."""
+        m = self.module
+        if state.size == m.STATE_SIZE:
+            return
+        k = k if k >= 0 else int(state[m.STATE_K])
+        pending = state[m.STATE_SIZE :].reshape(-1, m.PENDING_WIDTH)[:k, 0]
+        rows = np.flatnonzero(np.isfinite(pending)).astype(np.int64)
+        if rows.size:
+            self._entry("refine_pending")(fa, at, p, state, rows, out, flags, float(rtol))
 
     def _found(self, out: np.ndarray, flags: np.ndarray, state: np.ndarray, k: int) -> Found:
         m = self.module

@@ -30,13 +30,16 @@ from .repeated import (
     structure_at,
 )
 from .search import (
+    PENDING_WIDTH,
     STATE_CERTIFIED,
     STATE_SIZE,
+    bracket_root,
     counts_off_poles,
     evaluate,
     lowest,
     lowest_run,
     lowest_start,
+    pole_data,
     refine,
 )
 from .shapes import (
@@ -162,6 +165,21 @@ def entry_lowest(fa, at, p, modes, out, flags, state, certify, rtol):
         certify,
         rtol,
     )
+
+
+@njit(cache=True, parallel=True)
+def entry_refine_pending(fa, at, p, state, rows, out, flags, rtol):
+    """The roots ``lowest`` left pending (``search.PENDING_WIDTH``: out[k] for each k in
+    ``rows``, its bracket in ``state``) refined by Brent's method, in parallel over the
+    roots."""
+    delta = as_delta(fa[at], fa[at + 1])
+    poles = pole_data(as_osc(fa[FA_OSC], fa[FA_OSC + 1])(p))
+    for i in prange(rows.shape[0]):
+        k = rows[i]
+        start = STATE_SIZE + PENDING_WIDTH * k
+        root, flag = bracket_root(delta, state[start : start + PENDING_WIDTH], poles, p, rtol)
+        out[k] = root
+        flags[k] = flag
 
 
 @njit(cache=True)

@@ -264,6 +264,14 @@ STATE_LAST = 3
 STATE_CERTIFIED = 4
 STATE_FAILED = 5
 STATE_SIZE = 6
+#: Deferred refinement: where the caller gives ``state`` more room than STATE_SIZE, each
+#: root a block writes from a sign change is written as nan, and its bracket, PENDING_WIDTH
+#: numbers at state[STATE_SIZE + PENDING_WIDTH k:] (``node_bracket``), is left for
+#: ``entries.entry_refine_pending`` to refine after the search, the roots in parallel:
+#: Brent on an O(N) walk was most of a search among N = 10,000 components, one root after
+#: another. (A parallel refinement called from inside the cached search was tried and
+#: withdrawn, numba/numba#8578: this one is an entry called from Python.)
+PENDING_WIDTH = 12
 #: Blocks in a row that may end without a new root before the search gives up, where the
 #: count cannot certify them (a beam has a natural frequency in every stretch of a few pi
 #: of beta = lam L; below a foundation's cut-on it has none, which the count proves: those
@@ -632,44 +640,56 @@ def sign_change(nd, i):
 
 
 @njit(cache=True)
-def node_root(delta, nd, i, n, poles, p, rtol):
-    """The root of the sign change between nodes i - 1 and i (of n) by ``refine_from``,
-    with the nodes beside the bracket as its third points; returns (root, flag)."""
+def node_bracket(nd, i, n, r):
+    """r <- the bracket of the sign change between nodes i - 1 and i (of n) as
+    ``refine_from`` takes it: its ends (x, mantissa, log) and the nodes beside it as its
+    third points (x nan: none)."""
     left = i >= 2 and nd[NODE_WL, i - 1] == nd[NODE_W, i - 1]
     right = i + 1 < n
     il = i - 2 if left else i
     ir = i + 1 if right else i
+    r[0] = nd[NODE_WL, i - 1]
+    r[1] = nd[NODE_ML, i - 1]
+    r[2] = nd[NODE_GL, i - 1]
+    r[3] = nd[NODE_W, i]
+    r[4] = nd[NODE_M, i]
+    r[5] = nd[NODE_G, i]
+    r[6] = nd[NODE_W, il] if left else np.nan
+    r[7] = nd[NODE_M, il]
+    r[8] = nd[NODE_G, il]
+    r[9] = nd[NODE_W, ir] if right else np.nan
+    r[10] = nd[NODE_M, ir]
+    r[11] = nd[NODE_G, ir]
+
+
+@njit(cache=True)
+def bracket_root(delta, r, poles, p, rtol):
+    """The root of the bracket r (``node_bracket``) by ``refine_from``; returns (root,
+    flag)."""
     root, its, ok = refine_from(
-        delta,
-        nd[NODE_WL, i - 1],
-        nd[NODE_ML, i - 1],
-        nd[NODE_GL, i - 1],
-        nd[NODE_W, i],
-        nd[NODE_M, i],
-        nd[NODE_G, i],
-        nd[NODE_W, il] if left else np.nan,
-        nd[NODE_M, il],
-        nd[NODE_G, il],
-        nd[NODE_W, ir] if right else np.nan,
-        nd[NODE_M, ir],
-        nd[NODE_G, ir],
-        poles,
-        p,
-        rtol,
-        200,
-    )
+        delta, r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8], r[9], r[10], r[11],
+        poles, p, rtol, 200,
+    )  # fmt: skip
     return root, 0 if ok else UNTRUSTED
 
 
 @njit(cache=True)
 def write_changes(delta, nd, i0, j0, n, poles, p, rtol, out, flags, k, modes, state):
     """Write the root of every sign change between nodes i0 and j0 (refined only now, and
-    only while fewer than ``modes`` are written). Returns the new k."""
+    only while fewer than ``modes`` are written; or left pending, PENDING_WIDTH). Returns
+    the new k."""
+    r = np.empty(PENDING_WIDTH)
+    defer = state.shape[0] >= STATE_SIZE + PENDING_WIDTH * modes
     for i in range(i0 + 1, j0 + 1):
         if k >= modes:
             break
         if sign_change(nd, i) == 1:
-            root, flag = node_root(delta, nd, i, n, poles, p, rtol)
+            if defer:
+                node_bracket(nd, i, n, state[STATE_SIZE + PENDING_WIDTH * k :])
+                k = write_root(out, flags, k, modes, np.nan, 0, 1, state)
+                continue
+            node_bracket(nd, i, n, r)
+            root, flag = bracket_root(delta, r, poles, p, rtol)
             k = write_root(out, flags, k, modes, root, flag, 1, state)
     return k
 
