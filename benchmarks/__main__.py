@@ -684,8 +684,9 @@ def periodic_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
             f"{d['seconds'] * 1e3:.2f} ms ({d['cell']}; its {d['edges']} edges with the count"
             f" {d['edges_seconds'] * 1e3:.2f} ms)",
             _status(d["seconds"] <= 0.020),
-            when + "; the cell's end-state subspace re-orthonormalised per piece, complex"
-            " arithmetic, numba prange over the frequencies",
+            when + "; the cell's end-state subspace re-orthonormalised per piece, real"
+            " arithmetic for an undamped cell (complex for a damped one), numba prange over"
+            " the frequencies",
         ),
         (
             "band edges against an mpmath reference",
@@ -729,7 +730,8 @@ def cluster_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
                 f"<= {goal * 1e3:.0f} ms",
                 f"{r['solve'] * 1e3:.1f} ms; {r['missed']} missed ({r['missed_by']})",
                 _status(r["solve"] <= goal and r["count_checked"] and r["missed"] == 0),
-                when + "; one count per block, Brent only on roots reported (docs/clusters.md)",
+                when + "; one count per block, Brent only on roots reported, the roots refined"
+                " on both cores after the search (docs/clusters.md)",
             )
         )
     one, spaced, slopes = g["one_point"], g["spaced"], g["slopes"]
