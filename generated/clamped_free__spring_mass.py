@@ -28,7 +28,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "9af8615b9af824bbd67992d9dc0d8df6a1666676"
+SIGNATURE = "7eea21e4bf8ad1a72d116bbb2ec9ecb2005b9bf9"
 #: Component kinds of this kernel; a component's tag is its kind's index here.
 KINDS = ('spring_mass',)
 #: What each kind's damping connects (``mstmm.derive.descriptor.DAMPERS``), for the proved
@@ -43,7 +43,7 @@ RIGHT_KNOWN = (2, 3)
 #: The ends for the shared mode-shape march: the left end's unknowns, the right end's knowns.
 SHAPE_ENDS = np.array(LEFT_UNKNOWN + RIGHT_KNOWN, dtype=np.int64)
 #: sha1 of the shared numerics' sources (``mstmm.numerics``) this kernel was printed with.
-NUMERICS = "f2688913d7e8da60bb62ceb81de978d49aebd16d"
+NUMERICS = "756ecec1319009ccd6d529a8c691c5d9af83025b"
 
 
 @njit(cache=True, inline="always")

@@ -304,11 +304,15 @@ def push_halves(lo, hi, nlo, nhi, top, a, mid, b, na, nm, nb):
 @njit(cache=True)
 def write_root(out, flags, k, modes, root, flag, copies, state):
     """Write ``copies`` copies of a root (up to ``modes`` values) with its flag; its
-    multiplicity becomes state[STATE_LAST]. Returns the new k."""
+    multiplicity becomes state[STATE_LAST]. Returns the new k. A root written (not nan)
+    clears the pending bracket its slot may hold from a block run again (PENDING_WIDTH)."""
+    room = state.shape[0] >= STATE_SIZE + PENDING_WIDTH * modes
     for _ in range(copies):
         if k < modes:
             out[k] = root
             flags[k] = flag
+            if room and root == root:
+                state[STATE_SIZE + PENDING_WIDTH * k] = np.nan
             k += 1
     state[STATE_LAST] = copies
     return k
