@@ -160,6 +160,10 @@ def _event_frequency(w1):
     return lambda w1: w1 * w1
 
 
+#: Where ``bloch_work``'s tuple holds det X0 (``cell_subspace_in``).
+DET0 = 15
+
+
 @njit(cache=True)
 def bloch_work(p, sizes, c):
     """Scratch for ``cell_subspace_in`` (allocated once per thread, not per frequency): the
@@ -211,7 +215,7 @@ def cell_subspace_in(event, w, p, damped, work):
     ``damped``: the segments' loss factors count. An empty array where a component leaves
     fewer than four free parameters.
 
-    work[-3] <- det X0 as (phase, log |det|) (phase 0: exactly singular, a support in the
+    work[DET0] <- det X0 as (phase, log |det|) (phase 0: exactly singular, a support in the
     cell), followed through the march rather than taken from X: X0 = X0_prev N_a at a
     component (N_a the free parameters' rows of Z_0), divided by det R at each
     re-orthonormalisation. It is P's leading coefficient c0 (``bloch_poly``), which is

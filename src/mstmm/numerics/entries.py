@@ -13,6 +13,7 @@ from numba.extending import intrinsic
 from mstmm.jit import njit
 
 from .bloch import (
+    DET0,
     bloch_waves,
     bloch_work,
     cell_subspace,
@@ -311,7 +312,7 @@ def bloch_at(event, w, p, damped, work, A, out):
     fewer than four free parameters)."""
     X = cell_subspace_in(event, w, p, damped, work)
     if X.shape[0] == 8:
-        bloch_waves(X, A, work[-3], out)
+        bloch_waves(X, A, work[DET0], out)
     else:
         out[:] = complex(math.nan, math.nan)
 
