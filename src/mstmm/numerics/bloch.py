@@ -41,7 +41,8 @@ from .frf import (
     eliminate_c,
 )
 from .linalg import (
-    pivot_row,
+    lu_det,
+    lu_logdet,
     solve_in_place,
 )
 from .segment import (
@@ -58,61 +59,6 @@ from .walk import (
 #: exp(2 BLOCH_STEP) eps against a growing one.
 BLOCH_STEP = 2.0
 SQRT_HALF = math.sqrt(0.5)
-
-
-@njit(cache=True)
-def lu_c(A):
-    """A (square, real or complex) overwritten by its LU factors with partial pivoting (U on and
-    above the diagonal); returns the permutation's sign, 0 for a singular A."""
-    n = A.shape[0]
-    sign = 1.0
-    for k in range(n):
-        piv, big = pivot_row(A, k)
-        if big == 0.0:
-            return 0.0
-        if piv != k:
-            sign = -sign
-            for j in range(n):
-                tmp = A[k, j]
-                A[k, j] = A[piv, j]
-                A[piv, j] = tmp
-        d = A[k, k]
-        for r in range(k + 1, n):
-            f = A[r, k] / d
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    A[r, j] -= f * A[k, j]
-    return sign
-
-
-@njit(cache=True)
-def lu_logdet_c(A):
-    """Determinant of the square A (real or complex) by LU with partial pivoting, as
-    (phase, log|det|) with |phase| = 1, of A's type (phase 0 for a singular A); A is
-    overwritten."""
-    sign = lu_c(A)
-    if sign == 0.0:
-        return A[0, 0] * 0.0, 0.0
-    phase = A[0, 0] / abs(A[0, 0]) * sign
-    log = math.log(abs(A[0, 0]))
-    for k in range(1, A.shape[0]):
-        d = A[k, k]
-        phase *= d / abs(d)
-        log += math.log(abs(d))
-    return phase, log
-
-
-@njit(cache=True)
-def lu_det_c(A):
-    """Determinant of a small square A (real or complex) with entries O(1) (no overflow);
-    A is overwritten."""
-    sign = lu_c(A)
-    if sign == 0.0:
-        return A[0, 0] * 0.0
-    det = A[0, 0] * sign
-    for k in range(1, A.shape[0]):
-        det *= A[k, k]
-    return det
 
 
 @njit(cache=True)
@@ -303,7 +249,7 @@ def cell_subspace_in(event, w, p, damped, work):
         for a in range(4):  # X0 <- X0 N_a
             for c in range(4):
                 S[a, c] = N[a, c]
-        d = lu_det_c(S)
+        d = lu_det(S)
         if d == 0.0:
             det0[0] = 0.0
         else:
@@ -324,7 +270,7 @@ def pencil_det(X, lam, A):
     for a in range(4):
         for c in range(4):
             A[a, c] = X[4 + a, c] - lam * X[a, c]
-    return lu_logdet_c(A)
+    return lu_logdet(A)
 
 
 @njit(cache=True)

@@ -31,7 +31,8 @@ from mstmm.jit import njit
 from . import generic
 from .count import field_count, neg2, pair_count, pair_stiffness
 from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
-from .paper import apply_columns, lu_logdet, segment_transfer
+from .linalg import lu_logdet
+from .paper import apply_columns, segment_transfer
 from .search import rigid_dimension
 from .segment import any_general, is_general, segment_compound, segment_constraints
 from .walk import (

@@ -13,9 +13,6 @@ from mstmm.jit import njit
 from .field import (
     expm_short,
 )
-from .linalg import (
-    pivot_row,
-)
 from .segment import (
     balance,
     is_general,
@@ -52,31 +49,3 @@ def apply_columns(U, W, ncols, col):
             col[r] = U[r, 0] * W[0, j] + U[r, 1] * W[1, j] + U[r, 2] * W[2, j] + U[r, 3] * W[3, j]
         for r in range(4):
             W[r, j] = col[r]
-
-
-@njit(cache=True)
-def lu_logdet(A):
-    """Determinant by LU with partial pivoting, as (sign, log|det|); A is overwritten."""
-    n = A.shape[0]
-    sign = 1.0
-    log = 0.0
-    for k in range(n):
-        piv, big = pivot_row(A, k)
-        if big == 0.0:
-            return 0.0, 0.0
-        if piv != k:
-            sign = -sign
-            for j in range(n):
-                tmp = A[k, j]
-                A[k, j] = A[piv, j]
-                A[piv, j] = tmp
-        d = A[k, k]
-        if d < 0.0:
-            sign = -sign
-        log += math.log(abs(d))
-        for r in range(k + 1, n):
-            f = A[r, k] / d
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    A[r, j] -= f * A[k, j]
-    return sign, log

@@ -260,8 +260,7 @@ def cell_increment(event, w, p, E, work):
     w1 = w * L * L * math.sqrt(p[2] / p[1])
     beta = math.sqrt(w1)
     X, S, Cz, Cq, Ad, B, ev_mass, C, rhs, row_scale, N, xp, Y, U, Ff = work[:15]
-    Ec = E
-    Ec[:, :] = 0.0
+    E[:, :] = 0.0
     n_ev = int(p[4])
     pos = 0.0
     seg = 0
@@ -275,7 +274,7 @@ def cell_increment(event, w, p, E, work):
             for i in range(4):
                 U[i, i] = d if not is_general(p, sg) else U[i, i] - 1.0
             for _ in range(pieces):
-                add_increment(U, Ec, S)
+                add_increment(U, E, S)
             pos = stop
         if what == STOP_END:
             break
@@ -300,7 +299,7 @@ def cell_increment(event, w, p, E, work):
                 for k in range(nq):
                     acc -= B[i, k] * R[k, j]
                 U[i, j] = acc
-        add_increment(U, Ec, S)
+        add_increment(U, E, S)
     return True
 
 

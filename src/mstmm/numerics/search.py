@@ -301,12 +301,19 @@ def push_halves(lo, hi, nlo, nhi, top, a, mid, b, na, nm, nb):
     return top + 2
 
 
+@njit(cache=True, inline="always")
+def pending_room(state, modes):
+    """Whether ``state`` has room for the brackets of ``modes`` roots (PENDING_WIDTH): the
+    caller defers their refinement."""
+    return state.shape[0] >= STATE_SIZE + PENDING_WIDTH * modes
+
+
 @njit(cache=True)
 def write_root(out, flags, k, modes, root, flag, copies, state):
     """Write ``copies`` copies of a root (up to ``modes`` values) with its flag; its
     multiplicity becomes state[STATE_LAST]. Returns the new k. A root written (not nan)
     clears the pending bracket its slot may hold from a block run again (PENDING_WIDTH)."""
-    room = state.shape[0] >= STATE_SIZE + PENDING_WIDTH * modes
+    room = pending_room(state, modes)
     for _ in range(copies):
         if k < modes:
             out[k] = root
@@ -683,7 +690,7 @@ def write_changes(delta, nd, i0, j0, n, poles, p, rtol, out, flags, k, modes, st
     only while fewer than ``modes`` are written; or left pending, PENDING_WIDTH). Returns
     the new k."""
     r = np.empty(PENDING_WIDTH)
-    defer = state.shape[0] >= STATE_SIZE + PENDING_WIDTH * modes
+    defer = pending_room(state, modes)
     for i in range(i0 + 1, j0 + 1):
         if k >= modes:
             break

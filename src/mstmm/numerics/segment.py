@@ -160,12 +160,15 @@ def count_pieces(p, seg, F, w2, rho):
 @njit(cache=True, inline="always")
 def piece_transfer(bs, e, rho, U):
     """U <- D U(bs rho) D^-1, D = diag(1, 1, e, e): a piece of an Euler-Bernoulli segment
-    whose EI is e times the first's (bs*rho <= MARCH_STEP: no scaling, shift 0)."""
-    beam_transfer_scaled(bs, rho, U)
-    if e != 1.0:
+    whose EI is e times the first's, unscaled (the printed functions take exp(bs rho) out
+    beyond bs rho = 1.5: it is put back; none on the marches' pieces of bs rho <=
+    MARCH_STEP)."""
+    shift = beam_transfer_scaled(bs, rho, U)
+    f = math.exp(shift) if shift != 0.0 else 1.0
+    if e != 1.0 or f != 1.0:
         for r in range(4):
             for c in range(4):
-                U[r, c] *= (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+                U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
 
 
 @njit(cache=True)
@@ -216,11 +219,7 @@ def segment_piece_r(p, seg, w1, beta, damped, rho, step, U, F):
     bs = beta * a
     pieces = max(1, int(math.ceil(bs * rho / step)))
     h = rho / pieces
-    shift = beam_transfer_scaled(bs, h, U)
-    f = math.exp(shift) if shift != 0.0 else 1.0
-    for r in range(4):
-        for c in range(4):
-            U[r, c] *= f * (e if r >= 2 else 1.0) / (e if c >= 2 else 1.0)
+    piece_transfer(bs, e, h, U)
     return pieces, bs * h
 
 
