@@ -1,12 +1,15 @@
-"""Emit the numba kernel module of a topology: fill the template, sign it, write it.
+"""Emit the generated modules: build their functions as SymPy's codegen AST, print them,
+sign them, write them.
 
-Two templates: ``templates/euler_bernoulli.py.tmpl``, the beam functions every kernel and
-the shared numerics use (printed once into ``generated/euler_bernoulli.py``); and
-``templates/kernel.py.tmpl``, a topology's per-component functions (``event_<what>``) with
-one branch per kind present, printed from each kind's descriptor (a bare beam gets no
-branch at all). The numerics, the characteristic functions' walk, the scan, the count,
-the marches, are ordinary code in ``mstmm.numerics``: a kernel binds
-``mstmm.numerics.characteristic`` to its printed functions.
+``generated/euler_bernoulli.py``: the beam functions every kernel and the shared numerics
+use (the reduced functions' series and closed forms, the transfer matrix and compound
+step filled from them, the general segment's field matrix), composed by ordinary code
+(``mstmm.numerics.beam``). A topology's kernel: its per-component functions
+(``event_<what>``), one branch per kind present, printed from each kind's descriptor (a
+bare beam gets no branch at all), and its ends' constants. The numerics, the
+characteristic functions' walk, the scan, the count, the marches, are ordinary code in
+``mstmm.numerics``: a kernel binds ``mstmm.numerics.characteristic`` to its printed
+functions. The templates (``templates/*.tmpl``) hold the modules' headers only.
 """
 
 from __future__ import annotations
@@ -14,10 +17,21 @@ from __future__ import annotations
 import importlib.metadata
 import os
 import tempfile
+import textwrap
 from pathlib import Path
 from string import Template
 
 import sympy as sp
+from sympy.codegen.ast import (
+    AddAugmentedAssignment,
+    Assignment,
+    For,
+    FunctionCall,
+    FunctionDefinition,
+    NoneToken,
+    Return,
+    Variable,
+)
 
 from mstmm import catalog
 from mstmm.catalog import KNOWN_ZERO, Topology, unknown
@@ -26,7 +40,7 @@ from mstmm.sign import derive_digest, numerics_digest, signature
 from . import descriptor, special
 from . import symbols as S
 from .compound import pair_index
-from .printer import assignments, code
+from .printer import If, array, assignment_nodes, code, lit
 from .segments import euler_bernoulli as beam
 from .segments import general
 
@@ -34,56 +48,35 @@ TEMPLATE = Path(__file__).with_name("templates") / "kernel.py.tmpl"
 NUMERICS_TEMPLATE = TEMPLATE.with_name("euler_bernoulli.py.tmpl")
 #: The characteristic functions a kernel binds (``mstmm.numerics.characteristic``).
 FUNCTIONS = {False: "UNDAMPED", True: "DAMPED"}
-#: What each kind of kernel's functions are (the module docstring).
+#: What a kernel's characteristic functions are (the module docstring).
 WHAT = {
-    False: """
-* ``delta_paper``: det U_bar(omega), paper Eqs. (1)-(4): the tree algorithm with every
-  component's unknowns and geometric equations (its descriptor), the boundary reduction,
-  an LU determinant (units L = EI_0 = mbar_0 = 1);
-* ``delta_stable`` (default): the same roots from the second-compound chain in
-  units L = 1, EI_0 = 1, reduced beam functions (series below x = $threshold),
-  every component's pole factor multiplied out exactly once, renormalised (by powers of
-  two) whenever its largest minor leaves [2^-20, 2^20].
-
-Both return ``(mantissa, log)`` with value ``mantissa * exp(log)``.
-``count_below`` is the number of natural frequencies below omega (Wittrick-Williams:
-clamped-piece counts plus the negative pivots of the dynamic stiffness, eliminated node
-by node on the minors of the state subspace; each component adds its own), independent
-of both.""",
-    True: """
-* ``delta_damped``: the second-compound chain of the undamped kernels in complex
-  arithmetic at a complex frequency w = w_d + i sigma (time dependence exp(i w t)): the
-  dashpots' forces i w c, each segment's loss factor as EI (1 + i eta), reduced beam
-  functions (series below |x| = $threshold), pole factors multiplied out once; its
-  ``(mantissa, log)`` are complex and mantissa * exp(log) is entire in w. The damped
-  search counts its zeros by the argument principle (``mstmm.damped``).""",
+    False: "``delta_stable`` (default) and ``delta_paper``, whose zeros are the natural"
+    " frequencies, and ``count_below``, their number below omega",
+    True: "``delta_damped``, whose zeros in the complex plane are the damped natural frequencies",
 }
 
 
-def _indent(lines: list[str], n: int) -> str:
-    pad = " " * n
-    return "\n".join(pad + line if line.strip() else "" for line in lines)
-
-
-def _series_lines(funcs: tuple[special.Reduced, ...]) -> list[str]:
-    """Horner evaluation in ``z = x^4`` of each reduced function's Taylor series."""
+def _series(funcs: tuple[special.Reduced, ...], z: sp.Symbol) -> list:
+    """``name = series`` of each reduced function: its Taylor coefficients (exact
+    rationals, printed to the nearest double) in Horner form in ``z = x^4``."""
     lines = []
     for f in funcs:
-        coeffs = [repr(float(a)) for a in f.series()]
-        expr = coeffs[-1]
+        coeffs = f.series()
+        expr = sp.Rational(coeffs[-1])
         for a in reversed(coeffs[:-1]):
-            expr = f"{a} + z * ({expr})"
-        lines.append(f"{f.name} = {expr}")
+            expr = sp.Add(sp.Rational(a), sp.Mul(z, expr, evaluate=False), evaluate=False)
+        lines.append(Assignment(sp.Symbol(f.name), expr))
     return lines
 
 
-def _closed_lines(funcs, scaled: bool, complex_: bool = False) -> list[str]:
-    """``name = closed form`` of each beam function; for a complex argument the negative
-    powers of x through one reciprocal ``rx`` (a complex division costs as much as ten
+def _closed(funcs, scaled: bool, complex_: bool = False) -> list:
+    """``name = closed form`` of each beam function (``scaled``: times exp(-x), in terms
+    of ``E = exp(-x)``, ``chs``, ``shs``); for a complex argument the negative powers of
+    x through one reciprocal ``rx`` (a complex division costs as much as ten
     multiplications), and every sine, cosine and power once (CSE across the functions:
     numba calls ``cmath.sin`` again at each occurrence)."""
-    out = ["rx = 1.0 / x"] if complex_ else []
     rx = sp.Symbol("rx")
+    out: list = [Assignment(rx, 1 / S.x)] if complex_ else []
     names, exprs = [], []
     for f in funcs:
         if scaled:
@@ -96,79 +89,75 @@ def _closed_lines(funcs, scaled: bool, complex_: bool = False) -> list[str]:
                 lambda e: e.is_Pow and e.base == special.x and e.exp.is_negative,
                 lambda e: rx ** (-e.exp),
             )
-        names.append(f.name)
+        names.append(sp.Symbol(f.name))
         exprs.append(expr.subs(special.x, S.x))
-    return out + assignments(names, exprs, indent="", complex_=complex_)
+    return out + assignment_nodes(names, exprs)
 
 
-def _clamped_clamped_lines() -> list[str]:
-    """``f = exp(-x) (1 - cos x cosh x)``, its sign is that of the equation."""
-    E, chs, shs = sp.symbols("E chs shs")
-    f = special.Reduced("f", beam.clamped_clamped_equation(special.x))
-    expr = special.scaled_closed_form(f, E, chs, shs)
-    return [f"f = {code(expr.subs(special.x, S.x))}"]
+def _returns(funcs) -> Return:
+    return Return(sp.Tuple(*(sp.Symbol(f.name) for f in funcs)))
 
 
-def _matrix_fill(M: sp.Matrix, name: str, complex_: bool = False) -> list[str]:
-    targets = [f"{name}[{i}, {j}]" for i in range(M.rows) for j in range(M.cols)]
-    return assignments(targets, list(M), indent="", complex_=complex_)
+def _matrix_fill(M: sp.Matrix, name: str) -> list:
+    U = array(name, M.rows, M.cols)
+    targets = [U[i, j] for i in range(M.rows) for j in range(M.cols)]
+    return assignment_nodes(targets, list(M))
 
 
-def _compound_step(C: sp.Matrix, complex_: bool = False) -> list[str]:
+def _compound_step(C: sp.Matrix) -> list:
     """``v <- C v`` for a 6x6 symbolic compound, through CSE'd scalars."""
     v = sp.symbols("v0:6")
-    lines = [f"v{a} = v[{a}]" for a in range(6)]
-    products = list(C * sp.Matrix(v))
-    lines += assignments([f"v[{a}]" for a in range(6)], products, indent="", complex_=complex_)
-    return lines
+    vv = array("v", 6)
+    lines: list = [Assignment(v[a], vv[a]) for a in range(6)]
+    return lines + assignment_nodes([vv[a] for a in range(6)], list(C * sp.Matrix(v)))
 
 
-def _unit_factor(scale) -> str:
-    """`` * (L * L / EI)``-style factor making a value of unit exponents ``scale`` (of L,
-    EI_0, mbar_0) dimensionless; half powers as ``math.sqrt`` (a dashpot's N s/m)."""
-    num: list[str] = []
-    den: list[str] = []
-    roots_num: list[str] = []
-    roots_den: list[str] = []
-    for name, e in zip(("L", "EI", "mbar"), scale):
-        whole, half = int(abs(e)), abs(e) - int(abs(e))
-        (num if e > 0 else den).extend([name] * whole)
-        if half:
-            (roots_num if e > 0 else roots_den).append(name)
-    if roots_num:
-        num.append(f"math.sqrt({' * '.join(roots_num)})")
-    if roots_den:
-        den.append(f"math.sqrt({' * '.join(roots_den)})")
-    # one factor, free of the value: the compiler computes it once, outside the event loop
-    factor = " * ".join(num) if num else "1.0"
-    if den:
-        factor += " / " + (den[0] if len(den) == 1 else "(" + " * ".join(den) + ")")
-    if factor == "1.0":
-        return ""
-    return f" * ({factor})" if " " in factor else f" * {factor}"
+#: The symbols of a kernel's printed functions: the parameter vector ``p``, a component's
+#: data block at ``o``, its tag, the units, the frequency (``b4``; complex ``w1``).
+p_, o_, tag_ = sp.IndexedBase("p"), sp.Symbol("o", integer=True), sp.Symbol("tag", integer=True)
+L_, EI_, mbar_ = sp.symbols("L EI mbar", positive=True)
+b4_, w1_ = sp.Symbol("b4"), sp.Symbol("w1")
+n_, j_ = sp.Symbol("n", integer=True), sp.Symbol("j", integer=True)
+count_, pivot_, own_ = sp.Symbol("count", integer=True), sp.Symbol("pivot"), sp.Symbol("own")
+st_ = array("st", 5, n_)
 
 
-def _value_lines(module, damped: bool = False) -> tuple[list[str], dict]:
-    """Lines loading a kind's scalar values from its data block (at ``o``) in units
+def _call(name: str, *args):
+    """A call of a function of the shared numerics (or of another printed function)."""
+    return sp.Function(name)(*args)
+
+
+def _unit_factor(scale) -> sp.Expr:
+    """The factor L^a EI^b mbar^c, ``scale = (a, b, c)``, that makes a value of that
+    key's unit dimensionless, kept as one factor free of the value: the compiler computes
+    it once, outside the event loop."""
+    a, b, c = (sp.nsimplify(e) for e in scale)
+    factor = L_**a * EI_**b * mbar_**c
+    return sp.UnevaluatedExpr(factor) if factor != 1 else sp.Integer(1)
+
+
+def _value_lines(module, damped: bool = False) -> tuple[list, dict]:
+    """Statements loading a kind's scalar values from its data block (at ``o``) in units
     L = EI = mbar = 1 (exponents from each key's unit), and their symbols. Damping values
     (``Key.damping``) only in a damped kernel. For a kind of stages, the values of stage
     ``j`` (the j-th entry of each list; a list is stored after its length ``n``)."""
-    lines = []
+    lines: list = []
     values = {}
     staged = _staged(module)
     if staged:
-        lines.append("n = int(p[o])")
-    for j, key in enumerate(module.KEYS[1:]):
+        lines.append(Assignment(n_, _call("int", p_[o_])))
+    for k, key in enumerate(module.KEYS[1:]):
         if (key.shape == "list") != staged:
             if staged:
                 raise ValueError(f"{module.KIND}: a kind of stages has only list keys")
             break
         if key.damping and not damped:
             continue
-        name = f"val_{key.name}"
-        at = f"o + {j} * (n + 1) + 1 + j" if staged else f"o + {j}"
-        lines.append(f"{name} = p[{at}]{_unit_factor(key.scale)}")
-        values[key.name] = sp.Symbol(name, real=True)
+        name = sp.Symbol(f"val_{key.name}", real=True)
+        at = o_ + k * (n_ + 1) + 1 + j_ if staged else o_ + k
+        factor = _unit_factor(key.scale)
+        lines.append(Assignment(name, p_[at] * factor if factor != 1 else p_[at]))
+        values[key.name] = name
     return lines, values
 
 
@@ -177,68 +166,77 @@ def _staged(module) -> bool:
     return hasattr(module, "stage")
 
 
-def _chain_lines(what: str, complex_: bool = False) -> list[str]:
+def _chain_lines(what: str, complex_: bool = False) -> list:
     """The stages of a kind of stages into ``st`` (the kernel's ``event_stages``, at the
     frequency, or at 0 for its own frequencies), then ``mstmm.numerics.chain``'s
     ``what``: the tip condensation, the full descriptor or the own frequencies."""
-    w, suffix, dtype = ("w1", "_c", "np.complex128") if complex_ else ("b4", "", "np.float64")
+    w, suffix = (w1_, "_c") if complex_ else (b4_, "")
     if what == "internal":
-        w = "0.0"
+        w = sp.Float(0.0)
+    st = sp.Symbol("st")
     lines = [
-        f"st = np.empty((5, int(p[o])), dtype={dtype})",
-        f"event_stages{suffix}(tag, p, o, {w}, L, EI, mbar, st)",
+        Assignment(st, _call(f"stage_array{suffix}", p_, o_)),
+        FunctionCall(f"event_stages{suffix}", [tag_, p_, o_, w, L_, EI_, mbar_, st]),
     ]
-    call = {
-        "tip": "chain_u0, chain_g, chain_log, own = chain_tip(st)",
-        "descriptor": "return chain_descriptor(st, Cz, Cq, A, B, qmass)",
-        "internal": "return chain_internal(st, L, EI, mbar, out, n)",
-    }[what]
-    return lines + [call]
+    if what == "tip":
+        tip = array("tip", 4)
+        names = ("chain_u0", "chain_g", "chain_log", "own")
+        lines.append(Assignment(sp.Symbol("tip"), _call("chain_tip", st)))
+        return lines + [Assignment(sp.Symbol(nm), tip[k]) for k, nm in enumerate(names)]
+    if what == "descriptor":
+        args = [st] + [sp.Symbol(nm) for nm in ("Cz", "Cq", "A", "B", "qmass")]
+        return lines + [Return(_call("chain_descriptor", *args))]
+    out = sp.Symbol("out")
+    return lines + [Return(_call("chain_internal", st, L_, EI_, mbar_, out, n_))]
 
 
-def _symbolic_descriptor(module, damped: bool = False) -> tuple[list[str], descriptor.Descriptor]:
+def _symbolic_descriptor(module, damped: bool = False) -> tuple[list, descriptor.Descriptor]:
     lines, values = _value_lines(module, damped)
     return lines, descriptor.of(module, values)
 
 
-def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = False) -> list[str]:
+def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = False) -> list:
     vs = sp.symbols("v0:6")
-    lines = [f"v{a} = {name}[{a}]" for a in range(6)]
+    v = array(name, 6)
+    lines: list = [Assignment(vs[a], v[a]) for a in range(6)]
     step = descriptor.compound_step(d, sp.Matrix(vs))
-    targets = [f"{name}[{a}]" for a in range(6)]
-    lines += assignments(targets, list(step), indent="", complex_=complex_)
-    return lines
+    return lines + assignment_nodes([v[a] for a in range(6)], list(step))
 
 
-def _tip_lines(complex_: bool = False) -> list[str]:
+def _tip_lines(complex_: bool = False) -> list:
     """A kind of stages condensed from its tip (``descriptor.chain_reduced``)."""
     return _chain_lines("tip", complex_)
 
 
-def _stable_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _stable_lines(module, d: descriptor.Descriptor) -> list:
     """v <- the component's pole-free compound step (docs/components.md)."""
     if _staged(module):
         return _tip_lines() + _step_lines(d)
     return _value_lines(module)[0] + _step_lines(d)
 
 
-def _damped_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _damped_lines(module, d: descriptor.Descriptor) -> list:
     """The same in a damped kernel: complex, with the damping values (a kind of stages
     returns the log of the factor its condensation took out)."""
     if _staged(module):
-        return _tip_lines(True) + _step_lines(d, complex_=True) + ["return chain_log"]
-    return _value_lines(module, damped=True)[0] + _step_lines(d, complex_=True)
+        return _tip_lines(True) + _step_lines(d) + [Return(sp.Symbol("chain_log"))]
+    return _value_lines(module, damped=True)[0] + _step_lines(d)
 
 
-def _counted_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _counted_lines(module, d: descriptor.Descriptor) -> list:
     """``_count_lines`` as a function's body: returns the negative pivots."""
     lines = _count_lines(module, d)
-    if not any("count +=" in line for line in lines):
+    if not any(isinstance(s, (If, AddAugmentedAssignment)) for s in lines):
         return lines
-    return ["count = 0"] + lines + ["return count"]
+    return [Assignment(count_, lit(0))] + lines + [Return(count_)]
 
 
-def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _negative(pivot) -> If:
+    """``count += 1`` where ``pivot`` is negative."""
+    return If(pivot < 0, [AddAugmentedAssignment(count_, lit(1))])
+
+
+def _count_lines(module, d: descriptor.Descriptor) -> list:
     """The negative pivots a component adds to the count (``count += ...``), and the
     minors Zc of the node's state subspace carried across it."""
     values = _value_lines(module)[0]
@@ -248,17 +246,18 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
         A = sp.eye(4) - sp.Symbol("PENALTY") * d.B * d.Cz
         return _step_lines(descriptor.point(A), "Zc")
     step = _step_lines(d, "Zc")
+    Zc = array("Zc", 6)
     if rule == "split":
         # a hinge: the rotation left of it is eliminated first, pivot S_theta + kappa
         if d.Cz != descriptor.unit(2).T or d.B != descriptor.unit(1):
             raise ValueError(f"{module.KIND}: COUNT 'split' needs Cz = e_M and B = e_theta")
-        pivot = [f"pivot = (Zc[1] - ({code(d.Cq[0, 0])}) * Zc[0]) * Zc[0]"]
-        return values + pivot + step + ["if pivot < 0.0:", "    count += 1"]
+        pivot = [Assignment(pivot_, (Zc[1] - d.Cq[0, 0] * Zc[0]) * Zc[0])]
+        return values + pivot + step + [_negative(pivot_)]
     if d.n_q == 0:
         descriptor.node_stiffness(d)  # checks that it is one
         return values + step
     if _staged(module):  # the negative pivots of its nodes' dynamic stiffness
-        return _tip_lines() + step + ["count += own"]
+        return _tip_lines() + step + [AddAugmentedAssignment(count_, own_)]
     coupled = [j for j in range(4) if d.Cz[0, j] != 0] if d.n_q == 1 else []
     if len(coupled) != 1 or coupled[0] > 1 or not (d.Cz[0, coupled[0]] > 0):
         raise ValueError(
@@ -267,26 +266,27 @@ def _count_lines(module, d: descriptor.Descriptor) -> list[str]:
             " to the beam, c > 0)"
         )
     # the unknown's own dynamic stiffness (k - m w^2 for a spring-mass)
-    pivot = [f"pivot = {code(-d.Cq[0, 0])}"]
-    return values + pivot + step + ["if pivot < 0.0:", "    count += 1"]
+    return values + [Assignment(pivot_, -d.Cq[0, 0])] + step + [_negative(pivot_)]
 
 
-def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list[str]:
+def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list:
     """Fill Cz, Cq, A, B, qmass from a descriptor; return (constraints, unknowns)."""
-    targets = [f"A[{r}, {c}]" for r in range(4) for c in range(4)]
+    A, Cz, Cq = array("A", 4, 4), array("Cz", 4, 4), array("Cq", 4, 4)
+    B, qmass = array("B", 4, 4), array("qmass", 3, 4)
+    targets = [A[r, c] for r in range(4) for c in range(4)]
     exprs = list(d.A)
     for r in range(d.Cz.rows):
-        targets += [f"Cz[{r}, {c}]" for c in range(4)] + [f"Cq[{r}, {j}]" for j in range(d.n_q)]
+        targets += [Cz[r, c] for c in range(4)] + [Cq[r, j] for j in range(d.n_q)]
         exprs += list(d.Cz[r, :]) + list(d.Cq[r, :])
     for j in range(d.n_q):
-        targets += [f"B[{r}, {j}]" for r in range(4)]
-        targets += [f"qmass[0, {j}]", f"qmass[1, {j}]", f"qmass[2, {j}]"]
+        targets += [B[r, j] for r in range(4)]
+        targets += [qmass[0, j], qmass[1, j], qmass[2, j]]
         exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j], d.qforce[j]]
-    lines = assignments(targets, [sp.sympify(e) for e in exprs], indent="", complex_=complex_)
-    return lines + [f"return {d.Cz.rows}, {d.n_q}"]
+    lines = assignment_nodes(targets, [sp.sympify(e) for e in exprs])
+    return lines + [Return(sp.Tuple(lit(d.Cz.rows), lit(d.n_q)))]
 
 
-def _descriptor_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _descriptor_lines(module, d: descriptor.Descriptor) -> list:
     """Fill Cz, Cq, A, B, qmass (units L = EI = mbar = 1); return (constraints, unknowns)."""
     if _staged(module):
         return _chain_lines("descriptor")
@@ -297,173 +297,118 @@ def _descriptor_c_lines(damped: bool):
     """The complex descriptor at the complex frequency w1 (b4 = w1^2); with the damping
     values in a damped kernel (the frequency response and damped shapes of any kernel)."""
 
-    def body(module, d: descriptor.Descriptor) -> list[str]:
+    def body(module, d: descriptor.Descriptor) -> list:
         if _staged(module):
             return _chain_lines("descriptor", complex_=True)
         values, symbols = _value_lines(module, damped)
         d = descriptor.of(module, symbols)
-        return values + ["b4 = w1 * w1"] + _fill_lines(d, complex_=True)
+        return values + [Assignment(b4_, w1_ * w1_)] + _fill_lines(d, complex_=True)
 
     return body
 
 
-def _internal_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _internal_lines(module, d: descriptor.Descriptor) -> list:
     """Append the component's own frequencies (rad/s) to out[n:]; return n."""
     if _staged(module):
         return _chain_lines("internal")
     roots = descriptor.internal_b4(d)
     if not roots:
-        return ["return n"]
+        return [Return(n_)]
     lines = _value_lines(module)[0]
+    out = array("out", n_)
     for r in roots:
+        # positive and finite (NaN fails both comparisons)
         lines += [
-            f"b4 = {code(r)}",
-            "if b4 > 0.0 and math.isfinite(b4):",
-            "    out[n] = math.sqrt(b4 * EI / mbar) / (L * L)",
-            "    n += 1",
+            Assignment(b4_, r),
+            If(
+                sp.And(b4_ > 0, b4_ < sp.oo),
+                [
+                    Assignment(out[n_], sp.sqrt(b4_ * EI_ / mbar_) / L_**2),
+                    AddAugmentedAssignment(n_, lit(1)),
+                ],
+            ),
         ]
-    return lines + ["return n"]
+    return lines + [Return(n_)]
 
 
-def _nq_lines(module, d: descriptor.Descriptor) -> list[str]:
-    return ["return int(p[o])" if _staged(module) else f"return {d.n_q}"]
+def _nq_lines(module, d: descriptor.Descriptor) -> list:
+    return [Return(_call("int", p_[o_]) if _staged(module) else lit(d.n_q))]
 
 
-def _inertia_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _inertia_lines(module, d: descriptor.Descriptor) -> list:
     """Fill Mp (2 x 2) with the mass matrix the component holds on [Y, theta]
     (``descriptor.point_inertia``); return 1, or 0 where it holds none."""
     M = descriptor.point_inertia(d)
     if M == sp.zeros(2, 2) or _staged(module):
-        return ["return 0"]
-    targets = [f"Mp[{r}, {c}]" for r in range(2) for c in range(2)]
-    lines = assignments(targets, list(M), indent="")
-    return _value_lines(module)[0] + lines + ["return 1"]
+        return [Return(lit(0))]
+    Mp = array("Mp", 2, 2)
+    lines = assignment_nodes([Mp[r, c] for r in range(2) for c in range(2)], list(M))
+    return _value_lines(module)[0] + lines + [Return(lit(1))]
 
 
 #: Flags of ``event_rigid``: the kinematic constraint a component puts on rigid motions.
 RIGID_FLAGS = {"Y": 1, "theta": 2, "kink_if_free": 3}
 
 
-def _rigid_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _rigid_lines(module, d: descriptor.Descriptor) -> list:
     rigid = descriptor.rigid_of(module, _value_lines(module)[1])
     if not rigid:
-        return ["return 0"]
+        return [Return(lit(0))]
     if len(rigid) != 1 or rigid[0] not in RIGID_FLAGS:
         raise ValueError(f"{module.KIND}: RIGID must be one of {tuple(RIGID_FLAGS)} or empty")
     if rigid[0] == "kink_if_free":  # the spring across the released rotation
         key = getattr(module, "RELEASES", ("theta", module.KEYS[1].name))[1]
         at = [k.name for k in module.KEYS[1:]].index(key)
-        return [f"return 3 if p[{f'o + {at}' if at else 'o'}] == 0.0 else 0"]
-    return [f"return {RIGID_FLAGS[rigid[0]]}"]
+        free = sp.Eq(p_[o_ + at], 0)
+        return [Return(sp.Piecewise((lit(3), free), (lit(0), True)))]
+    return [Return(lit(RIGID_FLAGS[rigid[0]]))]
 
 
-def _damps_lines(module, d: descriptor.Descriptor) -> list[str]:
+def _damps_lines(module, d: descriptor.Descriptor) -> list:
     """A damper's constraint on rigid motions at w = 0 (a grounded dashpot dissipates
     unless Y = 0 there), derived from the kind's damping (``descriptor.damps_of``)."""
     damps = descriptor.damps_of(module, _value_lines(module, damped=True)[1])
     if not damps:
-        return ["return 0"]
+        return [Return(lit(0))]
     if damps not in (("Y",), ("theta",)):
         raise ValueError(f"{module.KIND}: its damping holds ('Y',), ('theta',) or nothing")
-    return [f"return {RIGID_FLAGS[damps[0]]}"]
+    return [Return(lit(RIGID_FLAGS[damps[0]]))]
 
 
+_DESCRIPTOR_ARGS = "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass"
 _DESCRIPTOR_C_ARGS = "p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass"
 #: ``event_chain``'s arguments, the same in a real and in a damped kernel (one walk,
 #: ``numerics.characteristic.delta_chain``, calls both).
 CHAIN_ARGS = "p, o, v, w1, b4, L, EI, mbar"
-_DESCRIPTOR_C_DOC = (
-    "The component's descriptor in complex arithmetic at the complex frequency w1 (units\n"
-    "    L = EI = mbar = 1, b4 = w1^2); returns (constraints, unknowns)."
-)
 
 
 def dispatch_table(damped: bool) -> tuple:
-    """The kernel's dispatch functions ``event_<what>(tag, ...)``: arguments, the branch of
-    each kind present (printed from its descriptor), the statement for no branch, and doc.
-    A damped kernel has no real descriptor and no own frequencies (its undamped twin's
+    """The kernel's dispatch functions ``event_<what>(tag, ...)`` (what each does:
+    ``mstmm.numerics.characteristic``): arguments, the branch of each kind present
+    (printed from its descriptor), the value for no branch, and whether complex. A
+    damped kernel has no real descriptor and no own frequencies (its undamped twin's
     kernel has them)."""
+    zero, zeros = lit(0), sp.Tuple(lit(0), lit(0))
     common = (
-        (
-            "descriptor_c",
-            _DESCRIPTOR_C_ARGS,
-            _descriptor_c_lines(damped),
-            "return 0, 0",
-            _DESCRIPTOR_C_DOC,
-        ),
-        ("nq", "p, o", _nq_lines, "return 0", "Unknowns of the component (full descriptor)."),
-        (
-            "rigid",
-            "p, o",
-            _rigid_lines,
-            "return 0",
-            "Kinematic constraint on rigid motions: 0 none, 1 Y = 0, 2 theta = 0, 3 free kink.",
-        ),
-        (
-            "damps",
-            "p, o",
-            _damps_lines,
-            "return 0",
-            "Constraint of a damper on rigid motions at w = 0: 0 none, 1 Y = 0, 2 theta = 0.",
-        ),
+        ("descriptor_c", _DESCRIPTOR_C_ARGS, _descriptor_c_lines(damped), zeros, True),
+        ("nq", "p, o", _nq_lines, zero, False),
+        ("rigid", "p, o", _rigid_lines, zero, False),
+        ("damps", "p, o", _damps_lines, zero, False),
     )
     if damped:
-        return (
-            (
-                "chain",
-                CHAIN_ARGS,
-                _damped_lines,
-                "return 0.0j",
-                "v <- the component's pole-free compound step in complex arithmetic at the\n"
-                "    complex frequency w1 (b4 = w1^2), its dashpots' forces i w c included (the\n"
-                "    event of ``delta_damped``); returns the complex log of a factor taken out.",
-            ),
-            *common,
-        )
+        return (("chain", CHAIN_ARGS, _damped_lines, lit("0.0j"), True), *common)
     return (
-        (
-            "chain",
-            CHAIN_ARGS,
-            _stable_lines,
-            "return 0.0",
-            "v <- the component's pole-free compound step on the minors (the event of\n"
-            "    ``delta_stable``; units L = EI = mbar = 1, w1 = (lam_0 L)^2, b4 = w1^2,\n"
-            "    docs/components.md); returns the log of a factor taken out (none: 0).",
-        ),
-        (
-            "count",
-            "p, o, Zc, b4, L, EI, mbar",
-            _counted_lines,
-            "return 0",
-            "Zc <- the minors of the node's state subspace past the component; returns the\n"
-            "    negative pivots it adds to the Wittrick-Williams count (the event of\n"
-            "    ``count_below``).",
-        ),
+        ("chain", CHAIN_ARGS, _stable_lines, lit("0.0"), False),
+        ("count", "p, o, Zc, b4, L, EI, mbar", _counted_lines, zero, False),
         (
             "descriptor",
             "p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass",
             _descriptor_lines,
-            "return 0, 0",
-            "The component's descriptor: Cz Z + Cq q = 0, Z+ = A Z + B q, qmass[0] the mass\n"
-            "    of each q, qmass[1] the share of it a rigid translation carries, qmass[2] what\n"
-            "    a unit force on it adds to minus its row (units L = EI = mbar = 1; paper\n"
-            "    Eqs. (2)-(3)); returns (constraints, unknowns).",
+            zeros,
+            False,
         ),
-        (
-            "inertia",
-            "p, o, L, EI, mbar, Mp",
-            _inertia_lines,
-            "return 0",
-            "Fill Mp with the mass matrix the component holds on [Y, theta] (units L = EI =\n"
-            "    mbar = 1; the b4 part of its A); return 1, or 0 where it holds none.",
-        ),
-        (
-            "internal",
-            "p, o, L, EI, mbar, out, n",
-            _internal_lines,
-            "return n",
-            "Append the component's own frequencies (rad/s; scan nodes) to out[n:]; return n.",
-        ),
+        ("inertia", "p, o, L, EI, mbar, Mp", _inertia_lines, zero, False),
+        ("internal", "p, o, L, EI, mbar, out, n", _internal_lines, n_, False),
         *common,
     )
 
@@ -486,92 +431,66 @@ def _stage_lines(damped: bool, complex_: bool):
     """The body of ``event_stages``: each stage j of a kind of stages into ``st[:, j]`` as
     ``(a, b, c, s1, m)`` (``descriptor.stage_parts`` of its declared ``stage``)."""
 
-    def body(module, d: descriptor.Descriptor) -> list[str] | None:
+    def body(module, d: descriptor.Descriptor) -> list | None:
         if not _staged(module):
             return None
         values, symbols = _value_lines(module, damped)
         with sp.evaluate(True):
             parts = descriptor.stage_parts(module.stage(symbols))
-        targets = [f"st[{r}, j]" for r in range(5)]
-        inner = values[1:] + assignments(
-            targets, [sp.sympify(e) for e in parts], indent="", complex_=complex_
-        )
-        head = values[:1] + (["b4 = w1 * w1"] if complex_ else [])
-        return head + ["for j in range(n):"] + ["    " + line for line in inner]
+        targets = [st_[r, j_] for r in range(5)]
+        inner = values[1:] + assignment_nodes(targets, [sp.sympify(e) for e in parts])
+        head = values[:1] + ([Assignment(b4_, w1_ * w1_)] if complex_ else [])
+        return head + [For(j_, sp.Range(n_), inner)]
 
     return body
 
 
-_STAGES_DOC = (
-    "Fill st[:, j] with stage j of a kind of stages: its dynamic stiffness\n"
-    "    [[a, b], [b, c]] over [u_(j-1), u_j], the inertia force s1 a common translation\n"
-    "    leaves, its mass m (units L = EI = mbar = 1; ``mstmm.numerics.chain``)."
-)
+def _function(name: str, args: str, body: list, complex_: bool) -> str:
+    """A printed function (SymPy's ``FunctionDefinition``), real or complex arithmetic."""
+    params = [Variable(sp.Symbol(a.strip())) for a in args.split(",")]
+    fd = FunctionDefinition(NoneToken(), name, params, body)
+    return code(fd, complex_)
 
 
-def _stage_dispatch(parsed: list, damped: bool) -> str:
+def _stage_dispatch(parsed: list, damped: bool) -> list[str]:
     """``event_stages`` (real; not in a damped kernel) and ``event_stages_c`` (complex):
     the stages of the kinds of stages present, what the chain numerics take; nothing for
     a topology without such a kind."""
     if not any(_staged(module) for _, module, _ in parsed):
-        return ""
+        return []
     out = []
     for complex_ in (False, True) if not damped else (True,):
         suffix, w = ("_c", "w1") if complex_ else ("", "b4")
-        lines = [
-            "",
-            "",
-            "@njit(cache=True)",
-            f"def event_stages{suffix}(tag, p, o, {w}, L, EI, mbar, st):",
-            f'    """{_STAGES_DOC}"""',
-        ]
-        body = _stage_lines(damped, complex_)
-        lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
-        out.append("\n".join(lines) + "\n")
-    return "".join(out)
+        body = _branch_lines(parsed, _stage_lines(damped, complex_))
+        out.append(
+            _function(f"event_stages{suffix}", f"tag, p, o, {w}, L, EI, mbar, st", body, complex_)
+        )
+    return out
 
 
-def _branch_lines(parsed: list, body) -> list[str]:
-    """``if tag == 0: ... elif tag == 1: ...``: one branch per kind present, its body
-    printed from the kind's descriptor by ``body`` (none where ``body`` gives None)."""
-    lines: list[str] = []
-    for t, (k, module, d) in enumerate(parsed):
+def _branch_lines(parsed: list, body) -> list:
+    """``if tag == 0: ...``, ``if tag == 1: ...``: one branch per kind present (tags are
+    its index in the kernel's ``KINDS``), its body printed from the kind's descriptor by
+    ``body`` (none where ``body`` gives None)."""
+    lines: list = []
+    for t, (_, module, d) in enumerate(parsed):
         body_lines = body(module, d)
         if body_lines is None:
             continue
-        lines.append(f"{'elif' if lines else 'if'} tag == {t}:  # {k}")
-        lines += ["    " + line if line else "" for line in body_lines or ["pass"]]
+        lines.append(If(sp.Eq(tag_, lit(t)), body_lines))
     return lines
 
 
-#: The events of the hot loops (``delta_stable`` and ``delta_damped``: the one chain,
-#: ``count_below``): inlined into them by numba (a compiled call costs about 20 ns, a fifth
-#: of a component's step; the walks hand them ``borrowed`` arrays, whose reference counts
-#: cost nothing).
-HOT = ("chain", "count")
-
-
-def _dispatch(parsed: list, damped: bool = False) -> str:
+def _dispatch(parsed: list, damped: bool = False) -> list[str]:
     """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
     printed inline (one compiled function per entry, not per kind: compile time); the
-    characteristic functions call them at each component."""
+    characteristic functions call them at each component (they compile them:
+    ``mstmm.numerics.characteristic.bind_characteristic``)."""
     out = []
-    for what, args, body, tail, doc in dispatch_table(damped):
-        decorator = '@njit(cache=True, inline="always")' if what in HOT else "@njit(cache=True)"
-        lines = ["", "", decorator, f"def event_{what}(tag, {args}):", f'    """{doc}"""']
-        lines += ["    " + line if line else "" for line in _branch_lines(parsed, body)]
-        lines.append(f"    {tail}")
-        out.append("\n".join(lines) + "\n")
-    return _stage_dispatch(parsed, damped) + "".join(out)
-
-
-def _node_stiffness_lines() -> list[str]:
-    """Zc <- C2(I - kY e_Q e_Y^T + kT e_M e_theta^T) Zc: a node stiffness on the minors."""
-    kY, kT = sp.symbols("kY kT")
-    A = sp.eye(4)
-    A[3, 0] = -kY
-    A[2, 1] = kT
-    return _step_lines(descriptor.point(A), "Zc")
+    for what, args, body, tail, complex_ in dispatch_table(damped):
+        lines = _branch_lines(parsed, body) + [Return(tail)]
+        out.append(_function(f"event_{what}", f"tag, {args}", lines, complex_ or damped))
+    return _stage_dispatch(parsed, damped) + out
 
 
 def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
@@ -600,43 +519,85 @@ def _parameter_doc(topology: Topology) -> str:
     return "; ".join(parts)
 
 
-def numerics_source() -> str:
-    """The source of the printed beam functions every kernel and the shared numerics use
-    (``generated/euler_bernoulli.py``; the numerics themselves are ordinary code in
-    ``mstmm.numerics``)."""
+def _beam_functions() -> list[tuple[str, str, list, bool]]:
+    """The printed beam functions: ``(name, arguments, body, complex)``; what composes
+    them (the series or the closed form, the exp(-x) scaling, the count of a clamped
+    piece) is ordinary code, ``mstmm.numerics.beam``."""
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
+    z = sp.Symbol("z")
+    K, F = special.KRYLOV, special.COMPOUND
+    scaled = "x, E, chs, shs"
+    f = special.Reduced("f", beam.clamped_clamped_equation(special.x))
+    fields = "e, m, w2, kGA, rhoI, P, k_w, k_G, A"
+    out = [
+        ("krylov_series", "z", _series(K, z) + [_returns(K)], False),
+        ("krylov_closed", "x", _closed(K, False) + [_returns(K)], False),
+        ("krylov_closed_scaled", scaled, _closed(K, True) + [_returns(K)], False),
+        ("compound_series", "z", _series(F, z) + [_returns(F)], False),
+        ("compound_closed_scaled", scaled, _closed(F, True) + [_returns(F)], False),
+        ("krylov_closed_c", "x", _closed(K, False, True) + [_returns(K)], True),
+        ("krylov_closed_scaled_c", scaled, _closed(K, True, True) + [_returns(K)], True),
+        ("compound_closed_scaled_c", scaled, _closed(F, True, True) + [_returns(F)], True),
+        ("clamped_clamped_sign", scaled, _closed((f,), True) + [_returns((f,))], False),
+        ("beam_transfer", "lam, l, EI, U", _matrix_fill(U_paper, "U"), False),
+    ]
+    for c, suffix in ((False, ""), (True, "_c")):
+        out += [
+            (
+                f"beam_transfer_fill{suffix}",
+                "beta, rho, K0, K1, K2, K3, U",
+                _matrix_fill(U_nd, "U"),
+                c,
+            ),
+            (
+                f"beam_compound_fill{suffix}",
+                "v, beta, rho, E, F1, F2, F3, F4",
+                _compound_step(C_beam),
+                c,
+            ),
+        ]
+    kY, kT = sp.symbols("kY kT")
+    A = sp.eye(4)
+    A[3, 0] = -kY
+    A[2, 1] = kT
+    out += [
+        ("node_stiffness_step", "Zc, kY, kT", _step_lines(descriptor.point(A), "Zc"), False),
+        ("general_field_rigid", fields, _general_field_lines(shear=False), False),
+        ("general_field_shear", fields, _general_field_lines(shear=True), False),
+    ]
+    return out
+
+
+def numerics_source() -> str:
+    """The source of the printed beam functions every kernel and the shared numerics use
+    (``generated/euler_bernoulli.py``; the numerics themselves, and what composes these
+    functions, are ordinary code in ``mstmm.numerics``)."""
+    K, F = special.KRYLOV, special.COMPOUND
+
+    def leading(funcs):
+        return sp.Tuple(*(sp.Rational(f.series()[0]) for f in funcs))
+
+    constants = [
+        Assignment(sp.Symbol("SERIES_THRESHOLD"), sp.Float(special.SERIES_THRESHOLD)),
+        Assignment(sp.Symbol("KRYLOV_TINY"), sp.Rational(special.leading_threshold(K))),
+        Assignment(sp.Symbol("KRYLOV_LEADING"), leading(K)),
+        Assignment(sp.Symbol("COMPOUND_TINY"), sp.Rational(special.leading_threshold(F))),
+        Assignment(sp.Symbol("COMPOUND_LEADING"), leading(F)),
+    ]
+    printed = ["\n".join(code(c) for c in constants)]
+    printed += [_function(*fn) for fn in _beam_functions()]
     values = dict(
         threshold=repr(special.SERIES_THRESHOLD),
         digest=derive_digest(),
         sympy_version=importlib.metadata.version("sympy"),
-        krylov_tiny=repr(special.leading_threshold(special.KRYLOV)),
-        krylov_leading=special.leading_terms(special.KRYLOV),
-        compound_tiny=repr(special.leading_threshold(special.COMPOUND)),
-        compound_leading=special.leading_terms(special.COMPOUND),
-        krylov_series=_indent(_series_lines(special.KRYLOV), 8),
-        krylov_closed=_indent(_closed_lines(special.KRYLOV, scaled=False), 8),
-        compound_series=_indent(_series_lines(special.COMPOUND), 8),
-        compound_closed=_indent(_closed_lines(special.COMPOUND, scaled=True), 8),
-        beam_transfer=_indent(_matrix_fill(U_paper, "U"), 4),
-        krylov_scaled=_indent(_closed_lines(special.KRYLOV, scaled=True), 4),
-        beam_transfer_scaled=_indent(_matrix_fill(U_nd, "U"), 4),
-        clamped_clamped=_indent(_clamped_clamped_lines(), 4),
-        beam_compound=_indent(_compound_step(C_beam), 4),
-        krylov_closed_c=_indent(_closed_lines(special.KRYLOV, False, complex_=True), 8),
-        krylov_scaled_c=_indent(_closed_lines(special.KRYLOV, True, complex_=True), 4),
-        compound_closed_c=_indent(_closed_lines(special.COMPOUND, True, complex_=True), 8),
-        beam_transfer_scaled_c=_indent(_matrix_fill(U_nd, "U", complex_=True), 4),
-        beam_compound_c=_indent(_compound_step(C_beam, complex_=True), 4),
-        node_stiffness=_indent(_node_stiffness_lines(), 4),
-        general_rigid=_indent(_general_field_lines(shear=False), 8),
-        general_shear=_indent(_general_field_lines(shear=True), 8),
+        printed="\n\n\n".join(printed),
     )
     return _clean(Template(NUMERICS_TEMPLATE.read_text()).substitute(values))
 
 
-def _general_field_lines(shear: bool) -> list[str]:
+def _general_field_lines(shear: bool) -> list:
     """``A`` of the general segment's differential equation (``general.field``), filled
     entry by entry from its dimensionless values."""
     names = ("e", "m", "w2", "kGA", "rhoI", "P", "k_w", "k_G")
@@ -666,12 +627,32 @@ def kernel_source(topology: Topology) -> str:
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
+    ends = {
+        "LEFT_UNKNOWN": left_unknown,
+        "RIGHT_UNKNOWN": right_unknown,
+        "LEFT_KNOWN": KNOWN_ZERO[topology.left],
+        "RIGHT_KNOWN": KNOWN_ZERO[topology.right],
+    }
+    constants = [
+        Assignment(sp.Symbol(name), sp.Tuple(*(lit(i) for i in pair)))
+        for name, pair in ends.items()
+    ]
+    constants += [
+        Assignment(sp.Symbol("START_PAIR"), lit(pair_index(left_unknown))),
+        Assignment(sp.Symbol("END_PAIR"), lit(pair_index(KNOWN_ZERO[topology.right]))),
+    ]
+    printed = ["\n".join(code(c) for c in constants)] + _dispatch(parsed, damped)
+    about = (
+        f"An Euler-Bernoulli beam of uniform or stepped segments ({topology.left} at x = 0,"
+        f" {topology.right} at x = L) carrying {kinds_text}. Printed by SymPy from the"
+        " declared physics of its kinds (paper Eqs. (2)-(3)): each ``event_<what>`` of"
+        " ``mstmm.numerics.characteristic``, one branch per kind, and the ends' constants."
+        " ``bind_characteristic`` compiles them with the characteristic functions, ordinary"
+        f" code: {WHAT[damped]}."
+    )
     values = dict(
         key=topology.key,
-        left=topology.left,
-        right=topology.right,
-        attachments_text=kinds_text,
-        what=Template(WHAT[damped]).substitute(threshold=repr(special.SERIES_THRESHOLD)),
+        about=textwrap.fill(about, 90, break_on_hyphens=False),
         kinds=repr(kinds),
         dampers=repr(_dampers(kinds)),
         parameter_doc=_parameter_doc(topology),
@@ -679,13 +660,7 @@ def kernel_source(topology: Topology) -> str:
         sympy_version=importlib.metadata.version("sympy"),
         signature=signature(topology),
         digest=numerics_digest(),
-        left_unknown=repr(left_unknown),
-        right_unknown=repr(right_unknown),
-        left_known=repr(KNOWN_ZERO[topology.left]),
-        right_known=repr(KNOWN_ZERO[topology.right]),
-        start_pair=pair_index(left_unknown),
-        end_pair=pair_index(KNOWN_ZERO[topology.right]),
-        dispatch=_dispatch(parsed, damped),
+        printed="\n\n\n".join(printed),
         functions=FUNCTIONS[damped],
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))

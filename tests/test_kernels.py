@@ -138,7 +138,8 @@ def test_kernel_carries_only_what_the_scene_needs():
     bare = kernel_source(BUNDLED_TOPOLOGIES[1])
     with_sm = kernel_source(BUNDLED_TOPOLOGIES[0])
     assert "spring_mass" not in bare.split('"""', 2)[2]
-    assert "tag == 0:  # spring_mass" in with_sm
+    assert "KINDS = ('spring_mass',)" in with_sm
+    assert "if tag == 0:" in with_sm and "if tag ==" not in bare
 
 
 def test_stages_run_in_one_direction():

@@ -1,8 +1,8 @@
 """Topology -> compiled kernel: the committed module, the user cache, or a fresh derivation.
 
-A kernel is a generated module (see ``derive/templates/kernel.py.tmpl``) whose
-numba functions compute the characteristic functions of one topology for any
-parameter vector. Lookup order:
+A kernel is a generated module (printed by ``mstmm.derive.emit``) whose functions,
+compiled with the shared numerics, compute the characteristic functions of one topology
+for any parameter vector. Lookup order:
 
 1. ``mstmm.generated.<key>`` (committed for the bundled scenes), if its
    ``SIGNATURE`` matches the current derivation code;

@@ -1,8 +1,8 @@
 """The numerics every kernel shares, as ordinary code: the drivers take a topology's
 characteristic functions as first-class functions (``delta``, ``count``, ``event``, ...), so
 they compile once per machine and serve every topology. The beam functions they use are
-printed by SymPy (``mstmm.generated.euler_bernoulli``); a kernel module star-imports this
-package.
+printed by SymPy (``mstmm.generated.euler_bernoulli``) and composed in ``beam``; a kernel
+module star-imports this package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
 table), ``chain`` (kinds of stages in series), ``generic`` (what differs between the
@@ -16,9 +16,8 @@ conditions), ``repeated`` (N identical cells by doubling), ``entries`` (the driv
 called from Python).
 """
 
-from mstmm.generated.euler_bernoulli import *  # noqa: F403
-
 from . import cache  # noqa: F401  (numba's cache of these modules follows all of them)
+from .beam import *  # noqa: F403
 from .bloch import *  # noqa: F403
 from .chain import *  # noqa: F403
 from .characteristic import *  # noqa: F403

@@ -16,6 +16,19 @@ import numpy as np
 from mstmm.jit import njit
 
 
+@njit(cache=True, inline="always")
+def stage_array(p, o):
+    """Room for the stages of the component whose data block is at ``o`` (its first
+    value is their number), real."""
+    return np.empty((5, int(p[o])), dtype=np.float64)
+
+
+@njit(cache=True, inline="always")
+def stage_array_c(p, o):
+    """The same, complex."""
+    return np.empty((5, int(p[o])), dtype=np.complex128)
+
+
 @njit(cache=True)
 def chain_tip(st):
     """The chain condensed on the beam point, free of its poles: eliminating ``u_n .. u_1``

@@ -22,13 +22,13 @@ import types
 import numpy as np
 from numba import prange
 
-from mstmm.generated.euler_bernoulli import (
-    clamped_clamped_count,
-    node_stiffness_step,
-)
 from mstmm.jit import njit
 
 from . import generic
+from .beam import (
+    clamped_clamped_count,
+    node_stiffness_step,
+)
 from .count import field_count, neg2, pair_count, pair_stiffness
 from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
 from .linalg import lu_logdet
@@ -465,11 +465,27 @@ def _tagged(name: str, namespace: dict):
     return copy
 
 
+#: The events of the hot loops (``delta_chain``, ``count_below``): inlined into them by
+#: numba (a compiled call costs about 20 ns, a fifth of a component's step; the walks
+#: hand them ``borrowed`` arrays, whose reference counts cost nothing).
+HOT_EVENTS = ("event_chain", "event_count")
+
+
 def bind_characteristic(namespace: dict, names: tuple[str, ...]) -> None:
-    """Define the functions ``names`` of this module in a kernel module's ``namespace``,
-    each compiled (on first call, or loaded from numba's cache) with the kernel's printed
-    functions and the real or complex twins of ``generic`` (complex: a damped kernel's
-    ``names``, which hold ``delta_damped``)."""
+    """Compile a kernel module's printed functions (``event_<what>``: plain Python as
+    SymPy prints them; those of :data:`HOT_EVENTS` inlined into their callers), and
+    define the functions ``names`` of this module in its ``namespace``, each compiled (on
+    first call, or loaded from numba's cache) with them and the real or complex twins of
+    ``generic`` (complex: a damped kernel's ``names``, which hold ``delta_damped``).
+    ``SHAPE_ENDS``: the ends for the shared mode-shape march (the left end's unknowns,
+    the right end's knowns)."""
+    for name, f in list(namespace.items()):
+        if name.startswith("event_") and isinstance(f, types.FunctionType):
+            if f.__module__ == namespace["__name__"]:
+                inline = "always" if name in HOT_EVENTS else "never"
+                namespace[name] = njit(cache=True, inline=inline)(f)
+    ends = namespace["LEFT_UNKNOWN"] + namespace["RIGHT_KNOWN"]
+    namespace["SHAPE_ENDS"] = np.array(ends, dtype=np.int64)
     namespace.update(generic.COMPLEX if "delta_damped" in names else generic.REAL)
     for name in names:
         namespace[name] = njit(cache=True, parallel=name in _PARALLEL)(_tagged(name, namespace))

@@ -3,12 +3,12 @@ by node on the minors of the state subspace (paper's Eq. (4) reduced; docs/compo
 
 import numpy as np
 
-from mstmm.generated.euler_bernoulli import (
+from mstmm.jit import njit
+
+from .beam import (
     beam_compound_step,
     beam_transfer_scaled,
 )
-from mstmm.jit import njit
-
 from .segment import (
     compound_step,
     count_pieces,

@@ -16,9 +16,9 @@ import math
 
 import numpy as np
 
-from mstmm.generated.euler_bernoulli import beam_compound_step, beam_compound_step_c
 from mstmm.jit import njit
 
+from .beam import beam_compound_step, beam_compound_step_c
 from .layout import HEAD, SEGMENT_WIDTH
 
 __all__ = ["REAL", "COMPLEX"]

@@ -5,11 +5,11 @@ import math
 
 import numpy as np
 
-from mstmm.generated.euler_bernoulli import (
-    beam_transfer_scaled,
-)
 from mstmm.jit import njit
 
+from .beam import (
+    beam_transfer_scaled,
+)
 from .field import (
     expm_short,
 )

@@ -17,13 +17,13 @@ import numpy as np
 from numba import types
 from numba.extending import overload
 
-from mstmm.generated.euler_bernoulli import (
+from mstmm.jit import njit
+
+from .beam import (
     beam_transfer_scaled,
     beam_transfer_scaled_c,
     general_field,
 )
-from mstmm.jit import njit
-
 from .field import (
     PAIR_I,
     PAIR_J,
