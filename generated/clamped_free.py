@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "c1b35dc92695876ce78b2c4251e96543fab894c0"
-NUMERICS = "0fac928390224bcb40a3bf2e888a75ab46295cd8"
+SIGNATURE = "c867596f2e78821b0b8bb8ef75b1d2a6fa9f727d"
+NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
 KINDS = ()
 DAMPERS = {}
 

@@ -16,8 +16,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "11abf013692dcb198e17c3e290c5fac6b802467d"
-NUMERICS = "0fac928390224bcb40a3bf2e888a75ab46295cd8"
+SIGNATURE = "53b8f639d8f9e59d742e448a7fe8941c7395d73d"
+NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

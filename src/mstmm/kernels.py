@@ -325,9 +325,9 @@ class Kernel:
     def interprets(self, p: np.ndarray, modes: int, what: str = "stable") -> bool:
         """Whether :meth:`lowest` runs as plain Python (see :mod:`mstmm.interpret`); for
         another entry point ``what``, ``modes`` is its cost in modes of ``lowest``."""
-        return what not in self.warmed and interpret.worthwhile(
-            modes, self.attachments(p), _general_segments(p)
-        )
+        if what in self.warmed or interpret.machine_code_loaded():
+            return False  # decided before looking at p: a warm call costs microseconds
+        return interpret.worthwhile(modes, self.attachments(p), _general_segments(p))
 
     def _python_function(self, name: str):
         """The kernel's (or the shared numerics') function ``name`` as plain Python
