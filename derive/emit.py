@@ -643,12 +643,10 @@ def kernel_source(topology: Topology) -> str:
     ]
     printed = ["\n".join(code(c) for c in constants)] + _dispatch(parsed, damped)
     about = (
-        f"An Euler-Bernoulli beam of uniform or stepped segments ({topology.left} at x = 0,"
-        f" {topology.right} at x = L) carrying {kinds_text}. Printed by SymPy from the"
-        " declared physics of its kinds (paper Eqs. (2)-(3)): each ``event_<what>`` of"
-        " ``mstmm.numerics.characteristic``, one branch per kind, and the ends' constants."
-        " ``bind_characteristic`` compiles them with the characteristic functions, ordinary"
-        f" code: {WHAT[damped]}."
+        f"A beam ({topology.left} at x = 0, {topology.right} at x = L) carrying {kinds_text}:"
+        " each kind's branch of the events of ``mstmm.numerics.characteristic``, printed by"
+        " SymPy from its declared physics (paper Eqs. (2)-(3)), and the ends' constants;"
+        f" the last line compiles them with the characteristic functions ({WHAT[damped]})."
     )
     values = dict(
         key=topology.key,

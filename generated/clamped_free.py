@@ -1,11 +1,10 @@
 """Per-component functions of the MSTMM topology ``clamped_free`` (generated, do not edit).
 
-An Euler-Bernoulli beam of uniform or stepped segments (clamped at x = 0, free at x = L)
-carrying no point components. Printed by SymPy from the declared physics of its kinds
-(paper Eqs. (2)-(3)): each ``event_<what>`` of ``mstmm.numerics.characteristic``, one
-branch per kind, and the ends' constants. ``bind_characteristic`` compiles them with the
-characteristic functions, ordinary code: ``delta_stable`` (default) and ``delta_paper``,
-whose zeros are the natural frequencies, and ``count_below``, their number below omega.
+A beam (clamped at x = 0, free at x = L) carrying no point components: each kind's branch
+of the events of ``mstmm.numerics.characteristic``, printed by SymPy from its declared
+physics (paper Eqs. (2)-(3)), and the ends' constants; the last line compiles them with
+the characteristic functions (``delta_stable`` (default) and ``delta_paper``, whose zeros
+are the natural frequencies, and ``count_below``, their number below omega).
 
 Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x, offset) per component sorted by x, data blocks]
 Regenerate: python -m mstmm.derive --topology clamped_free --out DIR
@@ -15,7 +14,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "c867596f2e78821b0b8bb8ef75b1d2a6fa9f727d"
+SIGNATURE = "7aff5ef0a842de50986d2cb448f3f151abf0ef50"
 NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
 KINDS = ()
 DAMPERS = {}

@@ -1,12 +1,11 @@
 """Per-component functions of the MSTMM topology ``clamped_free__spring_mass`` (generated, do not edit).
 
-An Euler-Bernoulli beam of uniform or stepped segments (clamped at x = 0, free at x = L)
-carrying point components of the kinds spring_mass. Printed by SymPy from the declared
-physics of its kinds (paper Eqs. (2)-(3)): each ``event_<what>`` of
-``mstmm.numerics.characteristic``, one branch per kind, and the ends' constants.
-``bind_characteristic`` compiles them with the characteristic functions, ordinary code:
-``delta_stable`` (default) and ``delta_paper``, whose zeros are the natural frequencies,
-and ``count_below``, their number below omega.
+A beam (clamped at x = 0, free at x = L) carrying point components of the kinds
+spring_mass: each kind's branch of the events of ``mstmm.numerics.characteristic``,
+printed by SymPy from its declared physics (paper Eqs. (2)-(3)), and the ends' constants;
+the last line compiles them with the characteristic functions (``delta_stable`` (default)
+and ``delta_paper``, whose zeros are the natural frequencies, and ``count_below``, their
+number below omega).
 
 Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x, offset) per component sorted by x, data blocks]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
 Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
@@ -16,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "53b8f639d8f9e59d742e448a7fe8941c7395d73d"
+SIGNATURE = "a6a47c0faa863ecb5b02270d520dd85ce6ec35ff"
 NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

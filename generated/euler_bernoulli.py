@@ -1,14 +1,8 @@
 """The Euler-Bernoulli segment's beam functions (generated, do not edit).
 
-Printed by SymPy from ``derive/segments/euler_bernoulli.py`` and ``derive/special.py``: the
-reduced Krylov functions and the second-compound functions (their series in x^4, their
-closed forms, plain and times exp(-x)), the segment transfer matrix (paper units and
-reduced units), the compound step of the minors, their complex twins (damped kernels, the
-frequency response), the sign of the clamped-clamped frequency equation and a node
-stiffness step of the count; and from ``derive/segments/general.py`` the field matrix of
-``Z' = A Z`` of a segment with a Timoshenko shear stiffness, an axial force or an elastic
-foundation (issue 22). What composes them (series below x = 1.5, the scaling, the
-count) is ordinary code: ``mstmm.numerics.beam`` compiles them.
+Printed by SymPy from ``derive/segments/euler_bernoulli.py`` (paper Eq. (1)),
+``derive/special.py`` and ``derive/segments/general.py``; composed by ordinary code in
+``mstmm.numerics.beam`` (series below x = 1.5, the exp(-x) scaling, the count).
 
 Regenerate: python -m mstmm.derive --bundled
 Derived by mstmm.derive with SymPy 1.14.0.
@@ -17,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "4e1750e875d36aa8e49c8edcbfc0bb59cc294b07"
+DIGEST = "4aae46347ea150e8a135f9634fc78f98b4d1b371"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815
