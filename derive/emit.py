@@ -40,7 +40,7 @@ from mstmm.sign import derive_digest, numerics_digest, signature
 from . import descriptor, special
 from . import symbols as S
 from .compound import pair_index
-from .printer import If, array, assignment_nodes, code, lit
+from .printer import If, Unpack, array, assignment_nodes, code, lit
 from .segments import euler_bernoulli as beam
 from .segments import general
 
@@ -519,50 +519,82 @@ def _parameter_doc(topology: Topology) -> str:
     return "; ".join(parts)
 
 
+def _tiny_series_closed(funcs, complex_: bool, scaled: bool, head: tuple) -> list:
+    """The body of a beam function of ``funcs``: below ``*_TINY`` (real only) the
+    constant terms, below ``SERIES_THRESHOLD`` (of |x| when complex) the series in
+    z = x^4, above it the closed forms (``scaled``: times exp(-x), whose exponent is
+    returned first as the shift); ``head`` what the tuple returned starts with below the
+    threshold (the shift 0 and, for the compound functions, E = 1)."""
+    x = sp.Symbol("x")
+    z, x2 = sp.symbols("z x2")
+    names = tuple(sp.Symbol(f.name) for f in funcs)
+    prefix = "KRYLOV" if funcs is special.KRYLOV else "COMPOUND"
+    body: list = []
+    if not complex_:
+        leading = [lit(repr(float(f.series()[0]))) for f in funcs]
+        body.append(If(x < sp.Symbol(f"{prefix}_TINY"), [Return(sp.Tuple(*head, *leading))]))
+        quartic = [Assignment(z, x**4)]
+        small = x < sp.Symbol("SERIES_THRESHOLD")
+    else:
+        quartic = [Assignment(x2, x * x), Assignment(z, x2 * x2)]  # not through exp and log
+        small = sp.Abs(x) < sp.Symbol("SERIES_THRESHOLD")
+    series = quartic + _series(funcs, z) + [Return(sp.Tuple(*head, *names))]
+    body.append(If(small, series))
+    tail = []
+    if scaled:
+        E, chs, shs = sp.symbols("E chs shs")
+        exp = sp.Function("cmath.exp" if complex_ else "math.exp")
+        body += [
+            Assignment(E, exp(-x)),
+            Assignment(chs, sp.Rational(1, 2) + E * E / 2),
+            Assignment(shs, sp.Rational(1, 2) - E * E / 2),
+        ]
+        tail = [x] + ([E] if len(head) > 1 else [])
+    body += _closed(funcs, scaled, complex_)
+    return body + [Return(sp.Tuple(*tail, *names))]
+
+
 def _beam_functions() -> list[tuple[str, str, list, bool]]:
-    """The printed beam functions: ``(name, arguments, body, complex)``; what composes
-    them (the series or the closed form, the exp(-x) scaling, the count of a clamped
-    piece) is ordinary code, ``mstmm.numerics.beam``."""
+    """The printed beam functions: ``(name, arguments, body, complex)``. What composes
+    the reduced functions (series, closed form, scaling) is printed with them; the count
+    of a clamped piece and the general segment's switch are ordinary code
+    (``mstmm.numerics.beam``, which compiles these)."""
     C_beam = beam.compound_nondimensional(S.beta, S.rho, S.E, S.F)
     U_paper = beam.transfer_matrix(S.lam, S.l, S.EI)
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
-    z = sp.Symbol("z")
     K, F = special.KRYLOV, special.COMPOUND
-    scaled = "x, E, chs, shs"
     f = special.Reduced("f", beam.clamped_clamped_equation(special.x))
     fields = "e, m, w2, kGA, rhoI, P, k_w, k_G, A"
+    zero, zero_c, one_c = lit("0.0"), lit("0.0j"), lit("1.0 + 0.0j")
+    x, shift, E = sp.symbols("x shift E")
+    Ks = [sp.Symbol(k.name) for k in K]
+    Fs = [sp.Symbol(k.name) for k in F]
     out = [
-        ("krylov_series", "z", _series(K, z) + [_returns(K)], False),
-        ("krylov_closed", "x", _closed(K, False) + [_returns(K)], False),
-        ("krylov_closed_scaled", scaled, _closed(K, True) + [_returns(K)], False),
-        ("compound_series", "z", _series(F, z) + [_returns(F)], False),
-        ("compound_closed_scaled", scaled, _closed(F, True) + [_returns(F)], False),
-        ("krylov_closed_c", "x", _closed(K, False, True) + [_returns(K)], True),
-        ("krylov_closed_scaled_c", scaled, _closed(K, True, True) + [_returns(K)], True),
-        ("compound_closed_scaled_c", scaled, _closed(F, True, True) + [_returns(F)], True),
-        ("clamped_clamped_sign", scaled, _closed((f,), True) + [_returns((f,))], False),
+        ("krylov", "x", _tiny_series_closed(K, False, False, ()), False),
+        ("krylov_scaled", "x", _tiny_series_closed(K, False, True, (zero,)), False),
+        ("compound_krylov", "x", _tiny_series_closed(F, False, True, (zero, lit("1.0"))), False),
         ("beam_transfer", "lam, l, EI, U", _matrix_fill(U_paper, "U"), False),
+        ("krylov_c", "x", _tiny_series_closed(K, True, False, ()), True),
+        ("krylov_scaled_c", "x", _tiny_series_closed(K, True, True, (zero_c,)), True),
+        ("compound_krylov_c", "x", _tiny_series_closed(F, True, True, (zero_c, one_c)), True),
     ]
+    fill, step = _matrix_fill(U_nd, "U"), _compound_step(C_beam)
     for c, suffix in ((False, ""), (True, "_c")):
+        transfer = [Unpack([shift, *Ks], sp.Function(f"krylov_scaled{suffix}")(S.beta * S.rho))]
+        compound = [
+            Assignment(x, S.beta * S.rho),
+            Unpack([shift, E, *Fs], sp.Function(f"compound_krylov{suffix}")(x)),
+        ]
         out += [
-            (
-                f"beam_transfer_fill{suffix}",
-                "beta, rho, K0, K1, K2, K3, U",
-                _matrix_fill(U_nd, "U"),
-                c,
-            ),
-            (
-                f"beam_compound_fill{suffix}",
-                "v, beta, rho, E, F1, F2, F3, F4",
-                _compound_step(C_beam),
-                c,
-            ),
+            (f"beam_transfer_scaled{suffix}", "beta, rho, U", transfer + fill + [Return(shift)], c),
+            (f"beam_compound_step{suffix}", "v, beta, rho", compound + step + [Return(shift)], c),
         ]
     kY, kT = sp.symbols("kY kT")
     A = sp.eye(4)
     A[3, 0] = -kY
     A[2, 1] = kT
     out += [
+        ("clamped_clamped_sign", "x, E, chs, shs", _closed((f,), True) + [_returns((f,))], False),
         ("node_stiffness_step", "Zc, kY, kT", _step_lines(descriptor.point(A), "Zc"), False),
         ("general_field_rigid", fields, _general_field_lines(shear=False), False),
         ("general_field_shear", fields, _general_field_lines(shear=True), False),
@@ -575,16 +607,10 @@ def numerics_source() -> str:
     (``generated/euler_bernoulli.py``; the numerics themselves, and what composes these
     functions, are ordinary code in ``mstmm.numerics``)."""
     K, F = special.KRYLOV, special.COMPOUND
-
-    def leading(funcs):
-        return sp.Tuple(*(sp.Rational(f.series()[0]) for f in funcs))
-
     constants = [
         Assignment(sp.Symbol("SERIES_THRESHOLD"), sp.Float(special.SERIES_THRESHOLD)),
         Assignment(sp.Symbol("KRYLOV_TINY"), sp.Rational(special.leading_threshold(K))),
-        Assignment(sp.Symbol("KRYLOV_LEADING"), leading(K)),
         Assignment(sp.Symbol("COMPOUND_TINY"), sp.Rational(special.leading_threshold(F))),
-        Assignment(sp.Symbol("COMPOUND_LEADING"), leading(F)),
     ]
     printed = ["\n".join(code(c) for c in constants)]
     printed += [_function(*fn) for fn in _beam_functions()]

@@ -2,9 +2,9 @@
 
 Whole functions are printed from SymPy's codegen AST (``sympy.codegen.ast``:
 ``FunctionDefinition``, ``Assignment``, ``AddAugmentedAssignment``, ``Return``, ``For``);
-the AST has loops but no branch, so :class:`If` adds one, and :func:`lit` writes an
-integer literal (the printer writes SymPy's integers as floats: the expressions are
-floating point).
+the AST has loops but no branch, so :class:`If` adds one, :class:`Unpack` assigns a
+tuple to several names, and :func:`lit` writes a literal (an integer: the printer writes
+SymPy's integers as floats, the expressions being floating point).
 """
 
 from __future__ import annotations
@@ -32,6 +32,15 @@ class If(Token):
     _construct_orelse = staticmethod(_block)
 
 
+class Unpack(Token):
+    """``a, b, ... = value``: a call's tuple unpacked (SymPy's ``Assignment`` has one
+    target)."""
+
+    __slots__ = _fields = ("targets", "value")
+    _construct_targets = staticmethod(lambda targets: sp.Tuple(*targets))
+    _construct_value = staticmethod(sp.sympify)
+
+
 def lit(k: int | str) -> sp.Symbol:
     """The literal ``k`` as written in code: an integer (an index, a count, a tag: the
     printer writes SymPy's integers as floats) or a typed zero (``"0.0"``, ``"0.0j"``)."""
@@ -42,6 +51,18 @@ def array(name: str, *shape) -> sp.IndexedBase:
     """An array argument of a printed function (its element ``array(...)[i, j]``); the
     shape only lets an element be the target of an ``Assignment``."""
     return sp.IndexedBase(name, shape=shape or (sp.Symbol("n"),))
+
+
+def _unwrapped(text: str) -> str:
+    """``text`` without the parentheses around all of it (a condition's)."""
+    if not (text.startswith("(") and text.endswith(")")):
+        return text
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0 and i < len(text) - 1:
+            return text  # the first parenthesis closes before the end
+    return text[1:-1]
 
 
 class NumbaPrinter(PythonCodePrinter):
@@ -62,13 +83,15 @@ class NumbaPrinter(PythonCodePrinter):
         return f"{expr.base}[{', '.join(self._index_printer.doprint(i) for i in expr.indices)}]"
 
     def _print_If(self, node: If) -> str:
-        cond = self._print(node.condition)
-        if cond.startswith("(") and cond.endswith(")") and cond.count("(") == 1:
-            cond = cond[1:-1]
+        cond = _unwrapped(self._print(node.condition))
         out = [f"if {cond}:", self._indent_codestring(self._body(node.body))]
         if node.orelse.args:
             out += ["else:", self._indent_codestring(self._body(node.orelse))]
         return "\n".join(out)
+
+    def _print_Unpack(self, node: Unpack) -> str:
+        targets = ", ".join(self._print(t) for t in node.targets)
+        return f"{targets} = {self._print(node.value)}"
 
     def _print_For(self, node) -> str:
         stop = node.iterable.args[1] if node.iterable.args[0] == 0 else node.iterable

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "7aff5ef0a842de50986d2cb448f3f151abf0ef50"
-NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
+SIGNATURE = "7950bc2db5cf18164f976c736ed3e4d329002416"
+NUMERICS = "09805f31bba270b067060a84740d5f00028b8117"
 KINDS = ()
 DAMPERS = {}
 

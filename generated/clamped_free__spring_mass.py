@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "a6a47c0faa863ecb5b02270d520dd85ce6ec35ff"
-NUMERICS = "ee57f791484e2900f26d75be3a76b4cc949c46a2"
+SIGNATURE = "0bbd1c4b0c42026f64bf7f6ca57bc0e18264ff4a"
+NUMERICS = "09805f31bba270b067060a84740d5f00028b8117"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 
