@@ -2,11 +2,11 @@
 sign them, write them.
 
 ``generated/euler_bernoulli.py``: the beam functions every kernel and the shared numerics
-use (the reduced functions' series and closed forms, the transfer matrix and compound
-step filled from them, the general segment's field matrix), composed by ordinary code
-(``mstmm.numerics.beam``). A topology's kernel: its per-component functions
-(``event_<what>``), one branch per kind present, printed from each kind's descriptor (a
-bare beam gets no branch at all), and its ends' constants. The numerics, the
+use (the reduced functions with their branches: constant terms, series, scaled closed
+forms; the transfer matrix and compound step filled from them; the general segment's field
+matrices), compiled by ``mstmm.numerics.beam``. A topology's kernel: its per-component
+functions (``event_<what>``), one branch per kind present, printed from each kind's
+descriptor (a bare beam gets no branch at all), and its ends' constants. The numerics, the
 characteristic functions' walk, the scan, the count, the marches, are ordinary code in
 ``mstmm.numerics``: a kernel binds ``mstmm.numerics.characteristic`` to its printed
 functions. The templates (``templates/*.tmpl``) hold the modules' headers only.

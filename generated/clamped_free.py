@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "7950bc2db5cf18164f976c736ed3e4d329002416"
-NUMERICS = "09805f31bba270b067060a84740d5f00028b8117"
+SIGNATURE = "947d5eca608399f95ad7789522589bbd9fdfdd9b"
+NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "0bbd1c4b0c42026f64bf7f6ca57bc0e18264ff4a"
-NUMERICS = "09805f31bba270b067060a84740d5f00028b8117"
+SIGNATURE = "6689305537ba10501d1b664a7d302a18d66f5585"
+NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

@@ -1,8 +1,8 @@
 """The Euler-Bernoulli segment's beam functions (generated, do not edit).
 
 Printed by SymPy from ``derive/segments/euler_bernoulli.py`` (paper Eq. (1)),
-``derive/special.py`` and ``derive/segments/general.py``; composed by ordinary code in
-``mstmm.numerics.beam`` (series below x = 1.5, the exp(-x) scaling, the count).
+``derive/special.py`` and ``derive/segments/general.py``: constant terms, series below
+x = 1.5, closed forms scaled by exp(-x) above; compiled by ``mstmm.numerics.beam``.
 
 Regenerate: python -m mstmm.derive --bundled
 Derived by mstmm.derive with SymPy 1.14.0.
@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "cbf541dc01c1e6c351e510d59d08c0eb516b9569"
+DIGEST = "020aa4c0503af830bcd3f19e3b3563f43d5f80df"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

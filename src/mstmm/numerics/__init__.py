@@ -1,7 +1,7 @@
 """The numerics every kernel shares, as ordinary code: the drivers take a topology's
 characteristic functions as first-class functions (``delta``, ``count``, ``event``, ...), so
 they compile once per machine and serve every topology. The beam functions they use are
-printed by SymPy (``mstmm.generated.euler_bernoulli``) and composed in ``beam``; a kernel
+printed by SymPy (``mstmm.generated.euler_bernoulli``) and compiled in ``beam``; a kernel
 module star-imports this package.
 
 The modules: ``layout`` (the parameter vector), ``walk`` (the segment walk and the event
