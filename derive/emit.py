@@ -179,10 +179,8 @@ def _chain_lines(what: str, complex_: bool = False) -> list:
         FunctionCall(f"event_stages{suffix}", [tag_, p_, o_, w, L_, EI_, mbar_, st]),
     ]
     if what == "tip":
-        tip = array("tip", 4)
-        names = ("chain_u0", "chain_g", "chain_log", "own")
-        lines.append(Assignment(sp.Symbol("tip"), _call("chain_tip", st)))
-        return lines + [Assignment(sp.Symbol(nm), tip[k]) for k, nm in enumerate(names)]
+        names = sp.symbols("chain_u0 chain_g chain_log own")
+        return lines + [Unpack(names, _call("chain_tip", st))]
     if what == "descriptor":
         args = [st] + [sp.Symbol(nm) for nm in ("Cz", "Cq", "A", "B", "qmass")]
         return lines + [Return(_call("chain_descriptor", *args))]
@@ -195,7 +193,7 @@ def _symbolic_descriptor(module, damped: bool = False) -> tuple[list, descriptor
     return lines, descriptor.of(module, values)
 
 
-def _step_lines(d: descriptor.Descriptor, name: str = "v", complex_: bool = False) -> list:
+def _step_lines(d: descriptor.Descriptor, name: str = "v") -> list:
     vs = sp.symbols("v0:6")
     v = array(name, 6)
     lines: list = [Assignment(vs[a], v[a]) for a in range(6)]
@@ -269,7 +267,7 @@ def _count_lines(module, d: descriptor.Descriptor) -> list:
     return values + [Assignment(pivot_, -d.Cq[0, 0])] + step + [_negative(pivot_)]
 
 
-def _fill_lines(d: descriptor.Descriptor, complex_: bool = False) -> list:
+def _fill_lines(d: descriptor.Descriptor) -> list:
     """Fill Cz, Cq, A, B, qmass from a descriptor; return (constraints, unknowns)."""
     A, Cz, Cq = array("A", 4, 4), array("Cz", 4, 4), array("Cq", 4, 4)
     B, qmass = array("B", 4, 4), array("qmass", 3, 4)
@@ -302,7 +300,7 @@ def _descriptor_c_lines(damped: bool):
             return _chain_lines("descriptor", complex_=True)
         values, symbols = _value_lines(module, damped)
         d = descriptor.of(module, symbols)
-        return values + [Assignment(b4_, w1_ * w1_)] + _fill_lines(d, complex_=True)
+        return values + [Assignment(b4_, w1_ * w1_)] + _fill_lines(d)
 
     return body
 

@@ -160,27 +160,10 @@ def code(expr: sp.Expr, complex_: bool = False) -> str:
 
 def assignment_nodes(targets: Sequence, exprs: Sequence[sp.Expr]) -> list[Assignment]:
     """``t0 = ...`` (common subexpressions) then ``target = expr`` for each target, as
-    SymPy's ``Assignment`` statements (``sympy.cse`` with ``order='none'``: see
-    :func:`assignments`)."""
+    SymPy's ``Assignment`` statements. ``sympy.cse`` runs with ``order='none'``: the
+    canonical order grows exponentially on nested chain expressions (DESIGN.md, tool-chain
+    facts)."""
     temps = sp.numbered_symbols(symbols.CSE_PREFIX)
     replacements, reduced = sp.cse(list(exprs), symbols=temps, order="none")
     out = [Assignment(sym, val) for sym, val in replacements]
     return out + [Assignment(t, e) for t, e in zip(targets, reduced, strict=True)]
-
-
-def assignments(
-    targets: Sequence[str],
-    exprs: Sequence[sp.Expr],
-    indent: str = "    ",
-    complex_: bool = False,
-) -> list[str]:
-    """Lines ``t0 = ...`` (common subexpressions) then ``target = expr`` for each target.
-
-    ``sympy.cse`` runs with ``order='none'``: the canonical order grows
-    exponentially on nested chain expressions (DESIGN.md, tool-chain facts).
-    """
-    temps = sp.numbered_symbols(symbols.CSE_PREFIX)
-    replacements, reduced = sp.cse(list(exprs), symbols=temps, order="none")
-    lines = [f"{indent}{sym} = {code(val, complex_)}" for sym, val in replacements]
-    lines += [f"{indent}{t} = {code(e, complex_)}" for t, e in zip(targets, reduced, strict=True)]
-    return lines

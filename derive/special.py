@@ -111,11 +111,6 @@ def leading_threshold(funcs: tuple[Reduced, ...]) -> float:
     return float((LEADING_TOLERANCE / ratio) ** 0.25)
 
 
-def leading_terms(funcs: tuple[Reduced, ...]) -> str:
-    """The constant terms of ``funcs``' series, as printed (a tuple's items)."""
-    return ", ".join(repr(float(f.series()[0])) for f in funcs)
-
-
 def scaled_closed_form(f: Reduced, E: sp.Symbol, chs: sp.Symbol, shs: sp.Symbol) -> sp.Expr:
     """``exp(-x) * f(x)`` with ``chs = exp(-x) cosh x``, ``shs = exp(-x) sinh x``, ``E = exp(-x)``.
 

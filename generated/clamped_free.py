@@ -14,7 +14,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "947d5eca608399f95ad7789522589bbd9fdfdd9b"
+SIGNATURE = "07456f67280fbeaa16866e347e2c4eb9ba39c9a8"
 NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
 KINDS = ()
 DAMPERS = {}

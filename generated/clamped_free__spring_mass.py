@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6689305537ba10501d1b664a7d302a18d66f5585"
+SIGNATURE = "2f695638cf9bd87b820c24470ecd633926d270ad"
 NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "020aa4c0503af830bcd3f19e3b3563f43d5f80df"
+DIGEST = "f13ea408e6c030069418a47d5677eaf2b3f4088c"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815
