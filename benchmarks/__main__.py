@@ -47,14 +47,16 @@ def _first_run_remark(first: dict, key: str) -> str:
     """What a first run's time is made of (``benchmarks.components``)."""
     from .workprecision import fmt_time
 
-    remark = "numba compiles the topology's kernel; the shared numerics once per machine"
-    if key == "numerics_compiled":
-        remark += "; a helper process compiles part of the kernel meanwhile (mstmm.compiling)"
+    remark = (
+        "the process compiles the topology's characteristic function; a helper the rest of"
+        " its kernel (count, own frequencies, rigid-body count, mode-shape functions), run as"
+        " Python until it has them (mstmm.compiling)"
+    )
     alone = first.get("nothing_compiled_one_process")
     if key == "nothing_compiled" and alone:
         remark += (
-            ", in two helper processes (nice 10) while this one compiles the kernel and runs"
-            " the drivers as Python until they are compiled (mstmm.compiling);"
+            "; the shared numerics once per machine, in two more helpers (nice 10), the drivers"
+            " run as Python until they are compiled;"
             f" in one process (`MSTMM_COMPILE_HELPERS=0`) {fmt_time(alone['wall_seconds'])}"
             f" ({'-'.join(alone['ends'])} ends, same run)"
         )
@@ -250,8 +252,9 @@ def targets(wp, sc, st=None) -> list[tuple[str, str, str, str, str]]:
                     f"{fmt_time(d.time)} wall, whole `mstmm solve` process (median of {d.repeats})"
                     + split,
                     _status(d.time <= 30.0),
-                    "numba compiles every kernel function on first use; the SymPy derivation "
-                    "is the smaller part",
+                    "numba compiles the characteristic function here, a helper the rest of the"
+                    " kernel (run as Python meanwhile: mstmm.compiling); the SymPy derivation"
+                    " is the smaller part",
                 )
             )
     # 4. N = 1000
@@ -468,18 +471,18 @@ def component_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
                 f"`{co['measured']['command']}`, {co['measured']['date']}",
             )
         )
-        for label, key in (
-            ("the shared numerics already compiled on the machine", "numerics_compiled"),
-            ("nothing compiled yet (the first run after installing)", "nothing_compiled"),
+        for label, key, goal in (
+            ("the shared numerics already compiled on the machine", "numerics_compiled", 5.0),
+            ("nothing compiled yet (the first run after installing)", "nothing_compiled", 15.0),
         ):
             r = first[key]
             rows.append(
                 (
                     "first run of a new topology with every kind (derive + compile + solve,"
                     f" fresh process, compiled forced): {label}",
-                    "<= 15 s",
+                    f"<= {goal:g} s",
                     f"{fmt_time(r['wall_seconds'])} ({'-'.join(r['ends'])} ends)",
-                    _status(r["wall_seconds"] <= 15.0 and r["certified"]),
+                    _status(r["wall_seconds"] <= goal and r["certified"]),
                     _first_run_remark(first, key),
                 )
             )

@@ -68,10 +68,11 @@ def _fresh_state(monkeypatch, started: bool):
     return Fresh
 
 
-def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call():
+def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call(monkeypatch):
     """``entries.SIGNATURES`` (what a helper compiles) is what a solve calls: an undamped
     and a damped solve forced to run compiled, mode shapes on, add no other signature to
-    the drivers."""
+    the drivers (no helpers: everything runs compiled here, none of it as Python)."""
+    monkeypatch.setenv("MSTMM_COMPILE_HELPERS", "0")
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     budget = interpret._Process.budget
     interpret.set_budget(0.0)
@@ -163,28 +164,33 @@ def test_a_driver_another_process_compiles_is_waited_for_not_compiled_again(monk
 _NEW_TOPOLOGY = (
     _LISTENER
     + """
+import sys
 import mstmm
+from mstmm import compiling
+compiling.PYTHON_WHILE_COMPILING = float(sys.argv[1])
 scene = mstmm.scene_from_dict({
     "name": "pinned_pinned",
     "beam": {"length": 2.0, "EI": 1.0e4, "mass_per_length": 3.0, "left": "pinned",
              "right": "pinned"},
 })
 sol = mstmm.solve(scene, modes=3)
+here = list(compiled)
+compiling.wait_all()  # the helper's work done, its cache in place
+kernel = mstmm.kernel_for(scene)
 print(json.dumps({
     "omega": [float(w) for w in sol.omega],
     "certified": bool(sol.count_checked),
     "shapes": [[list(map(float, s.x)), list(map(float, s.Y))] for s in sol.shapes],
-    "compiled": compiled,
+    "compiled": here,
+    "cached": [compiling._holds(getattr(kernel.module, f)) for f in compiling.KERNEL_BACKGROUND],
 }))
 """
 )
 
 
-def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
-    """The shared drivers compiled on the machine, a topology never derived (an empty
-    ``MSTMM_CACHE``) compiled forced: the main process compiles its characteristic
-    function and count, a helper the kernel functions of ``KERNEL_BACKGROUND``, and the
-    roots and shapes are the pinned-pinned beam's closed forms."""
+def _new_topology(python_while_compiling: float) -> dict:
+    """A topology never derived (an empty ``MSTMM_CACHE``) solved compiled forced, with
+    helpers, in a fresh process; the shared drivers compiled on the machine first."""
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     budget = interpret._Process.budget
     interpret.set_budget(0.0)
@@ -199,7 +205,7 @@ def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
         env = dict(os.environ, MSTMM_CACHE=kc, MSTMM_INTERPRET_BUDGET="0")
         env["MSTMM_COMPILE_HELPERS"] = "1"
         done = subprocess.run(
-            [sys.executable, "-c", _NEW_TOPOLOGY],
+            [sys.executable, "-c", _NEW_TOPOLOGY, str(python_while_compiling)],
             env=env,
             capture_output=True,
             text=True,
@@ -214,11 +220,70 @@ def test_a_new_topology_compiles_part_of_its_kernel_in_a_helper():
         phi = [math.sin(n * math.pi * t / L) for t in x]
         k = max(range(len(x)), key=lambda i: abs(phi[i]))
         assert max(abs(y / Y[k] - f / phi[k]) for y, f in zip(Y, phi)) < 1e-9, n
+    assert all(out["cached"])  # every function of KERNEL_BACKGROUND, by one or the other
+    return out
+
+
+def _kernel_compiles(out: dict, name: str) -> int:
+    return sum(q.startswith("kernel_") and q.endswith("." + name) for q in out["compiled"])
+
+
+def test_a_new_topology_compiles_its_characteristic_function_and_a_helper_the_rest():
+    """The main process compiles the characteristic function only; the count, the own
+    frequencies, the rigid-body count and the mode-shape functions compile in a helper
+    while the solve runs them as Python (``PYTHON_WHILE_COMPILING``), and the roots and
+    shapes are the pinned-pinned beam's closed forms."""
+    out = _new_topology(compiling.PYTHON_WHILE_COMPILING)
     if compiling.enabled():
-        qualnames = " ".join(out["compiled"])
-        assert ".delta_stable" in qualnames and ".count_below" in qualnames
+        assert _kernel_compiles(out, "delta_stable") == 1
         for name in compiling.KERNEL_BACKGROUND:
-            assert not any(q.endswith("." + name) for q in out["compiled"]), name
+            assert _kernel_compiles(out, name) == 0, name
+
+
+def test_past_the_budget_a_kernel_function_is_compiled_once_here_or_by_the_helper():
+    """No Python while compiling (a budget of 0): the main process compiles what the solve
+    needs and the helper has not started, waits for what the helper compiles now, and
+    loads it from the cache; no function is compiled twice here, and the answers hold."""
+    out = _new_topology(0.0)
+    for name in ("delta_stable",) + compiling.KERNEL_BACKGROUND:
+        assert _kernel_compiles(out, name) <= 1, name
+
+
+def test_a_kernel_function_the_helper_compiles_is_waited_for(tmp_path, monkeypatch):
+    """``kernel_claim`` blocks while another process holds a function's lock (the helper
+    compiling it), and ``kernel_busy`` says so; released, the claim goes through."""
+    if compiling.fcntl is None:
+        return  # no locks on this platform: nothing to check
+    import threading
+
+    class Module:
+        __name__ = "kernel_under_test"
+
+    lock = tmp_path / "count_below.nbi.compiling"
+    state = _fresh_state(monkeypatch, started=True)
+    monkeypatch.setattr(compiling, "_kernel_functions", lambda module: ("count_below",))
+    monkeypatch.setattr(compiling, "_kernel_lock", lambda module, function: lock)
+
+    class Running:
+        def poll(self):
+            return None
+
+    state.kernels = {Module.__name__: Running()}
+    held = compiling._try_lock(lock)  # the helper's open file
+    assert compiling.kernel_busy(Module, "count_below")
+    claimed = threading.Event()
+
+    def claim():
+        with compiling.kernel_claim(Module, "count_below"):
+            claimed.set()
+
+    waiter = threading.Thread(target=claim)
+    waiter.start()
+    assert not claimed.wait(0.3)  # blocked while the helper holds it
+    os.close(held)
+    assert claimed.wait(10.0)
+    waiter.join()
+    assert not compiling.kernel_busy(Module, "count_below")
 
 
 def test_a_driver_runs_as_python_while_compiling_within_a_budget(monkeypatch):

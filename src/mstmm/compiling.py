@@ -15,11 +15,15 @@ lower priority (``nice`` 10), so that this process keeps a core. A helper that
 fails costs nothing but the wait: the driver then compiles here, as it would have
 without it.
 
-The first compiled run of a topology on a machine whose drivers are compiled is split
-the same way: a helper compiles the kernel functions of :data:`KERNEL_BACKGROUND` (its
-own frequencies, the rigid-body count, the mode-shape descriptor) while this process
-compiles the characteristic function and the count, and this process loads them from
-the cache when it needs them.
+The first compiled run of a topology is split the same way: this process compiles the
+characteristic function (the hot one: every step of the search evaluates it), a helper
+the kernel functions of :data:`KERNEL_BACKGROUND` (the mode-shape descriptor, the count,
+the components' own frequencies, the rigid-body count), in that order. Until the helper
+has one of them in numba's cache, this process runs it as Python (the interpreted tier's
+copy, with the compiled characteristic function) within the same budget; past it, it
+compiles the function itself unless the helper is compiling it now (each function's
+lock, beside numba's index of it: one compiles, the other waits and loads it). A solve
+of a small new topology thus waits for one compile, not six.
 
 Helpers start only when a driver is not in numba's cache yet (the first
 compiled run after installing, or after a change in ``mstmm.numerics``), and
@@ -38,6 +42,8 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 try:
@@ -49,13 +55,15 @@ except ImportError:  # not POSIX: no locks, each process starts its own helpers
 #: its own when numba's cache does not hold it.
 BACKGROUND = ("lowest", "mode_shapes")
 #: The kernel functions a helper compiles on a topology's first compiled run while this
-#: process compiles its characteristic function and count (``start_kernel``).
+#: process compiles its characteristic function (``start_kernel``), in this order: the
+#: mode shapes' (which cost most as Python), then the search's.
 KERNEL_BACKGROUND = (
+    "shape_sizes",
+    "shape_inertia",
+    "shape_event",
+    "count_below",
     "oscillator_frequencies",
     "rigid_body_modes",
-    "shape_event",
-    "shape_inertia",
-    "shape_sizes",
 )
 #: Seconds of Python a driver still compiling in a helper may take in this process, all
 #: its calls together (those spent, plus the interpreted tier's estimate of the next,
@@ -197,12 +205,13 @@ def running(name: str) -> bool:
     return False
 
 
-def python_instead(name: str, estimate: float) -> bool:
+def python_instead(name: str, estimate: float, pending: bool = False) -> bool:
     """Whether to run the driver ``entry_<name>`` as Python now: its helper is still
-    compiling it, and the Python time spent on it so far plus ``estimate`` (seconds)
-    stays within :data:`PYTHON_WHILE_COMPILING`."""
+    compiling it (or, ``pending``, a kernel function it calls: ``kernel_pending``), and the
+    Python time spent on it so far plus ``estimate`` (seconds) stays within
+    :data:`PYTHON_WHILE_COMPILING`."""
     spent = _State.python.get(name, 0.0)
-    return spent + estimate <= PYTHON_WHILE_COMPILING and running(name)
+    return spent + estimate <= PYTHON_WHILE_COMPILING and (pending or running(name))
 
 
 def charge(name: str, seconds: float) -> None:
@@ -231,29 +240,91 @@ def wait(name: str) -> None:
             os.close(fd)
 
 
+def _kernel_functions(module) -> tuple[str, ...]:
+    """The functions of :data:`KERNEL_BACKGROUND` that ``module`` has (an undamped kernel:
+    all; a damped one: none, its search is another)."""
+    if not hasattr(module, "count_below"):
+        return ()
+    return KERNEL_BACKGROUND
+
+
 def start_kernel(module) -> None:
     """Start a helper that compiles the kernel functions of :data:`KERNEL_BACKGROUND` of
-    ``module`` (a kernel whose functions numba has not cached) into numba's cache, unless
-    the drivers' helpers run (call :func:`start` first)."""
+    ``module`` into numba's cache, if numba's cache lacks one of them (once per kernel and
+    process). It runs beside the drivers' helpers of a machine's first run too: this
+    process needs the kernel's functions before the drivers (it runs those as Python)."""
     name = module.__name__
     if name in _State.kernels:
         return
     _State.kernels[name] = None
-    if not enabled() or _State.helpers or _State.elsewhere:
-        # nothing compiled on this machine yet: the drivers' helpers hold the other core,
-        # and a kernel helper would compile the shared functions the kernel calls again
+    if not enabled():
         return
-    first = getattr(module, KERNEL_BACKGROUND[0], None)  # a damped kernel has none of them
-    if first is not None and not _holds(first):  # compiled before: no helper
+    functions = _kernel_functions(module)
+    if any(not _holds(getattr(module, f)) for f in functions):
         _State.kernels[name] = _spawn("--kernel", module.__file__, name)
 
 
-def wait_kernel(module, function: str) -> None:
-    """Wait until the helper compiling ``function`` of ``module`` (if any) is done."""
-    if function in KERNEL_BACKGROUND:
-        helper = _State.kernels.get(module.__name__)
-        if helper is not None:
-            helper.wait()
+def _kernel_lock(module, function: str) -> Path | None:
+    """The lock held by whichever process compiles ``function`` of ``module`` (beside
+    numba's index of it); None without locks."""
+    if fcntl is None:
+        return None
+    try:
+        cache_file = getattr(module, function)._cache._cache_file
+        return Path(str(cache_file._index_path) + ".compiling")
+    except Exception:
+        return None
+
+
+def _helper(module) -> subprocess.Popen | None:
+    """This process's helper compiling ``module``'s functions, while it runs."""
+    helper = _State.kernels.get(module.__name__)
+    return helper if helper is not None and helper.poll() is None else None
+
+
+def kernel_pending(module, function: str) -> bool:
+    """Whether this process's helper is to compile ``function`` of ``module`` and numba's
+    cache does not hold it yet (the function then runs as Python, within the budget)."""
+    if function not in _kernel_functions(module) or _helper(module) is None:
+        return False
+    return not _holds(getattr(module, function))
+
+
+def kernel_busy(module, function: str) -> bool:
+    """Whether another process (the helper) is compiling ``function`` of ``module`` now."""
+    if function not in _kernel_functions(module) or _helper(module) is None:
+        return False
+    path = _kernel_lock(module, function)
+    if path is None:
+        return False
+    try:
+        fd = _try_lock(path)
+    except OSError:  # no lock where the cache is
+        return False
+    if fd is None:
+        return True
+    os.close(fd)
+    return False
+
+
+@contextmanager
+def kernel_claim(module, function: str) -> Iterator[None]:
+    """Hold ``function`` of ``module`` while this process compiles (or loads) it: if the
+    helper is compiling it, wait until it is done (it is then in numba's cache)."""
+    path = None
+    if function in _kernel_functions(module) and _State.kernels.get(module.__name__):
+        path = _kernel_lock(module, function)
+    fd = None
+    if path is not None:
+        try:
+            fd = _try_lock(path, block=True)
+        except OSError:
+            fd = None
+    try:
+        yield
+    finally:
+        if fd is not None:
+            os.close(fd)
 
 
 def wait_all() -> None:
@@ -267,10 +338,10 @@ def wait_all() -> None:
 
 @atexit.register
 def _stop_kernel_helpers() -> None:
-    """A kernel's helper still compiling when this process exits (a solve without mode
-    shapes needs only part of its work) is stopped: what it compiled is in the cache, the
-    rest costs the next run its compile, and no process outlives a solve but the drivers'
-    helpers of a machine's first run."""
+    """A kernel's helper still compiling when this process exits (a small solve answers
+    before it is done) is stopped: what it compiled is in the cache, the next run of the
+    topology starts a helper for the rest (and runs it as Python meanwhile), and no
+    process outlives a solve but the drivers' helpers of a machine's first run."""
     for helper in _State.kernels.values():
         if helper is not None and helper.poll() is None:
             helper.terminate()
@@ -278,7 +349,8 @@ def _stop_kernel_helpers() -> None:
 
 def compile_kernel(path: str, name: str) -> None:
     """Compile the functions of :data:`KERNEL_BACKGROUND` of the kernel module ``name`` (at
-    ``path``) for the signatures the shared drivers call them with."""
+    ``path``) for the signatures the shared drivers call them with, each under its lock,
+    skipping those another process compiles or has compiled."""
     import importlib
 
     from mstmm import kernels
@@ -288,9 +360,24 @@ def compile_kernel(path: str, name: str) -> None:
         module = importlib.import_module(name)
     else:
         module = kernels._load_file(Path(path), name)
-    for function in KERNEL_BACKGROUND:
-        ftype = entries.FUNCTION_TYPES[function][1]
-        getattr(module, function).compile(ftype.signature)  # as _get_wrapper_address asks
+    for function in _kernel_functions(module):
+        dispatcher = getattr(module, function)
+        path_ = _kernel_lock(module, function)
+        fd = None
+        if path_ is not None:
+            try:
+                fd = _try_lock(path_)
+            except OSError:  # no lock where the cache is: compile it regardless
+                path_ = None
+            if path_ is not None and fd is None:
+                continue  # the main process compiles it
+        try:
+            if not _holds(dispatcher):
+                ftype = entries.FUNCTION_TYPES[function][1]
+                dispatcher.compile(ftype.signature)  # as _get_wrapper_address asks
+        finally:
+            if fd is not None:
+                os.close(fd)
 
 
 def compile_driver(name: str) -> None:

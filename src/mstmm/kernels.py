@@ -182,6 +182,8 @@ class Kernel:
     _at: dict = field(default_factory=dict, repr=False)
     _entries: dict = field(default_factory=dict, repr=False)
     _searchable: bool = field(default=False, repr=False)
+    #: Kernel functions compiled or loaded from numba's cache in this process.
+    _loaded: set = field(default_factory=set, repr=False)
 
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
@@ -270,32 +272,52 @@ class Kernel:
         n = numerics()
         if self._fa is None:
             self._fa = np.zeros(n.FA_SIZE, dtype=np.int64)
-        for name in names:
+        todo = [name for name in names if self._fa[n.FUNCTION_TYPES[name][0]] == 0]
+        # those a helper is compiling now last: this process compiles the others meanwhile
+        todo.sort(key=lambda name: compiling.kernel_busy(self.module, name))
+        for name in todo:
             at, ftype = n.FUNCTION_TYPES[name]
-            if self._fa[at] == 0:
-                f = self._compiled(name)
-                sig = ftype.signature
-                self._fa[at] = _get_wrapper_address(f, sig)
-                self._fa[at + 1] = _get_jit_address(f, sig)
+            f = self._compiled(name)
+            sig = ftype.signature
+            self._fa[at] = _get_wrapper_address(f, sig)
+            self._fa[at + 1] = _get_jit_address(f, sig)
         return self._fa
 
     def _compiled(self, name: str):
         interpret.mark_compiled()
         compiling.start()  # the shared drivers compile in helpers meanwhile, if not cached
         compiling.start_kernel(self.module)  # and some of this kernel's functions
-        compiling.wait_kernel(self.module, name)
-        return getattr(self.module, name)
+        f = getattr(self.module, name)
+        if name not in self._loaded and name in compiling.KERNEL_BACKGROUND:
+            # compiled here, or by the helper (waited for, then loaded from numba's cache)
+            with compiling.kernel_claim(self.module, name):
+                f.compile(numerics().FUNCTION_TYPES[name][1].signature)
+        self._loaded.add(name)
+        return f
+
+    def _pending(self, *names: str) -> bool:
+        """Whether a helper is still to compile one of this kernel's functions ``names``
+        (this process then runs them as Python, within ``compiling``'s budget)."""
+        for n in names:
+            if n not in self._loaded and compiling.kernel_pending(self.module, n):
+                return True
+        return False
+
+    def _ready(self, name: str):
+        """The kernel function ``name`` compiled, or as Python while a helper compiles it."""
+        if self._pending(name):
+            return self._python_function(name)
+        return self._compiled(name)
 
     #: The kernel functions the shared search calls (besides the characteristic function).
     SEARCH = ("count_below", "oscillator_frequencies", "rigid_body_modes")
 
     def _compiled_search(self, formulation: str) -> tuple:
-        """The search's kernel functions, compiled, for its driver run as Python (a
-        frequency passed on as a float: an int would make numba compile another
-        specialization)."""
-        delta, count, osc, rigid = (
-            self._compiled(n) for n in (f"delta_{formulation}",) + self.SEARCH
-        )
+        """The search's kernel functions for its driver run as Python: compiled, but those a
+        helper is still compiling as Python (a frequency passed on as a float: an int would
+        make numba compile another specialization)."""
+        delta = self._compiled(f"delta_{formulation}")
+        count, osc, rigid = (self._ready(n) for n in self.SEARCH)
         return (lambda w, p: delta(float(w), p), lambda w, p: count(float(w), p), osc, rigid)
 
     def _search_functions(self, formulation: str) -> tuple:
@@ -319,7 +341,7 @@ class Kernel:
         """A small kernel function: as plain Python until this process has loaded machine
         code (loading it costs a fresh process far more than the call)."""
         if interpret.machine_code_loaded():
-            return self._compiled(name)
+            return self._ready(name)
         return self._python_function(name)
 
     def interprets(self, p: np.ndarray, modes: int, what: str = "stable") -> bool:
@@ -369,13 +391,17 @@ class Kernel:
             lowest = self._python_function("lowest")
             k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
         elif modes <= BLOCK_MODES:
-            fa, at = self._search(formulation)
-            if compiling.python_instead("lowest", interpret.estimated_cost(modes, 0)):
+            at = self._delta(formulation)
+            # the driver, or the count and the like, still compiling in helpers: as Python
+            pending = not self._searchable and self._pending(*self.SEARCH)
+            cost = interpret.estimated_cost(modes, self.attachments(p) if pending else 0)
+            if compiling.python_instead("lowest", cost, pending):
                 f = self._compiled_search(formulation)
                 lowest = self._python_function("lowest")
                 args = (p, modes, out, flags, state, certify, rtol)
                 k = compiling.timed_call("lowest", lowest, *f, *args)
             else:
+                fa, at = self._search(formulation)
                 if self._defers(p):  # room for the brackets left pending
                     state = np.full(state.size + self.module.PENDING_WIDTH * modes, np.nan)
                     state[: self.module.STATE_SIZE] = 0.0
@@ -507,13 +533,19 @@ class Kernel:
         keeps its own counts off those points the same way: ``search.near_pole``)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.empty(omegas.shape, dtype=np.int64)
-        if self.interprets(p, 1, "counts"):
-            # a few counts of a small first solve: as plain Python, not worth loading
-            count, osc = (
-                self._python_function(n) for n in ("count_below", "oscillator_frequencies")
-            )
+        names = ("count_below", "oscillator_frequencies")
+        python = self.interprets(p, 1, "counts")
+        cost = interpret.estimated_cost(omegas.size, self.attachments(p))
+        if python or compiling.python_instead("counts", cost, self._pending(*names)):
+            # a few counts of a small first solve (or while a helper compiles the count):
+            # as plain Python, not worth loading
+            count, osc = (self._python_function(n) for n in names)
+            args = (count, osc, omegas, _params(p), out)
             counts = self._python_function("counts_off_poles")
-            interpret.timed_call(counts, count, osc, omegas, _params(p), out)
+            if python:
+                interpret.timed_call(counts, *args)
+            else:
+                compiling.timed_call("counts", counts, *args)
             return out
         fa = self._addresses("count_below", "oscillator_frequencies")
         self._entry("counts")(fa, omegas, _params(p), out)
@@ -540,8 +572,9 @@ class Kernel:
         m = int(m)
         python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
         cost = interpret.estimated_cost(m * interpret.SHAPE_COST_FACTOR, self.attachments(p))
-        while_compiling = not python and compiling.python_instead("mode_shapes", cost)
         names = ("shape_event", "shape_inertia", "shape_sizes")
+        pending = not python and self._pending(*names)
+        while_compiling = not python and compiling.python_instead("mode_shapes", cost, pending)
         if python or while_compiling:
             event, inertia, sizes = (self._python_function(n) for n in names)
         else:
