@@ -627,7 +627,13 @@ def _general_field_lines(shear: bool) -> list:
     names = ("e", "m", "w2", "kGA", "rhoI", "P", "k_w", "k_G")
     v = dict(zip(names, sp.symbols(names)))
     values = {"EI": v["e"], "mbar": v["m"], **v, "kGA": v["kGA"] if shear else None}
-    return _matrix_fill(general.field(values), "A")
+    A = general.field(values)
+    # the shared exponential (numerics.segment: field_prepare, field_exp) computes only the
+    # entries a field of this zero pattern has: A where i + j is odd, A^2 where it is even
+    even = [A[i, j] for i in range(4) for j in range(4) if (i + j) % 2 == 0]
+    if any(sp.simplify(a) != 0 for a in even):
+        raise ValueError("a segment's field matrix must vanish where i + j is even")
+    return _matrix_fill(A, "A")
 
 
 def _clean(text: str) -> str:

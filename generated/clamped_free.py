@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "07456f67280fbeaa16866e347e2c4eb9ba39c9a8"
-NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
+SIGNATURE = "115c174103f361190a2ed23609dd2bf3292e92e7"
+NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "2f695638cf9bd87b820c24470ecd633926d270ad"
-NUMERICS = "37eba94e86f15fcdedb1d01067b2b5a9337d32c3"
+SIGNATURE = "f3fc8e1e54cd6cb3104c97567e40db452eb17eb1"
+NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

@@ -248,3 +248,24 @@ def test_declared_fields_are_the_equations_written_here():
         assert (general.field(plain) - euler_bernoulli.field(plain)).is_zero_matrix
     symbols = {name: sp.Symbol(name, positive=True) for name in ("EI", "mbar", "w2")}
     assert sp.simplify(general.field(symbols) - euler_bernoulli.field(symbols)) == sp.zeros(4, 4)
+
+
+def test_a_field_with_the_other_zero_pattern_is_refused(monkeypatch):
+    """``numerics.segment`` computes A^2, A^3 and exp(A h) only where a field of the
+    pattern A[i, j] = 0 for i + j even has them; a segment kind whose field breaks it is
+    refused when its functions are printed, not computed wrongly."""
+    import sympy as sp
+    from mstmm.derive import emit
+
+    emit._general_field_lines(shear=True)  # the built-in field: accepted
+    declared = emit.general.field
+
+    def broken(values):
+        A = declared(values)
+        A[0, 0] = values["w2"]  # a term on the diagonal
+        return A
+
+    monkeypatch.setattr(emit.general, "field", broken)
+    with pytest.raises(ValueError, match="i \\+ j is even"):
+        emit._general_field_lines(shear=True)
+    assert isinstance(declared({"EI": 1, "mbar": 1, "w2": sp.Symbol("w2")}), sp.Matrix)

@@ -36,7 +36,7 @@ from .layout import (
     SEGMENT_WIDTH,
 )
 from .walk import (
-    renormalise,
+    renormalise_lazy,
     segment_scale,
 )
 
@@ -102,7 +102,9 @@ def segment_field(p, seg, w2, stiff, A):
 def field_compound(v, F, rho, U, E, w):
     """v <- C2(exp(A rho)) v (the stable chain's step across a piece of a general
     segment; F from ``field_prepare``), in equal pieces of k h <=
-    FIELD_STEP, renormalised after each; returns the log taken out. One ``field_exp`` and
+    FIELD_STEP, renormalised when its largest entry leaves [2^-20, 2^20]
+    (``renormalise_lazy``: a piece's step grows it by e^2 or so); returns the log taken
+    out. One ``field_exp`` and
     one ``second_compound`` per call; U (4 x 4), E (6 x 6) and w (6) are work space."""
     k = field_balance(F)
     pieces = max(1, int(math.ceil(k * rho / FIELD_STEP)))
@@ -111,7 +113,7 @@ def field_compound(v, F, rho, U, E, w):
     log = 0.0
     for _ in range(pieces):
         compound_step(E, v, w)
-        log += renormalise(v)
+        log += renormalise_lazy(v)
     return log
 
 
@@ -338,14 +340,22 @@ def field_prepare(p, seg, w2, stiff, F):
     (at least 1): what ``field_exp`` needs, once per segment and frequency. F is 4 x 4 x 4."""
     A = F[0]
     segment_field(p, seg, w2, stiff, A)
+    # A vanishes where r + c is even (every segment kind's field: derive.emit checks it),
+    # so A^2 where r + c is odd and A^3 where it is even: each entry below is the dense
+    # product's, whose other terms are exact zeros, in the same order
     for r in range(4):
         for c in range(4):
-            acc = A[r, 0] * A[0, c] + A[r, 1] * A[1, c] + A[r, 2] * A[2, c] + A[r, 3] * A[3, c]
-            F[1, r, c] = acc
+            if (r + c) % 2 == 0:
+                k = 1 - r % 2  # the columns k of row r where A is not 0: k and k + 2
+                F[1, r, c] = A[r, k] * A[k, c] + A[r, k + 2] * A[k + 2, c]
+                F[2, r, c] = 0.0
+            else:
+                F[1, r, c] = 0.0
     for r in range(4):
         for c in range(4):
-            acc = F[1, r, 0] * A[0, c] + F[1, r, 1] * A[1, c] + F[1, r, 2] * A[2, c]
-            F[2, r, c] = acc + F[1, r, 3] * A[3, c]
+            if (r + c) % 2 == 1:
+                k = r % 2  # the columns of row r where A^2 is not 0
+                F[2, r, c] = F[1, r, k] * A[k, c] + F[1, r, k + 2] * A[k + 2, c]
     a = -0.5 * (F[1, 0, 0] + F[1, 1, 1] + F[1, 2, 2] + F[1, 3, 3])
     b = det4(A)
     F[3, 0, 0] = a
@@ -395,9 +405,12 @@ def field_exp(F, h, U):
     g0 *= h
     f1 *= h2
     g1 *= h2 * h
-    for r in range(4):
+    for r in range(4):  # the even part on r + c even, the odd part elsewhere
         for c in range(4):
-            U[r, c] = g0 * A[r, c] + f1 * F[1, r, c] + g1 * F[2, r, c]
+            if (r + c) % 2 == 0:
+                U[r, c] = f1 * F[1, r, c]
+            else:
+                U[r, c] = g0 * A[r, c] + g1 * F[2, r, c]
         U[r, r] += f0
 
 
