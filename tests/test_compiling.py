@@ -62,6 +62,7 @@ def _fresh_state(monkeypatch, started: bool):
         elsewhere: dict = {}
         python: dict = {}
         kernels: dict = {}
+        kernel_caches: dict = {}
 
     Fresh.started = started
     monkeypatch.setattr(compiling, "_State", Fresh)
@@ -315,3 +316,28 @@ def test_a_damped_solve_asks_helpers_for_its_own_drivers(monkeypatch):
     compiling.register(("lowest", "damped_shapes"))
     compiling.start()
     assert spawned == ["lowest", "damped_shapes"]
+
+
+def test_a_kernel_helper_outlives_its_process_unless_its_cache_is_temporary(monkeypatch):
+    """At exit a kernel's helper still compiling goes on when numba's cache it writes is a
+    lasting one (a user's), and is stopped when that cache lies in the temporary
+    directory (a test's or a benchmark's, about to be removed)."""
+    state = _fresh_state(monkeypatch, started=True)
+    stopped = []
+
+    class Running:
+        def __init__(self, name):
+            self.name = name
+
+        def poll(self):
+            return None
+
+        def terminate(self):
+            stopped.append(self.name)
+
+    lasting = Path.home() / ".cache" / "mstmm" / "__pycache__"
+    temporary = Path(tempfile.gettempdir()) / "mstmm-test" / "__pycache__"
+    state.kernels = {"user": Running("user"), "test": Running("test"), "unknown": Running("?")}
+    state.kernel_caches = {"user": lasting, "test": temporary.resolve(), "unknown": None}
+    compiling._stop_kernel_helpers()
+    assert stopped == ["test", "?"]

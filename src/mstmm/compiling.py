@@ -41,6 +41,7 @@ import atexit
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -86,6 +87,8 @@ class _State:
     #: Helpers compiling a kernel's functions, by the kernel module's name (None: none
     #: needed or allowed).
     kernels: dict[str, subprocess.Popen | None] = {}
+    #: Where each of those helpers writes numba's cache (``_cache_location``).
+    kernel_caches: dict[str, Path | None] = {}
 
 
 def enabled() -> bool:
@@ -262,6 +265,7 @@ def start_kernel(module) -> None:
     functions = _kernel_functions(module)
     if any(not _holds(getattr(module, f)) for f in functions):
         _State.kernels[name] = _spawn("--kernel", module.__file__, name)
+        _State.kernel_caches[name] = _cache_location(getattr(module, functions[0]))
 
 
 def _kernel_lock(module, function: str) -> Path | None:
@@ -336,15 +340,34 @@ def wait_all() -> None:
             helper.wait()
 
 
+def _cache_location(dispatcher) -> Path | None:
+    """The directory numba caches ``dispatcher`` in (None if it cannot say)."""
+    try:
+        return Path(dispatcher._cache._cache_path).resolve()
+    except Exception:
+        return None
+
+
+def _temporary(path: Path | None) -> bool:
+    """Whether ``path`` lies in the system's temporary directory (or is unknown): a cache
+    there is a test's or a benchmark's, removed when it ends."""
+    if path is None:
+        return True
+    return path.is_relative_to(Path(tempfile.gettempdir()).resolve())
+
+
 @atexit.register
 def _stop_kernel_helpers() -> None:
     """A kernel's helper still compiling when this process exits (a small solve answers
-    before it is done) is stopped: what it compiled is in the cache, the next run of the
-    topology starts a helper for the rest (and runs it as Python meanwhile), and no
-    process outlives a solve but the drivers' helpers of a machine's first run."""
-    for helper in _State.kernels.values():
+    before it is done) goes on, at its low priority, and leaves the rest of the kernel in
+    numba's cache for the next run, as the drivers' helpers do; unless that cache lies in
+    the temporary directory (``_temporary``): the helper is stopped then, rather than
+    write into a directory its owner is removing (what it compiled stays cached; the next
+    run starts a helper for the rest and runs it as Python meanwhile)."""
+    for name, helper in _State.kernels.items():
         if helper is not None and helper.poll() is None:
-            helper.terminate()
+            if _temporary(_State.kernel_caches.get(name)):
+                helper.terminate()
 
 
 def compile_kernel(path: str, name: str) -> None:
