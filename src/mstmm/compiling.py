@@ -98,12 +98,6 @@ def enabled() -> bool:
     return len(os.sched_getaffinity(0)) > 1 if hasattr(os, "sched_getaffinity") else True
 
 
-def _cache_file(name: str):
-    from mstmm.numerics import entries
-
-    return getattr(entries, f"entry_{name}")._cache._cache_file
-
-
 def _holds(dispatcher) -> bool:
     """Whether numba's cache holds machine code of ``dispatcher`` for the current sources
     (an unreadable cache counts as holding it: no helper then)."""
@@ -120,15 +114,28 @@ def cached(name: str) -> bool:
     return _holds(getattr(entries, f"entry_{name}"))
 
 
-def _lock_path(name: str) -> Path | None:
-    """The lock a helper compiling ``entry_<name>`` holds, beside numba's index of it (one
-    helper per driver and cache, whichever process started it); None without locks."""
+def _lock_beside(dispatcher) -> Path | None:
+    """The lock whichever process compiles ``dispatcher`` holds, beside numba's index of
+    it; None without locks."""
     if fcntl is None:
         return None
     try:
-        return Path(str(_cache_file(name)._index_path) + ".compiling")
+        return Path(str(dispatcher._cache._cache_file._index_path) + ".compiling")
     except Exception:
         return None
+
+
+def _lock_path(name: str) -> Path | None:
+    """The lock a helper compiling ``entry_<name>`` holds (one helper per driver and cache,
+    whichever process started it)."""
+    from mstmm.numerics import entries
+
+    return _lock_beside(getattr(entries, f"entry_{name}"))
+
+
+def _kernel_lock(module, function: str) -> Path | None:
+    """The lock whichever process compiles ``function`` of ``module`` holds."""
+    return _lock_beside(getattr(module, function))
 
 
 def _try_lock(path: Path, block: bool = False) -> int | None:
@@ -142,6 +149,19 @@ def _try_lock(path: Path, block: bool = False) -> int | None:
         os.close(fd)
         return None
     return fd
+
+
+def _claim(path: Path | None, block: bool = False) -> tuple[int | None, bool]:
+    """``(fd, busy)``: a descriptor holding the lock on ``path`` (None without one: no
+    path, or none can be made where the cache is), and whether another process holds it
+    (``block``: wait until it is released instead)."""
+    if path is None:
+        return None, False
+    try:
+        fd = _try_lock(path, block)
+    except OSError:  # no lock where the cache is: go on without one
+        return None, False
+    return fd, fd is None and not block
 
 
 def _spawn(*args: str, fds: tuple[int, ...] = ()) -> subprocess.Popen:
@@ -175,15 +195,10 @@ def start() -> None:
         if cached(name):
             continue
         path = _lock_path(name)
-        fd = None
-        if path is not None:
-            try:
-                fd = _try_lock(path)
-            except OSError:  # no lock where the cache is: go on without one
-                path = None
-            if path is not None and fd is None:
-                _State.elsewhere[name] = path
-                continue
+        fd, busy = _claim(path)
+        if busy:
+            _State.elsewhere[name] = path
+            continue
         try:
             if fd is None or not cached(name):
                 _State.helpers[name] = _spawn(name, fds=() if fd is None else (fd,))
@@ -268,18 +283,6 @@ def start_kernel(module) -> None:
         _State.kernel_caches[name] = _cache_location(getattr(module, functions[0]))
 
 
-def _kernel_lock(module, function: str) -> Path | None:
-    """The lock held by whichever process compiles ``function`` of ``module`` (beside
-    numba's index of it); None without locks."""
-    if fcntl is None:
-        return None
-    try:
-        cache_file = getattr(module, function)._cache._cache_file
-        return Path(str(cache_file._index_path) + ".compiling")
-    except Exception:
-        return None
-
-
 def _helper(module) -> subprocess.Popen | None:
     """This process's helper compiling ``module``'s functions, while it runs."""
     helper = _State.kernels.get(module.__name__)
@@ -298,32 +301,19 @@ def kernel_busy(module, function: str) -> bool:
     """Whether another process (the helper) is compiling ``function`` of ``module`` now."""
     if function not in _kernel_functions(module) or _helper(module) is None:
         return False
-    path = _kernel_lock(module, function)
-    if path is None:
-        return False
-    try:
-        fd = _try_lock(path)
-    except OSError:  # no lock where the cache is
-        return False
-    if fd is None:
-        return True
-    os.close(fd)
-    return False
+    fd, busy = _claim(_kernel_lock(module, function))
+    if fd is not None:
+        os.close(fd)
+    return busy
 
 
 @contextmanager
 def kernel_claim(module, function: str) -> Iterator[None]:
     """Hold ``function`` of ``module`` while this process compiles (or loads) it: if the
     helper is compiling it, wait until it is done (it is then in numba's cache)."""
-    path = None
-    if function in _kernel_functions(module) and _State.kernels.get(module.__name__):
-        path = _kernel_lock(module, function)
     fd = None
-    if path is not None:
-        try:
-            fd = _try_lock(path, block=True)
-        except OSError:
-            fd = None
+    if function in _kernel_functions(module) and _State.kernels.get(module.__name__):
+        fd, _ = _claim(_kernel_lock(module, function), block=True)
     try:
         yield
     finally:
@@ -385,15 +375,9 @@ def compile_kernel(path: str, name: str) -> None:
         module = kernels._load_file(Path(path), name)
     for function in _kernel_functions(module):
         dispatcher = getattr(module, function)
-        path_ = _kernel_lock(module, function)
-        fd = None
-        if path_ is not None:
-            try:
-                fd = _try_lock(path_)
-            except OSError:  # no lock where the cache is: compile it regardless
-                path_ = None
-            if path_ is not None and fd is None:
-                continue  # the main process compiles it
+        fd, busy = _claim(_kernel_lock(module, function))
+        if busy:
+            continue  # the main process compiles it
         try:
             if not _holds(dispatcher):
                 ftype = entries.FUNCTION_TYPES[function][1]

@@ -535,8 +535,12 @@ class Kernel:
         out = np.empty(omegas.shape, dtype=np.int64)
         names = ("count_below", "oscillator_frequencies")
         python = self.interprets(p, 1, "counts")
-        cost = interpret.estimated_cost(omegas.size, self.attachments(p))
-        if python or compiling.python_instead("counts", cost, self._pending(*names)):
+        # while a helper compiles the count: the estimate only then (a warm call skips it)
+        while_compiling = not python and self._pending(*names)
+        if while_compiling:
+            cost = interpret.estimated_cost(omegas.size, self.attachments(p))
+            while_compiling = compiling.python_instead("counts", cost, True)
+        if python or while_compiling:
             # a few counts of a small first solve (or while a helper compiles the count):
             # as plain Python, not worth loading
             count, osc = (self._python_function(n) for n in names)
