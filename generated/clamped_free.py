@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "115c174103f361190a2ed23609dd2bf3292e92e7"
-NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
+SIGNATURE = "3a85cce28fdff58c6861ac664dae0fd2bd663a6e"
+NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "f3fc8e1e54cd6cb3104c97567e40db452eb17eb1"
-NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
+SIGNATURE = "0639727b4bc80a9fb7d0c9f10eabdb93f6eda173"
+NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

@@ -22,6 +22,11 @@ if _OWN_CACHE:
     os.environ["MSTMM_TEST_CACHE"] = tempfile.mkdtemp(prefix="mstmm-test-cache-")
 CACHE = os.environ["MSTMM_TEST_CACHE"]
 os.environ["MSTMM_CACHE"] = CACHE
+# numba's machine code of the shared numerics, compiled once per session too: also for the
+# subprocesses a test starts with a kernel cache of its own (mstmm puts it in
+# <MSTMM_CACHE>/numba unless NUMBA_CACHE_DIR says otherwise; a test of a cold machine sets
+# its own).
+os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(CACHE, "numba"))
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:

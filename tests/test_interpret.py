@@ -10,6 +10,8 @@ The fresh-process command line (interpreted by default, compiled with
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import reference_model as ref
@@ -103,3 +105,28 @@ def test_an_interpreted_solve_loads_no_machine_code():
     assert mode == "interpreted"
     assert rel(float(omega0), 102.79443360194969) < 1e-12  # README table, reference.json
     assert loaded.strip() == "[]"
+
+
+def test_a_run_as_python_whose_estimate_proves_wrong_goes_on_compiled(fresh_process):
+    """A string-like tensioned beam (P L^2 / EI ~ 2e8: each evaluation walks 10^4
+    pieces) looks cheap to the cost model, which counts modes and components: its run as
+    Python stops at its deadline (``interpret.deadline``) and the search runs compiled,
+    to the closed-form roots of the tensioned pinned-pinned beam."""
+    L, EI, mbar, P = 1.0, 6.0e4, 15.0, 1.0e13
+    scene = mstmm.scene_from_dict(
+        {
+            "name": "string_like",
+            "beam": {"length": L, "EI": EI, "mass_per_length": mbar, "left": "pinned",
+                     "right": "pinned", "axial_force": P},
+        }
+    )
+    kernel = mstmm.kernel_for(scene)
+    assert kernel.interprets(mstmm.parameter_vector(scene), 2)  # the model says: Python
+    sol = mstmm.solve(scene, modes=2, shapes=False)
+    for n, w in enumerate(sol.omega, start=1):
+        k = n * math.pi / L
+        exact = k * k * math.sqrt(EI / mbar) * math.sqrt(1.0 + P / (EI * k * k))
+        assert abs(w / exact - 1.0) < 1e-12, n
+    assert sol.count_checked and sol.kernel_mode == "compiled"
+    # one evaluation as Python takes seconds here: the run stopped within its allowance
+    assert interpret._Process.spent < 2.5 * interpret.DEFAULT_BUDGET + 0.5

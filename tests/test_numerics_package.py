@@ -43,8 +43,10 @@ def test_numerics_functions_are_cached_with_the_package_stamp():
     kernel.lowest(p, 3)  # compiles (or loads) the driver
     for dispatcher in (entries.entry_lowest, walk.event_order):
         impl = dispatcher._cache._impl
-        assert isinstance(impl.locator, cache._Stamped)
+        assert isinstance(impl.locator, cache.UserCacheLocator)
         assert impl.locator.get_source_stamp() == cache.digest()
+        # in the user cache, never beside the installed sources
+        assert Path(impl.locator.get_cache_path()).is_relative_to(cache.numba_dir())
 
 
 def test_a_kernel_module_sees_the_numerics_it_star_imports():

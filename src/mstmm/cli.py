@@ -450,6 +450,15 @@ def _phase(args, what: str, **seconds: float) -> None:
         print(f"mstmm: time: {what}: {label}: {value:.6f} s", file=sys.stderr)
 
 
+def _report_waits(args) -> None:
+    """With ``--verbose``: each wait on a compile helper, how long and how it ended."""
+    if args.verbose:
+        from . import compiling
+
+        for line in compiling.waits():
+            print(f"mstmm: waited: {line}", file=sys.stderr)
+
+
 def _sweep(args) -> int:
     import numpy as np
 
@@ -824,6 +833,7 @@ def _main(argv: list[str] | None) -> int:
             "show": _show,
         }
         status = commands[args.command](args)
+        _report_waits(args)
         total = time.perf_counter() - t0
         if started is not None:
             _phase(args, args.command, startup=started, total=started + total)

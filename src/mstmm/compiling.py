@@ -11,9 +11,18 @@ compiled kernel (the interpreted tier's copy of it, :mod:`mstmm.interpret`) if t
 is estimated to keep its Python time within :data:`PYTHON_WHILE_COMPILING`, all
 its calls together; past that (a bigger problem, many calls) the process waits
 for the helper and loads the machine code from the cache. The helpers run at a
-lower priority (``nice`` 10), so that this process keeps a core. A helper that
-fails costs nothing but the wait: the driver then compiles here, as it would have
-without it.
+lower priority (``nice`` 10), so that this process keeps a core.
+
+**The foreground never waits on lower-priority work** (:func:`_wait_for`). Before it
+waits on a helper (its own, or another process's that holds the lock) it tries to give
+the helper its own priority; it then waits only while the helper makes progress: at its
+own priority, while it runs at all; still at a lower one, only while it gets most of a
+core (an idle core on an idle machine). A helper that is starved (a busy machine), stopped
+or gone is left behind after one short look (:data:`LOOK`): this process compiles the
+function itself (numba loads it from the cache if the helper finished meanwhile) and stops
+its own starved helper. ``--verbose`` lists each wait and how it ended (:func:`waits`).
+A helper that fails costs nothing but the look: the driver then compiles here, as it
+would have without it.
 
 The first compiled run of a topology is split the same way: this process compiles the
 characteristic function (the hot one: every step of the search evaluates it), a helper
@@ -72,6 +81,14 @@ KERNEL_BACKGROUND = (
 PYTHON_WHILE_COMPILING = 2.0
 #: The helpers' niceness (added to this process's).
 NICENESS = 10
+#: Seconds between two looks at a helper this process waits on (its CPU time is read
+#: at each): one look is what a starved helper costs the foreground.
+LOOK = 0.2
+#: Share of a core a lower-priority helper must get, over a look, to be waited on.
+FULL_SPEED = 0.5
+#: Share of a core a helper at this process's priority must get to be waited on (it is
+#: not stopped: on a busy machine it gets what this process would compiling itself).
+RUNNING = 0.02
 
 
 class _State:
@@ -89,6 +106,8 @@ class _State:
     kernels: dict[str, subprocess.Popen | None] = {}
     #: Where each of those helpers writes numba's cache (``_cache_location``).
     kernel_caches: dict[str, Path | None] = {}
+    #: What this process waited for: ``(what, seconds, how it ended)`` (``waits``).
+    waited: list[tuple[str, float, str]] = []
 
 
 def enabled() -> bool:
@@ -107,11 +126,16 @@ def _holds(dispatcher) -> bool:
         return True
 
 
-def cached(name: str) -> bool:
-    """Whether numba's cache holds machine code of ``entry_<name>`` (``_holds``)."""
+def _driver(name: str):
+    """The shared driver ``entry_<name>`` (its dispatcher)."""
     from mstmm.numerics import entries
 
-    return _holds(getattr(entries, f"entry_{name}"))
+    return getattr(entries, f"entry_{name}")
+
+
+def cached(name: str) -> bool:
+    """Whether numba's cache holds machine code of ``entry_<name>`` (``_holds``)."""
+    return _holds(_driver(name))
 
 
 def _lock_beside(dispatcher) -> Path | None:
@@ -128,9 +152,7 @@ def _lock_beside(dispatcher) -> Path | None:
 def _lock_path(name: str) -> Path | None:
     """The lock a helper compiling ``entry_<name>`` holds (one helper per driver and cache,
     whichever process started it)."""
-    from mstmm.numerics import entries
-
-    return _lock_beside(getattr(entries, f"entry_{name}"))
+    return _lock_beside(_driver(name))
 
 
 def _kernel_lock(module, function: str) -> Path | None:
@@ -140,7 +162,8 @@ def _kernel_lock(module, function: str) -> Path | None:
 
 def _try_lock(path: Path, block: bool = False) -> int | None:
     """A descriptor holding the exclusive lock on ``path``, or None if another holds it
-    (``block``: wait until it is released instead)."""
+    (``block``: wait until it is released instead). The lock file then names this
+    process as its holder (``_mark``)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
     try:
@@ -148,7 +171,26 @@ def _try_lock(path: Path, block: bool = False) -> int | None:
     except OSError:
         os.close(fd)
         return None
+    _mark(fd, os.getpid())
     return fd
+
+
+def _mark(fd: int, pid: int) -> None:
+    """Write ``pid`` into the lock file held through ``fd``: the process that compiles, for
+    another that would wait on it (``_holder``)."""
+    try:
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, str(pid).encode(), 0)
+    except OSError:
+        pass
+
+
+def _holder(path: Path) -> int | None:
+    """The process named in the lock file ``path`` (None if it names none)."""
+    try:
+        return int(path.read_text().strip() or "x")
+    except (OSError, ValueError):
+        return None
 
 
 def _claim(path: Path | None, block: bool = False) -> tuple[int | None, bool]:
@@ -201,7 +243,9 @@ def start() -> None:
             continue
         try:
             if fd is None or not cached(name):
-                _State.helpers[name] = _spawn(name, fds=() if fd is None else (fd,))
+                helper = _State.helpers[name] = _spawn(name, fds=() if fd is None else (fd,))
+                if fd is not None:
+                    _mark(fd, helper.pid)
         finally:
             if fd is not None:
                 os.close(fd)
@@ -232,6 +276,12 @@ def python_instead(name: str, estimate: float, pending: bool = False) -> bool:
     return spent + estimate <= PYTHON_WHILE_COMPILING and (pending or running(name))
 
 
+def python_left(name: str) -> float:
+    """Seconds of Python the driver ``entry_<name>`` may still take in this process (the
+    rest of :data:`PYTHON_WHILE_COMPILING`): where a run as Python is stopped."""
+    return max(PYTHON_WHILE_COMPILING - _State.python.get(name, 0.0), 0.0)
+
+
 def charge(name: str, seconds: float) -> None:
     """Count ``seconds`` of the driver ``entry_<name>`` run as Python."""
     _State.python[name] = _State.python.get(name, 0.0) + seconds
@@ -247,15 +297,92 @@ def timed_call(name: str, fn, *args):
 
 
 def wait(name: str) -> None:
-    """Wait until the helper compiling ``entry_<name>`` (if any) is done."""
+    """Wait for the helper compiling ``entry_<name>`` (if any) while it makes progress
+    (:func:`_wait_for`); a starved one is left behind (this process's own stopped): the
+    caller then compiles the driver itself, or loads it if the helper finished."""
     helper = _State.helpers.pop(name, None)
     if helper is not None:
-        helper.wait()
+        if not _wait_for(f"entry_{name}", helper.pid, lambda: helper.poll() is not None):
+            helper.kill()  # starved or stopped (SIGKILL ends a stopped process too)
+        return
     path = _State.elsewhere.pop(name, None)
     if path is not None:
-        fd = _try_lock(path, block=True)  # released when its helper exits
-        if fd is not None:
-            os.close(fd)
+        _wait_for_lock(f"entry_{name}", path)
+
+
+def _wait_for_lock(what: str, path: Path) -> bool:
+    """Wait for the process holding the lock ``path`` (named in it) while it makes
+    progress; True when the lock is free (the work is in numba's cache)."""
+
+    def free() -> bool:
+        fd = _try_lock(path)
+        if fd is None:
+            return False
+        os.close(fd)
+        return True
+
+    return free() or _wait_for(what, _holder(path), free)
+
+
+def _cpu_seconds(pid: int) -> float | None:
+    """CPU time (user + system) of process ``pid`` so far (Linux ``/proc``; None elsewhere
+    or when it is gone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            fields = fh.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _raise_priority(pid: int) -> bool:
+    """Give process ``pid`` this process's priority if the system allows it (lowering a
+    niceness takes privileges most users lack); whether it now runs at it."""
+    try:
+        own = os.getpriority(os.PRIO_PROCESS, 0)
+        if os.getpriority(os.PRIO_PROCESS, pid) > own:
+            os.setpriority(os.PRIO_PROCESS, pid, own)
+        return os.getpriority(os.PRIO_PROCESS, pid) <= own
+    except (OSError, AttributeError):
+        return False
+
+
+def _wait_for(what: str, pid: int | None, done) -> bool:
+    """Wait until ``done()`` while process ``pid`` (the helper doing the work) makes
+    progress: at this process's priority (given it if allowed, ``_raise_priority``) while
+    it gets :data:`RUNNING` of a core, at a lower one while it gets :data:`FULL_SPEED`.
+    Checked once a :data:`LOOK`; True if done, False when the helper is starved,
+    stopped or gone (or cannot be watched: no ``/proc``), recorded for :func:`waits`."""
+    t0 = time.perf_counter()
+    equal = pid is not None and _raise_priority(pid)
+    need = RUNNING if equal else FULL_SPEED
+    before = None if pid is None else _cpu_seconds(pid)
+    while not done():
+        if before is None:
+            return _record(what, t0, "no helper to watch: compiled here")
+        time.sleep(LOOK)
+        now = _cpu_seconds(pid)
+        if done():
+            break
+        share = 0.0 if now is None else (now - before) / LOOK
+        if share < need:
+            priority = "its" if equal else "a lower"
+            return _record(
+                what, t0, f"helper at {priority} priority got {share:.0%} of a core: compiled here"
+            )
+        before = now
+    return _record(what, t0, "done by the helper, loaded from numba's cache", True)
+
+
+def _record(what: str, t0: float, how: str, result: bool = False) -> bool:
+    """Note a wait for :func:`waits`; returns ``result``."""
+    _State.waited.append((what, time.perf_counter() - t0, how))
+    return result
+
+
+def waits() -> list[str]:
+    """One line per wait on a helper in this process: what, how long, how it ended."""
+    return [f"{what}: {seconds:.3f} s, {how}" for what, seconds, how in _State.waited]
 
 
 def _kernel_functions(module) -> tuple[str, ...]:
@@ -310,10 +437,17 @@ def kernel_busy(module, function: str) -> bool:
 @contextmanager
 def kernel_claim(module, function: str) -> Iterator[None]:
     """Hold ``function`` of ``module`` while this process compiles (or loads) it: if the
-    helper is compiling it, wait until it is done (it is then in numba's cache)."""
+    helper is compiling it, wait while it makes progress (``_wait_for``: it is then in
+    numba's cache); a starved helper is stopped and the function compiled here."""
     fd = None
-    if function in _kernel_functions(module) and _State.kernels.get(module.__name__):
-        fd, _ = _claim(_kernel_lock(module, function), block=True)
+    helper = _State.kernels.get(module.__name__)
+    if function in _kernel_functions(module) and helper is not None:
+        path = _kernel_lock(module, function)
+        fd, busy = _claim(path)
+        if busy and not _wait_for_lock(f"{module.__name__}.{function}", path):
+            helper.kill()  # starved: what it has not compiled yet is compiled here
+        elif busy:
+            fd, _ = _claim(path)
     try:
         yield
     finally:
@@ -348,16 +482,25 @@ def _temporary(path: Path | None) -> bool:
 
 @atexit.register
 def _stop_kernel_helpers() -> None:
-    """A kernel's helper still compiling when this process exits (a small solve answers
-    before it is done) goes on, at its low priority, and leaves the rest of the kernel in
-    numba's cache for the next run, as the drivers' helpers do; unless that cache lies in
-    the temporary directory (``_temporary``): the helper is stopped then, rather than
-    write into a directory its owner is removing (what it compiled stays cached; the next
-    run starts a helper for the rest and runs it as Python meanwhile)."""
-    for name, helper in _State.kernels.items():
-        if helper is not None and helper.poll() is None:
-            if _temporary(_State.kernel_caches.get(name)):
-                helper.terminate()
+    """A helper still compiling when this process exits (a small solve answers before it
+    is done) goes on, at its low priority (given back if a wait raised it), and leaves its
+    work in numba's cache for the next run; unless it is a kernel's and that kernel's
+    cache lies in the temporary directory (``_temporary``): the helper is stopped then,
+    rather than write into a directory its owner is removing (what it compiled stays
+    cached; the next run starts a helper for the rest and runs it as Python meanwhile)."""
+    kernels = [(h, _temporary(_State.kernel_caches.get(n))) for n, h in _State.kernels.items()]
+    for helper, stop in kernels + [(h, False) for h in _State.helpers.values()]:
+        if helper is None or helper.poll() is not None:
+            continue
+        if stop:
+            helper.terminate()
+            continue
+        try:
+            low = os.getpriority(os.PRIO_PROCESS, 0) + NICENESS
+            if os.getpriority(os.PRIO_PROCESS, helper.pid) < low:
+                os.setpriority(os.PRIO_PROCESS, helper.pid, low)
+        except (OSError, AttributeError):
+            pass
 
 
 def compile_kernel(path: str, name: str) -> None:

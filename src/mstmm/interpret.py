@@ -11,15 +11,23 @@ spent would have paid for the compiled kernel: a tiered JIT, rent before you
 buy. A problem estimated to cost more than what is left of the budget, and any
 process that has already loaded machine code for a kernel, runs compiled.
 
+The cost model only decides whether to start: a run whose estimate proves wrong (a
+string-like tensioned beam needs far more evaluations than its mode count suggests) is
+stopped once it has taken twice what was left of the budget (:func:`deadline`,
+:class:`Overrun`), and the caller runs it compiled from the start.
+
 The arithmetic is the same IEEE double arithmetic either way (numba does not
 reassociate without ``fastmath``); the two agree to the last bit or two.
 """
 
 from __future__ import annotations
 
+import math
 import os
 import time
 import types
+from collections.abc import Iterator
+from contextlib import contextmanager
 from types import ModuleType
 
 #: Seconds of plain-Python kernel work a process may spend before it loads machine
@@ -110,7 +118,62 @@ def python_copy(module: ModuleType) -> dict:
             f = obj  # a plain function of the numerics (``generic``'s real and complex twins)
         if isinstance(f, types.FunctionType):
             ns[name] = types.FunctionType(f.__code__, ns, f.__name__, f.__defaults__, f.__closure__)
+    for name in PULSES:
+        if name in ns:
+            ns[name] = _watch(ns[name])
     return ns
+
+
+class Overrun(Exception):
+    """A run as Python took longer than it was allowed: the caller runs it compiled."""
+
+
+def allowance() -> float:
+    """Seconds an interpreted run may take before it is stopped: twice what is left of the
+    budget (at least a tenth of the budget, so that a last small run may finish)."""
+    return 2.0 * max(_Process.budget - _Process.spent, 0.1 * _Process.budget)
+
+
+def exhaust() -> None:
+    """Spend the rest of the budget: after an :class:`Overrun`, this process runs compiled."""
+    _Process.spent = max(_Process.spent, _Process.budget)
+
+
+#: When a run as Python must stop (``deadline``; none outside one).
+_DEADLINE = [math.inf]
+#: Functions of the numerics that a run as Python calls once per piece of a segment: the
+#: deadline is checked in them too, since one evaluation of a long field (a string-like
+#: tensioned beam: 10^5 pieces) takes seconds as Python.
+PULSES = ("compound_step", "segment_piece")
+
+
+@contextmanager
+def deadline(seconds: float) -> Iterator[None]:
+    """Within: a function made by :func:`watched` (or a pulse of the copy, :data:`PULSES`)
+    raises :class:`Overrun` once ``seconds`` have passed."""
+    _DEADLINE[0] = time.perf_counter() + seconds
+    try:
+        yield
+    finally:
+        _DEADLINE[0] = math.inf
+
+
+def _watch(f):
+    """``f`` checking the deadline before each call."""
+
+    def checked(*args):
+        if time.perf_counter() > _DEADLINE[0]:
+            raise Overrun
+        return f(*args)
+
+    return checked
+
+
+def watched(functions: tuple) -> tuple:
+    """``functions`` (handed to a driver run as Python: what every evaluation of the
+    search goes through), each checking the deadline (:func:`deadline`), so that a run
+    whose estimate proved wrong stops soon after it."""
+    return tuple(_watch(f) for f in functions)
 
 
 def timed_call(fn, *args):

@@ -21,7 +21,6 @@ import functools
 import importlib
 import importlib.metadata
 import importlib.util
-import os
 import sys
 import threading
 import time
@@ -32,6 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mstmm.cachedir import cache_dir
 from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, event_rows
 from mstmm.sign import signature
 
@@ -65,15 +65,6 @@ class Found(NamedTuple):
     certified: bool
     #: Where the count stopped certifying (rad/s; 0 when ``certified``).
     failed_at: float
-
-
-def cache_dir() -> Path:
-    """Directory of kernels derived at run time (``MSTMM_CACHE`` overrides)."""
-    env = os.environ.get("MSTMM_CACHE")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(Path.home(), ".cache")
-    return Path(base) / "mstmm"
 
 
 def _load_file(path: Path, module_name: str) -> ModuleType:
@@ -387,20 +378,32 @@ class Kernel:
         certify = bool(certify)
         rtol = float(rtol)
         if formulation == "stable" and self.interprets(p, modes):
-            f = self._search_functions(formulation)
+            f = interpret.watched(self._search_functions(formulation))
             lowest = self._python_function("lowest")
-            k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
-        elif modes <= BLOCK_MODES:
+            try:
+                with interpret.deadline(interpret.allowance()):
+                    k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
+                return self._found(out, flags, state, int(k))
+            except interpret.Overrun:  # the estimate was wrong: compiled, from the start
+                interpret.exhaust()
+                return self.lowest(p, modes, certify, formulation, rtol)
+        if modes <= BLOCK_MODES:
             at = self._delta(formulation)
             # the driver, or the count and the like, still compiling in helpers: as Python
             pending = not self._searchable and self._pending(*self.SEARCH)
             cost = interpret.estimated_cost(modes, self.attachments(p) if pending else 0)
+            k = None
             if compiling.python_instead("lowest", cost, pending):
                 f = self._compiled_search(formulation)
+                f = interpret.watched(f)
                 lowest = self._python_function("lowest")
                 args = (p, modes, out, flags, state, certify, rtol)
-                k = compiling.timed_call("lowest", lowest, *f, *args)
-            else:
+                try:
+                    with interpret.deadline(compiling.python_left("lowest")):
+                        k = compiling.timed_call("lowest", lowest, *f, *args)
+                except interpret.Overrun:  # past the budget: wait for the driver, or compile
+                    out[:], flags[:], state[:] = 0.0, 0, 0.0
+            if k is None:
                 fa, at = self._search(formulation)
                 if self._defers(p):  # room for the brackets left pending
                     state = np.full(state.size + self.module.PENDING_WIDTH * modes, np.nan)

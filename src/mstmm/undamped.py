@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import compiling, repeated
+from . import compiling, interpret, repeated
 from .buckling import Buckling, buckling
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, beside, mode_shapes, too_close, unresolved
@@ -167,6 +167,8 @@ def solve_undamped(
         t2 = time.perf_counter()
         timings["compile"] = t2 - t1
         found = find_roots(kernel, p, band=band, modes=modes, formulation=formulation, rtol=rtol)
+        # a run as Python that outgrew its estimate went on compiled (interpret.Overrun)
+        interpreted = interpreted and not interpret.machine_code_loaded()
     roots = found.roots
     t3 = time.perf_counter()
     timings["scan_refine"] = t3 - t2

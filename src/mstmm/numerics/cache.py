@@ -1,24 +1,41 @@
-"""numba's on-disk cache of the shared numerics, invalidated by any of their sources.
+"""numba's on-disk cache of mstmm's functions: in the user cache, stamped by all their sources.
 
-numba stamps a cached function with its own file's content only: a function of
-``frf.py`` that inlines one of ``walk.py`` (or of the printed
-``mstmm.generated.euler_bernoulli``) would keep machine code compiled against the old
-``walk.py`` after an edit. These locators stamp every function of this package with one
-hash of all its sources and the printed beam functions (:func:`digest`), so that a change
-in any of them recompiles all. They find the same cache directories as numba's own
-(``NUMBA_CACHE_DIR``, ``__pycache__`` beside the file, the user-wide cache), in that order.
+Two rules numba's own locators do not follow:
+
+- **Nothing is written into the installed package.** numba caches a function beside
+  its file (``__pycache__``) when that folder is writable: inside ``site-packages``, where
+  ``pip uninstall`` leaves the files behind and the folder left over shadows a later
+  editable install as a namespace package. Every function of mstmm (the shared numerics,
+  the bundled kernels in ``mstmm.generated``, the kernels derived at run time and their
+  copies of the characteristic functions) is cached under ``<cache>/numba``
+  (:func:`mstmm.cachedir.cache_dir`), in a folder named after its file's folder as numba
+  names them; ``NUMBA_CACHE_DIR`` takes its place when the user set it, and a
+  temporary folder when neither can be written.
+- **One stamp for the numerics.** numba stamps a cached function with its own file's
+  content only: a function of ``frf.py`` that inlines one of ``walk.py`` (or of the
+  printed ``mstmm.generated.euler_bernoulli``) would keep machine code compiled against
+  the old ``walk.py`` after an edit. The numerics' functions carry one hash of all
+  their sources (:func:`digest`), so that a change in any of them recompiles all. The
+  copies ``characteristic.bind_characteristic`` makes of a kernel's characteristic
+  functions (qualified ``kernel_<signature>.<name>``) are cached with the kernel and
+  stamped with its file, as the kernel's printed functions are (a kernel's file changes
+  whenever anything it is made from does: its signature covers the numerics' sources).
 """
 
 from __future__ import annotations
 
 import hashlib
 import importlib.util
+import os
+import tempfile
 from pathlib import Path
 
-from numba.core import caching
+from numba.core import caching, config
+
+from mstmm.cachedir import cache_dir
 
 _HERE = Path(__file__).resolve().parent
-_DIGEST: list[tuple[tuple, str]] = []
+_DIGEST: list[str] = []
 
 
 def sources() -> list[Path]:
@@ -31,78 +48,69 @@ def sources() -> list[Path]:
 
 
 def digest() -> str:
-    """sha1 of every source of the shared numerics (again only when a file changed)."""
-    files = sources()
-    key = tuple((str(p), p.stat().st_mtime_ns, p.stat().st_size) for p in files)
-    if not _DIGEST or _DIGEST[0][0] != key:
+    """sha1 of every source of the shared numerics (read once a process: an installed
+    package does not change under a running solve)."""
+    if not _DIGEST:
         h = hashlib.sha1()
-        for path in files:
+        for path in sources():
             h.update(path.name.encode())
             h.update(path.read_bytes())
-        _DIGEST[:] = [(key, h.hexdigest())]
-    return _DIGEST[0][1]
+        _DIGEST.append(h.hexdigest())
+    return _DIGEST[0]
 
 
-class _Stamped:
-    """A numba locator for this package's functions, stamped with :func:`digest`."""
+def numba_dir() -> Path:
+    """Where numba's machine code of mstmm's functions goes: ``NUMBA_CACHE_DIR`` if the
+    user set one, else ``<cache>/numba``."""
+    if config.CACHE_DIR:
+        return Path(config.CACHE_DIR)
+    return cache_dir() / "numba"
+
+
+def _ours(py_func) -> bool:
+    """Whether ``py_func`` is mstmm's: the package's modules, a derived kernel's module
+    (``mstmm_kernel_*``), and the numerics' copies bound into either."""
+    module = getattr(py_func, "__module__", None) or ""
+    return module == "mstmm" or module.startswith(("mstmm.", "mstmm_kernel_"))
+
+
+class UserCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
+    """Every function of mstmm, in :func:`numba_dir` (a temporary folder if that cannot be
+    written), stamped with :func:`digest` for the numerics and with its file otherwise."""
+
+    def __init__(self, py_func, py_file: str, numerics: bool, base: Path):
+        self._py_file = py_file
+        self._lineno = py_func.__code__.co_firstlineno
+        self._numerics = numerics
+        self._cache_path = str(base / self.get_suitable_cache_subpath(py_file))
+
+    def get_cache_path(self) -> str:
+        return self._cache_path
 
     def get_source_stamp(self):
-        return digest()
+        return digest() if self._numerics else super().get_source_stamp()
 
     @classmethod
     def from_function(cls, py_func, py_file):
-        if Path(py_file).resolve().parent != _HERE:
+        if not _ours(py_func) or not os.path.exists(py_file):
             return None
-        return super().from_function(py_func, py_file)
+        numerics = Path(py_file).resolve().parent == _HERE
+        if numerics and py_func.__qualname__.startswith("kernel_"):
+            kernel = py_func.__globals__.get("__file__")
+            if not kernel:
+                return None
+            py_file, numerics = kernel, False  # cached with its kernel, stamped with it
+        uid = os.getuid() if hasattr(os, "getuid") else 0
+        fallback = Path(tempfile.gettempdir()) / f"mstmm-numba-{uid}"
+        for base in (numba_dir(), fallback):
+            self = cls(py_func, py_file, numerics, base)
+            try:
+                self.ensure_cache_path()
+            except OSError:
+                continue
+            return self
+        return None
 
 
-class UserProvidedLocator(_Stamped, caching.UserProvidedCacheLocator):
-    """``NUMBA_CACHE_DIR``, when set."""
-
-
-class InTreeLocator(_Stamped, caching.InTreeCacheLocator):
-    """``__pycache__`` beside the file, when writable."""
-
-
-class UserWideLocator(_Stamped, caching.UserWideCacheLocator):
-    """The user-wide cache directory (an installation that is not writable)."""
-
-
-class _BesideKernel:
-    """A numba locator for the copies ``characteristic.bind_characteristic`` makes of a
-    kernel's characteristic functions: cached beside the kernel's file and stamped with
-    it, as the kernel's printed functions are (a kernel's file changes whenever anything
-    it is made from does: its signature covers the numerics' sources), so that an empty
-    kernel cache is a cold start and nothing accumulates in this package's folder."""
-
-    @classmethod
-    def from_function(cls, py_func, py_file):
-        kernel = py_func.__globals__.get("__file__")
-        copy = py_func.__qualname__.startswith("kernel_")
-        if not copy or not kernel or Path(py_file).resolve().parent != _HERE:
-            return None
-        return super().from_function(py_func, kernel)
-
-
-class KernelUserProvidedLocator(_BesideKernel, caching.UserProvidedCacheLocator):
-    """``NUMBA_CACHE_DIR``, when set."""
-
-
-class KernelInTreeLocator(_BesideKernel, caching.InTreeCacheLocator):
-    """``__pycache__`` beside the kernel's file, when writable."""
-
-
-class KernelUserWideLocator(_BesideKernel, caching.UserWideCacheLocator):
-    """The user-wide cache directory (a kernel folder that is not writable)."""
-
-
-_OURS = (
-    KernelUserProvidedLocator,
-    KernelInTreeLocator,
-    KernelUserWideLocator,
-    UserProvidedLocator,
-    InTreeLocator,
-    UserWideLocator,
-)
-if not any(c in caching.CacheImpl._locator_classes for c in _OURS):
-    caching.CacheImpl._locator_classes[0:0] = list(_OURS)
+if UserCacheLocator not in caching.CacheImpl._locator_classes:
+    caching.CacheImpl._locator_classes.insert(0, UserCacheLocator)

@@ -478,7 +478,7 @@ def _tagged(name: str, namespace: dict):
     """A copy of this module's function ``name`` with ``namespace`` as its globals, its
     qualified name ``kernel_<signature>.<name>`` (the signature covers everything the
     kernel's printed functions are made from, the topology included): numba caches the
-    copy beside the kernel's file, stamped with it (``cache._BesideKernel``), as it
+    copy with the kernel, stamped with its file (``cache.UserCacheLocator``), as it
     caches the kernel's own functions."""
     f = globals()[name]
     copy = types.FunctionType(f.__code__, namespace, name, f.__defaults__, f.__closure__)
