@@ -97,28 +97,32 @@ def test_the_drivers_are_compiled_for_the_signatures_the_kernels_call(monkeypatc
         assert dispatcher.signatures == [entries.SIGNATURES[name]], name
 
 
+def _cold_cantilever(script: str) -> tuple[dict, mstmm.Scene]:
+    """``script`` run on a machine's first compiled run (fresh numba and kernel caches,
+    compiled forced, helpers on): its JSON line, checked against the cantilever's
+    closed-form roots and certified, and the scene."""
+    with tempfile.TemporaryDirectory() as numba_cache, tempfile.TemporaryDirectory() as kc:
+        env = dict(os.environ, NUMBA_CACHE_DIR=numba_cache, MSTMM_CACHE=kc)
+        env.update(MSTMM_INTERPRET_BUDGET="0", MSTMM_COMPILE_HELPERS="1")
+        done = subprocess.run(
+            [sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True
+        )
+    out = json.loads(done.stdout.splitlines()[-1])
+    scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
+    for n, w in enumerate(out["omega"], start=1):
+        assert abs(w / _cantilever_omega(scene, n) - 1.0) < 1e-12, n
+    assert out["certified"]
+    return out, scene
+
+
 def test_a_first_compiled_run_on_a_cold_machine_loads_the_drivers_from_its_helpers():
     """Nothing in numba's cache (a fresh ``NUMBA_CACHE_DIR``), the solve forced compiled:
     the drivers of ``compiling.BACKGROUND`` are compiled by helpers, not by the main
     process (it runs them as Python around its compiled kernel until they are), the
     roots are the cantilever's closed-form ones, mode shapes on, and the helpers leave
     the drivers in the cache."""
-    with tempfile.TemporaryDirectory() as numba_cache, tempfile.TemporaryDirectory() as kc:
-        env = dict(
-            os.environ,
-            NUMBA_CACHE_DIR=numba_cache,
-            MSTMM_CACHE=kc,
-            MSTMM_INTERPRET_BUDGET="0",
-            MSTMM_COMPILE_HELPERS="1",
-        )
-        done = subprocess.run(
-            [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True, check=True
-        )
-    out = json.loads(done.stdout.splitlines()[-1])
-    scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
-    for n, w in enumerate(out["omega"], start=1):
-        assert abs(w / _cantilever_omega(scene, n) - 1.0) < 1e-12, n
-    assert out["certified"] and len(out["shapes"]) == 4
+    out, scene = _cold_cantilever(_COLD)
+    assert len(out["shapes"]) == 4
     for n, (x, Y) in enumerate(out["shapes"], start=1):  # the closed-form mode shapes
         b = (
             _cantilever_omega(scene, n) ** 0.5
@@ -175,17 +179,8 @@ def test_a_first_run_whose_helpers_cannot_run_finishes_in_its_own_time():
     says so in its waits (``--verbose``), and its roots are the closed-form ones."""
     if not compiling.enabled():
         return  # one core: no helpers to wait on
-    with tempfile.TemporaryDirectory() as numba_cache, tempfile.TemporaryDirectory() as kc:
-        env = dict(os.environ, NUMBA_CACHE_DIR=numba_cache, MSTMM_CACHE=kc)
-        env.update(MSTMM_INTERPRET_BUDGET="0", MSTMM_COMPILE_HELPERS="1")
-        done = subprocess.run(
-            [sys.executable, "-c", _STOPPED], env=env, capture_output=True, text=True, check=True
-        )
-    out = json.loads(done.stdout.splitlines()[-1])
-    scene = mstmm.load_scene(mstmm.example_path("bare_cantilever"))
-    for n, w in enumerate(out["omega"], start=1):
-        assert abs(w / _cantilever_omega(scene, n) - 1.0) < 1e-12, n
-    assert out["certified"] and out["shapes"] == 3 and out["helpers"] >= 1
+    out, _ = _cold_cantilever(_STOPPED)
+    assert out["shapes"] == 3 and out["helpers"] >= 1
     assert out["waits"] and all("compiled here" in w for w in out["waits"]), out["waits"]
 
 
