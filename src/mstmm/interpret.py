@@ -36,11 +36,19 @@ from types import ModuleType
 #: ``MSTMM_INTERPRET_BUDGET`` overrides it; 0 turns interpretation off.
 DEFAULT_BUDGET = 0.3
 
+#: Seconds of plain-Python work allowed instead where the kernel's machine code is not in
+#: numba's cache yet (a machine's or a topology's first run): the other choice is then to
+#: compile, and the characteristic function alone takes 1.8 s or more to compile.
+COLD_BUDGET = 1.5
+
 #: Cost model of the interpreted ``lowest``, seconds per mode: ``A + B * attachments``
 #: (fitted on the clamped-free spring-mass kernel, 1 .. 30 attachments, 5 .. 60 modes,
 #: with a margin; the run is timed, the model only decides whether to start it).
 COST_PER_MODE = 2.5e-3
 COST_PER_MODE_PER_ATTACHMENT = 0.25e-3
+#: Evaluations of the characteristic function that cost about one mode of ``lowest`` as
+#: Python (the search spends some 30-60 on a mode: nodes, Brent, counts).
+EVALUATIONS_PER_MODE = 30
 #: An interpreted mode shape costs about this many modes of ``lowest`` (``estimated_cost``).
 SHAPE_COST_FACTOR = 4
 #: A scene with a Timoshenko, axial-force or foundation segment costs the interpreted
@@ -86,12 +94,20 @@ def estimated_cost(modes: int, attachments: int) -> float:
     return modes * (COST_PER_MODE + COST_PER_MODE_PER_ATTACHMENT * attachments)
 
 
-def worthwhile(modes: int, attachments: int, general: bool = False) -> bool:
-    """Whether ``lowest`` should run as Python: no machine code yet and it fits the budget."""
+def _limit(cold: bool) -> float:
+    """The budget; at least :data:`COLD_BUDGET` for a kernel with nothing in numba's cache
+    (``cold``), unless interpretation is off."""
+    budget = _Process.budget
+    return max(budget, COLD_BUDGET) if cold and budget > 0.0 else budget
+
+
+def worthwhile(modes: int, attachments: int, general: bool = False, cold: bool = False) -> bool:
+    """Whether ``lowest`` should run as Python: no machine code yet and it fits the budget
+    (``cold``: the kernel's machine code would have to be compiled, not loaded)."""
     if _Process.compiled:
         return False
     cost = estimated_cost(modes, attachments) * (GENERAL_SEGMENT_FACTOR if general else 1)
-    return _Process.spent + cost <= _Process.budget
+    return _Process.spent + cost <= _limit(cold)
 
 
 def python_copy(module: ModuleType) -> dict:
@@ -128,15 +144,16 @@ class Overrun(Exception):
     """A run as Python took longer than it was allowed: the caller runs it compiled."""
 
 
-def allowance() -> float:
+def allowance(cold: bool = False) -> float:
     """Seconds an interpreted run may take before it is stopped: twice what is left of the
-    budget (at least a tenth of the budget, so that a last small run may finish)."""
-    return 2.0 * max(_Process.budget - _Process.spent, 0.1 * _Process.budget)
+    budget (at least a tenth of it, so that a last small run may finish)."""
+    limit = _limit(cold)
+    return 2.0 * max(limit - _Process.spent, 0.1 * limit)
 
 
 def exhaust() -> None:
     """Spend the rest of the budget: after an :class:`Overrun`, this process runs compiled."""
-    _Process.spent = max(_Process.spent, _Process.budget)
+    _Process.spent = max(_Process.spent, _Process.budget, COLD_BUDGET)
 
 
 #: When a run as Python must stop (``deadline``; none outside one).

@@ -21,6 +21,7 @@ import functools
 import importlib
 import importlib.metadata
 import importlib.util
+import math
 import sys
 import threading
 import time
@@ -175,6 +176,8 @@ class Kernel:
     _searchable: bool = field(default=False, repr=False)
     #: Kernel functions compiled or loaded from numba's cache in this process.
     _loaded: set = field(default_factory=set, repr=False)
+    #: Whether numba's cache lacked the characteristic function when first asked (``_cold``).
+    _was_cold: bool | None = field(default=None, repr=False)
 
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
@@ -195,9 +198,31 @@ class Kernel:
         omegas = np.ascontiguousarray(omegas, dtype=np.float64)
         mant = np.empty_like(omegas)
         logs = np.empty_like(omegas)
-        at = self._delta(formulation)
-        self._entry("evaluate")(self._fa, at, omegas, _params(p), mant, logs)
+        p = _params(p)
+
+        def python() -> None:
+            (delta,) = interpret.watched((self._python_function(f"delta_{formulation}"),))
+            self._python_function("evaluate")(delta, omegas, p, mant, logs)
+
+        def compiled() -> None:
+            at = self._delta(formulation)
+            self._entry("evaluate")(self._fa, at, omegas, p, mant, logs)
+
+        modes = omegas.size / interpret.EVALUATIONS_PER_MODE
+        self._tiered(p, modes, formulation, python, compiled)
         return mant, logs
+
+    def _tiered(self, p: np.ndarray, modes: float, formulation: str, python, compiled):
+        """``python()`` as plain Python when the interpreted tier takes work of ``modes``
+        modes of :meth:`lowest` (:meth:`interprets`; the stable formulation only), stopped
+        at its deadline (``interpret.deadline``); else, or then, ``compiled()``."""
+        if formulation == "stable" and self.interprets(p, math.ceil(modes)):
+            try:
+                with interpret.deadline(interpret.allowance(self._cold())):
+                    return interpret.timed_call(python)
+            except interpret.Overrun:  # the estimate was wrong: compiled, from the start
+                interpret.exhaust()
+        return compiled()
 
     def delta(
         self, omega: float, p: np.ndarray, formulation: str = "stable"
@@ -340,7 +365,16 @@ class Kernel:
         another entry point ``what``, ``modes`` is its cost in modes of ``lowest``."""
         if what in self.warmed or interpret.machine_code_loaded():
             return False  # decided before looking at p: a warm call costs microseconds
-        return interpret.worthwhile(modes, self.attachments(p), _general_segments(p))
+        general = _general_segments(p)
+        return interpret.worthwhile(modes, self.attachments(p), general, self._cold())
+
+    def _cold(self) -> bool:
+        """Whether numba's cache lacks this kernel's characteristic function (a first run:
+        machine code would be compiled, not loaded; looked at once a process)."""
+        if self._was_cold is None:
+            delta = getattr(self.module, "delta_stable", None)
+            self._was_cold = delta is not None and not compiling._holds(delta)
+        return self._was_cold
 
     def _python_function(self, name: str):
         """The kernel's (or the shared numerics') function ``name`` as plain Python
@@ -377,16 +411,21 @@ class Kernel:
         p = _params(p)
         certify = bool(certify)
         rtol = float(rtol)
-        if formulation == "stable" and self.interprets(p, modes):
+
+        def python() -> Found:
             f = interpret.watched(self._search_functions(formulation))
-            lowest = self._python_function("lowest")
-            try:
-                with interpret.deadline(interpret.allowance()):
-                    k = interpret.timed_call(lowest, *f, p, modes, out, flags, state, certify, rtol)
-                return self._found(out, flags, state, int(k))
-            except interpret.Overrun:  # the estimate was wrong: compiled, from the start
-                interpret.exhaust()
-                return self.lowest(p, modes, certify, formulation, rtol)
+            k = self._python_function("lowest")(*f, p, modes, out, flags, state, certify, rtol)
+            return self._found(out, flags, state, int(k))
+
+        def compiled() -> Found:
+            out[:], flags[:], state[:] = 0.0, 0, 0.0  # after a run as Python stopped
+            return self._lowest_compiled(p, modes, out, flags, state, certify, formulation, rtol)
+
+        return self._tiered(p, modes, formulation, python, compiled)
+
+    def _lowest_compiled(self, p, modes, out, flags, state, certify, formulation, rtol) -> Found:
+        """:meth:`lowest` with the compiled search (or its driver as Python while a helper
+        compiles it)."""
         if modes <= BLOCK_MODES:
             at = self._delta(formulation)
             # the driver, or the count and the like, still compiling in helpers: as Python
@@ -498,25 +537,39 @@ class Kernel:
         search a wider band and keep roots by value (:func:`mstmm.scan.band_roots`)."""
         p = _params(p)
         m = self.module
-        fa, at = self._search(formulation)
         n_hi = int(self.count_below(hi, p)[0])
         n_lo = 0 if from_bottom else int(self.count_below(lo, p)[0])
         size = max(n_hi - n_lo, 0)
-        out = np.zeros(size)
-        flags = np.zeros(size, dtype=np.int64)
-        state = np.zeros(m.STATE_SIZE)
-        if from_bottom:
-            k = int(self._entry("lowest_start")(fa, p, size, out, flags, state, True))
-        else:
-            state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
-            state[m.STATE_CERTIFIED] = 1.0
-            k = 0
-        if n_hi < n_lo:  # a count that decreases: nothing it says can be certified
-            state[m.STATE_CERTIFIED], state[m.STATE_FAILED] = 0.0, lo
-        if 0 <= k < size:
-            run = self._entry("lowest_run")
-            k = int(run(fa, at, p, size, out, flags, state, size, True, float(hi), rtol))
-        return self._found(out, flags, state, k)
+
+        def search(start, run) -> Found:
+            out = np.zeros(size)
+            flags = np.zeros(size, dtype=np.int64)
+            state = np.zeros(m.STATE_SIZE)
+            if from_bottom:
+                k = int(start(p, size, out, flags, state, True))
+            else:
+                state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
+                state[m.STATE_CERTIFIED] = 1.0
+                k = 0
+            if n_hi < n_lo:  # a count that decreases: nothing it says can be certified
+                state[m.STATE_CERTIFIED], state[m.STATE_FAILED] = 0.0, lo
+            if 0 <= k < size:
+                k = int(run(p, size, out, flags, state, size, True, float(hi), rtol))
+            return self._found(out, flags, state, k)
+
+        def python() -> Found:
+            delta, count, osc, rigid = interpret.watched(self._search_functions(formulation))
+            start, run = (self._python_function(n) for n in ("lowest_start", "lowest_run"))
+            return search(
+                lambda *a: start(count, rigid, *a), lambda *a: run(delta, count, osc, *a)
+            )
+
+        def compiled() -> Found:
+            fa, at = self._search(formulation)
+            start, run = self._entry("lowest_start"), self._entry("lowest_run")
+            return search(lambda *a: start(fa, *a), lambda *a: run(fa, at, *a))
+
+        return self._tiered(p, size, formulation, python, compiled)
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`lowest` for every row of ``P``, in parallel on all cores (numba prange)."""

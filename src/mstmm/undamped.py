@@ -105,6 +105,13 @@ class Solution:
         return out
 
 
+def _in_band(kernel: Kernel, p: np.ndarray, band: tuple[float, float]) -> int:
+    """How many roots the count puts in ``band`` (a band solve's size for the tiers): as
+    Python where the kernel is not loaded yet, like every small call of a first solve."""
+    n = kernel.count_below(np.array([band[0], band[1]]), p)
+    return max(int(n[1]) - int(n[0]), 1)
+
+
 def solve_undamped(
     scene: Scene,
     modes: int | None = None,
@@ -161,7 +168,8 @@ def solve_undamped(
     interpreted = False
     if found is None:
         chain = None
-        interpreted = modes is not None and formulation == "stable" and kernel.interprets(p, modes)
+        expected = modes if modes is not None else _in_band(kernel, p, band)
+        interpreted = formulation == "stable" and kernel.interprets(p, expected)
         if not interpreted:
             kernel.warm_up(p, formulation)
         t2 = time.perf_counter()
