@@ -111,7 +111,7 @@ def example(figs: dict, cert: dict | None) -> str:
 
 
 #: Lines of a front-page example's output shown before "...".
-FRONT_LINES = {"front-sweep": 4}
+FRONT_LINES = {"front-sweep": 3}
 
 
 def _front(name: str):
