@@ -132,3 +132,19 @@ def test_the_example_block_is_what_mstmm_solve_prints_now(recorded):
     page, block = _block("example")
     assert page == readme.README  # the front page's example
     assert modes(block) == modes(run.stdout)
+
+
+def test_the_front_page_outputs_are_of_the_commands_it_shows(recorded):
+    """Each front-page example block quotes the output recorded for the command that
+    ``benchmarks.example`` runs now: a command changed there without re-recording
+    (``python -m benchmarks.example --front-page``) fails here. (The commands themselves
+    take minutes on a busy machine, so their outputs are not re-run here.)"""
+    from benchmarks import example
+
+    front = recorded[0]["front_page"]
+    assert set(example.FRONT_PAGE) == {k for k in front if k != "measured"}
+    for name, args in example.FRONT_PAGE.items():
+        assert front[name]["command"] == "mstmm " + example._typed(args)
+        page, block = _block(f"front-{name}")
+        assert page == readme.README
+        assert f"$ {front[name]['command']}\n" in block
