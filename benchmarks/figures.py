@@ -1,10 +1,11 @@
-"""The figures the README quotes, as the benchmarks measured them: ``docs/figures.json``.
+"""The figures README.md and docs/*.md quote, as the benchmarks measured them: docs/figures.json.
 
-Each benchmark the README quotes records its figures here under its own key
+Each benchmark the pages quote records its figures here under its own key
 (:func:`record` merges by key, so running one benchmark leaves the others'
-figures alone); ``python -m benchmarks.readme`` writes the README's figure
-blocks from this file, and ``tests/test_readme_figures.py`` checks that the
-README holds exactly what it would write. A figure is never typed by hand.
+figures alone); ``python -m benchmarks.readme`` writes the figure blocks of
+README.md and docs/*.md from this file, wherever each block stands, and
+``tests/test_readme_figures.py`` checks that the pages hold exactly what it would
+write. A figure is never typed by hand.
 """
 
 from __future__ import annotations

@@ -1,17 +1,24 @@
-"""Write the README's measured figures from ``docs/figures.json``: ``python -m benchmarks.readme``.
+"""Write the measured figures of README.md and docs/*.md from ``docs/figures.json``.
 
-The README marks every measured figure with a block::
+Run: ``python -m benchmarks.readme``. The pages (README.md and every ``docs/*.md``,
+:func:`pages`) mark every measured figure with a block::
 
     <!-- figures:NAME -->...<!-- /figures:NAME -->
 
-and this script rewrites each block's content from the figures the benchmarks
-recorded (:mod:`benchmarks.figures`; ``docs/certification.json`` of
-``python -m benchmarks.certification`` too, when it exists). ``--check`` only
-reports whether the README is up to date (exit status 1 if not);
-``tests/test_readme_figures.py`` runs the same check, so a figure typed into
-the README fails CI. Which benchmark feeds which block:
+and this script rewrites each block's content, wherever it stands, from the figures the
+benchmarks recorded (:mod:`benchmarks.figures`; ``docs/certification.json`` of
+``python -m benchmarks.certification`` too, when it exists). Every block of
+:data:`BLOCKS` occurs exactly once over all the pages, so a block moves with its text
+from one page to another and is still rewritten. A link a block writes is relative to
+the repository root (``docs/many_modes.md``) and is made relative to the page that holds
+it. ``--check`` only reports whether the pages are up to date (exit status 1 if not);
+``tests/test_readme_figures.py`` runs the same check, so a figure typed into a page
+fails CI. Which benchmark feeds which block:
 
 * ``example``: ``python -m benchmarks.example`` (the output of ``mstmm solve``);
+* ``front-damped``, ``front-frf``, ``front-bands``, ``front-sweep``:
+  ``python -m benchmarks.example --front-page`` (the README's other examples, each
+  command's output);
 * ``first-solve``: ``example``, ``python -m benchmarks`` (fresh-process and
   first-derive times, the scaling run's SymPy time);
 * ``table1``: ``python -m benchmarks.table1`` and ``python -m benchmarks``
@@ -29,6 +36,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import posixpath
 import re
 import sys
 import textwrap
@@ -41,6 +49,7 @@ from .opensees_model import KNOWN_FAILURES
 from .workprecision import fmt_err, fmt_time
 
 README = figures.ROOT / "README.md"
+DOCS = figures.ROOT / "docs"
 CERTIFICATION = figures.ROOT / "docs" / "certification.json"
 
 BLOCK = re.compile(
@@ -50,6 +59,7 @@ BLOCK = re.compile(
 #: The producing command of each section of docs/figures.json.
 PRODUCERS = {
     "example": "python -m benchmarks.example",
+    "front_page": "python -m benchmarks.example --front-page",
     "table1": "python -m benchmarks.table1",
     "stability": "python -m benchmarks.stability",
     "workprecision": "python -m benchmarks",
@@ -100,6 +110,23 @@ def example(figs: dict, cert: dict | None) -> str:
     return f"\n```\n$ {ex['command']}\n{ex['output'].rstrip()}\n```\n"
 
 
+#: Lines of a front-page example's output shown before "...".
+FRONT_LINES = {"front-sweep": 3}
+
+
+def _front(name: str):
+    def block(figs: dict, cert: dict | None) -> str:
+        ex = _section(figs, "front_page")[name.removeprefix("front-")]
+        lines = ex["output"].rstrip().splitlines()
+        keep = FRONT_LINES.get(name)
+        if keep is not None and len(lines) > keep:
+            lines = [*lines[:keep], "..."]
+        return f"\n```\n$ {ex['command']}\n" + "\n".join(lines) + "\n```\n"
+
+    block.__name__ = name.replace("-", "_")
+    return block
+
+
 def first_solve(figs: dict, cert: dict | None) -> str:
     wp = _section(figs, "workprecision")
     sc = _section(figs, "scaling")
@@ -115,8 +142,8 @@ def first_solve(figs: dict, cert: dict | None) -> str:
         )
     text = (
         "A small first solve runs the kernel's own functions as plain Python "
-        "(scan+refine in the time line above); a fresh `mstmm solve --modes 5` process "
-        f"takes {fmt_time(fresh['mstmm-cold']['time'])} that way, against "
+        "(`scan+refine` in the time line of `mstmm solve`); a fresh `mstmm solve --modes 5` "
+        f"process takes {fmt_time(fresh['mstmm-cold']['time'])} that way, against "
         f"{fmt_time(fresh['mstmm-cold-jit']['time'])} when forced to load the compiled "
         f"kernel.{floor} Bigger or repeated work in a process loads the compiled kernel "
         '("compile" in the time line) once the Python time would have paid for it '
@@ -418,6 +445,10 @@ def clusters(figs: dict, cert: dict | None) -> str:
 
 BLOCKS = {
     "example": example,
+    "front-damped": _front("front-damped"),
+    "front-frf": _front("front-frf"),
+    "front-bands": _front("front-bands"),
+    "front-sweep": _front("front-sweep"),
     "first-solve": first_solve,
     "table1": table1,
     "certification": certification,
@@ -434,25 +465,74 @@ BLOCKS = {
 # ------------------------------------------------------------------ rewrite
 
 
-def render(text: str, figs: dict, cert: dict | None) -> str:
-    """``text`` with every figure block rewritten; every block of :data:`BLOCKS` must occur
-    exactly once, and no other."""
-    names = [m.group("name") for m in BLOCK.finditer(text)]
-    unknown = sorted(set(names) - set(BLOCKS))
+def pages() -> list[Path]:
+    """Every page that may hold figure blocks: README.md and docs/*.md."""
+    return [README, *sorted(DOCS.glob("*.md"))]
+
+
+def read_pages(paths: list[Path] | None = None) -> dict[Path, str]:
+    """``{page: its text}`` of :func:`pages` (or of ``paths``)."""
+    return {p: p.read_text() for p in (pages() if paths is None else paths)}
+
+
+def _name(page: Path) -> str:
+    try:
+        return page.resolve().relative_to(figures.ROOT).as_posix()
+    except ValueError:
+        return str(page)
+
+
+def _relink(body: str, page: Path) -> str:
+    """``body`` with every Markdown link to a repository path (``](docs/x.md)``) made
+    relative to ``page``'s folder."""
+    here = posixpath.dirname(_name(page)) or "."
+    if here == ".":
+        return body
+
+    def link(m: re.Match) -> str:
+        target = m.group(1)
+        if "://" in target or target.startswith(("#", "/")):
+            return m.group(0)
+        return f"]({posixpath.relpath(target, here)})"
+
+    return re.sub(r"\]\(([^)\s]+)\)", link, body)
+
+
+def render_pages(texts: dict[Path, str], figs: dict, cert: dict | None) -> dict[Path, str]:
+    """``texts`` (``{page: text}``) with every figure block rewritten; every block of
+    :data:`BLOCKS` must occur exactly once over all the pages, and no other."""
+    where: dict[str, list[str]] = {}
+    for page, text in texts.items():
+        for m in BLOCK.finditer(text):
+            where.setdefault(m.group("name"), []).append(_name(page))
+    unknown = sorted(set(where) - set(BLOCKS))
     if unknown:
-        raise ValueError(f"README.md: unknown figure block(s) {unknown}")
-    missing = sorted(set(BLOCKS) - set(names))
+        found = "; ".join(f"{n} in {', '.join(where[n])}" for n in unknown)
+        raise ValueError(f"unknown figure block(s) {unknown} ({found})")
+    missing = sorted(set(BLOCKS) - set(where))
     if missing:
-        raise ValueError(f"README.md: figure block(s) {missing} missing")
-    twice = sorted({n for n in names if names.count(n) > 1})
+        raise ValueError(
+            f"figure block(s) {missing} missing from {', '.join(_name(p) for p in texts)}"
+        )
+    twice = sorted(n for n, at in where.items() if len(at) > 1)
     if twice:
-        raise ValueError(f"README.md: figure block(s) {twice} occur more than once")
+        found = "; ".join(f"{n} in {', '.join(where[n])}" for n in twice)
+        raise ValueError(f"figure block(s) {twice} occur more than once ({found})")
 
-    def body(m: re.Match) -> str:
-        name = m.group("name")
-        return f"<!-- figures:{name} -->{BLOCKS[name](figs, cert)}<!-- /figures:{name} -->"
+    def rewrite(page: Path, text: str) -> str:
+        def body(m: re.Match) -> str:
+            name = m.group("name")
+            content = _relink(BLOCKS[name](figs, cert), page)
+            return f"<!-- figures:{name} -->{content}<!-- /figures:{name} -->"
 
-    return BLOCK.sub(body, text)
+        return BLOCK.sub(body, text)
+
+    return {page: rewrite(page, text) for page, text in texts.items()}
+
+
+def render(text: str, figs: dict, cert: dict | None, page: Path = README) -> str:
+    """One page's ``text`` that holds every block (:func:`render_pages` of that page)."""
+    return render_pages({page: text}, figs, cert)[page]
 
 
 def load_certification(path: Path = CERTIFICATION) -> dict | None:
@@ -461,24 +541,26 @@ def load_certification(path: Path = CERTIFICATION) -> dict | None:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks.readme", description=__doc__)
-    ap.add_argument("--check", action="store_true", help="exit 1 if README.md is not current")
+    ap.add_argument(
+        "--check", action="store_true", help="exit 1 if a page's figures are not current"
+    )
     args = ap.parse_args(argv)
-    text = README.read_text()
+    texts = read_pages()
     try:
-        new = render(text, figures.load(), load_certification())
+        new = render_pages(texts, figures.load(), load_certification())
     except (MissingFigures, ValueError) as exc:
         print(f"benchmarks.readme: error: {exc}", file=sys.stderr)
         return 2
+    stale = [page for page in texts if new[page] != texts[page]]
     if args.check:
-        if new != text:
-            print("README.md figures are not current: run python -m benchmarks.readme")
-            return 1
-        return 0
-    if new != text:
-        README.write_text(new)
-        print("README.md: figures rewritten from docs/figures.json")
-    else:
-        print("README.md: figures already current")
+        for page in stale:
+            print(f"{_name(page)}: figures are not current: run python -m benchmarks.readme")
+        return 1 if stale else 0
+    for page in stale:
+        page.write_text(new[page])
+        print(f"{_name(page)}: figures rewritten from docs/figures.json")
+    if not stale:
+        print("README.md, docs/*.md: figures already current")
     return 0
 
 

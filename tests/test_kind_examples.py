@@ -7,8 +7,8 @@ the lowest 6 frequencies of ``mstmm.solve(mstmm.load_scene(path), modes=6)`` wit
 of ``reference_model.frequencies`` of the same file, with the default path's shapes. The
 reference checks (name contains ``reference``) confirm the numbers the files' comments
 state (bare-structure frequencies, tunings) with the reference model and closed forms.
-The TOML snippets of the README's "Component kinds" section (``docs/kinds.md`` until it is
-merged) are scenes too: the reference model accepts them and the solver matches it.
+The TOML snippets of the "Component kinds" section of ``docs/scenes.md`` are scenes too:
+the reference model accepts them and the solver matches it.
 """
 
 from __future__ import annotations
@@ -118,20 +118,15 @@ def test_reference_hinged_absorber():
     assert sc["beam"]["length"] * sc["beam"]["mass_per_length"] == 14.4e3
 
 
-# ------------------------------------------------------- the README's kind snippets
+# ------------------------------------------- the kind snippets of docs/scenes.md
 
-DOCS = Path(__file__).resolve().parent.parent / "docs" / "kinds.md"
-README = Path(__file__).resolve().parent.parent / "README.md"
+DOCS = Path(__file__).resolve().parent.parent / "docs" / "scenes.md"
 
 
 def doc_scenes() -> list[dict]:
-    """The TOML snippets of the "Component kinds" section (``docs/kinds.md``, or the
-    README once it holds the section) as scenes: a snippet without ``[beam]`` is put on a
-    4 m free-free beam."""
-    if DOCS.exists():
-        text = DOCS.read_text()
-    else:
-        text = README.read_text().split("## Component kinds", 1)[1].split("\n## ", 1)[0]
+    """The TOML snippets of the "Component kinds" section of ``docs/scenes.md`` as scenes:
+    a snippet without ``[beam]`` is put on a 4 m free-free beam."""
+    text = DOCS.read_text().split("\n## Component kinds", 1)[1].split("\n## ", 1)[0]
     blocks = [b.split("```", 1)[0] for b in text.split("```toml\n")[1:]]
     out = []
     for block in blocks:

@@ -210,10 +210,13 @@ def test_without_matplotlib_the_error_names_the_extra(tmp_path):
 
 
 def test_readme_says_how_to_install_plotting_before_the_first_plot():
+    """The README's set-up installs the plot extra, before its first ``mstmm plot``."""
     text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
     lines = text.splitlines()
     first = next(i for i, ln in enumerate(lines) if ln.startswith("    ") and "mstmm plot" in ln)
-    assert 'pip install ".[plot]"' in lines[first]
+    install = next(i for i, ln in enumerate(lines) if ln.startswith("    pip install"))
+    assert install < first
+    assert 'pip install ".[plot]"' in lines[install]
 
 
 # ---------------------------------------------------------------- issue 20, item 16
