@@ -20,8 +20,6 @@
 from __future__ import annotations
 
 import argparse
-import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -35,6 +33,7 @@ from mstmm import compiling
 
 from . import figures
 from .cases import Case, _rel_errors, reference
+from .machine import new_topology_env
 
 KINDS = (
     "spring_mass",
@@ -155,40 +154,22 @@ def first_run(
     """Wall time of a fresh process solving a topology never derived before (``compiled``:
     forced to compile, ``MSTMM_INTERPRET_BUDGET=0``; else the default settings; without
     ``helpers``, ``MSTMM_COMPILE_HELPERS=0``: everything compiles in that process)."""
-    import mstmm.generated as generated
-
-    import mstmm.numerics as numerics
-
-    # numba's caches of the shared numerics (mstmm.numerics) and of the printed beam
-    # functions and bundled kernels (generated/), moved aside for a cold run
-    caches = [Path(m.__file__).parent / "__pycache__" for m in (generated, numerics)]
-    saved = []
-    if cold_numerics:
-        for i, pycache in enumerate(caches):
-            if pycache.exists():
-                keep = Path(tempfile.mkdtemp(prefix=f"mstmm-pycache-{i}-"))
-                shutil.move(str(pycache), keep / "__pycache__")
-                saved.append((pycache, keep))
-    try:
-        with tempfile.TemporaryDirectory(prefix="mstmm-first-") as cache:
-            env = dict(os.environ, MSTMM_CACHE=cache)
-            if compiled:
-                env["MSTMM_INTERPRET_BUDGET"] = "0"
-            env["MSTMM_COMPILE_HELPERS"] = "1" if helpers else "0"
-            code = FIRST_RUN.format(scene=_every_kind_scene(*ends))
-            t0 = time.time()
-            out = subprocess.run(
-                [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
-            )
-        done, ok = out.stdout.split()
-        wall = float(done) - t0  # the process up to its answer, not its helpers' end
-        return {"ends": list(ends), "wall_seconds": wall, "certified": ok == "True"}
-    finally:
-        for pycache, keep in saved:
-            if pycache.exists():
-                shutil.rmtree(pycache)
-            shutil.move(str(keep / "__pycache__"), pycache)
-            shutil.rmtree(keep)
+    with tempfile.TemporaryDirectory(prefix="mstmm-first-") as cache:
+        # numba's machine code of the shared numerics: where this process has it, or (a
+        # cold run) a folder of its own, empty
+        env = new_topology_env(cache, MSTMM_COMPILE_HELPERS="1" if helpers else "0")
+        if cold_numerics:
+            env["NUMBA_CACHE_DIR"] = str(Path(cache) / "numba")
+        if compiled:
+            env["MSTMM_INTERPRET_BUDGET"] = "0"
+        code = FIRST_RUN.format(scene=_every_kind_scene(*ends))
+        t0 = time.time()
+        out = subprocess.run(
+            [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
+        )
+    done, ok = out.stdout.split()
+    wall = float(done) - t0  # the process up to its answer, not its helpers' end
+    return {"ends": list(ends), "wall_seconds": wall, "certified": ok == "True"}
 
 
 def paper_example(repeats: int) -> dict:

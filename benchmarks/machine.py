@@ -20,7 +20,20 @@ ENV_VARS = (
     "MKL_NUM_THREADS",
     "NUMBA_NUM_THREADS",
     "MSTMM_CACHE",
+    "NUMBA_CACHE_DIR",
 )
+
+
+def new_topology_env(cache: str | Path, **extra: str) -> dict[str, str]:
+    """The environment of a fresh process whose kernel cache is ``cache`` (empty: every
+    topology new to it) while numba's machine code of the shared numerics stays where this
+    process has it (mstmm keeps both under ``MSTMM_CACHE`` unless ``NUMBA_CACHE_DIR`` is
+    set): the first run of a new topology on a machine that has run mstmm before."""
+    from mstmm.numerics.cache import numba_dir
+
+    env = dict(os.environ, MSTMM_CACHE=str(cache), NUMBA_CACHE_DIR=str(numba_dir()))
+    env.update(extra)
+    return env
 
 
 def cpu_model() -> str:

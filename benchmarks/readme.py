@@ -70,6 +70,7 @@ PRODUCERS = {
     "segments": "python -m benchmarks.segments --record",
     "periodic": "python -m benchmarks.periodic --record",
     "clusters": "python -m benchmarks.clusters --record",
+    "busy": "python -m benchmarks.busy --record",
 }
 
 WIDTH = 88
@@ -443,6 +444,21 @@ def clusters(figs: dict, cert: dict | None) -> str:
     return "\n" + _para(text) + "\n"
 
 
+def busy(figs: dict, cert: dict | None) -> str:
+    from .busy import report
+
+    g = _section(figs, "busy")
+    result = {k: g[k] for k in ("solve", "plot")}
+    text = (
+        "A machine's first `mstmm solve` and `mstmm plot` (nothing compiled: an empty"
+        " `MSTMM_CACHE`), idle and beside two CPU-bound processes at the same priority (a"
+        " core each), median of interleaved runs. The compile helpers such a run starts are"
+        " never waited on while they are starved, and a first run's small work runs as"
+        " Python rather than compiling. Reproduce with `python -m benchmarks.busy`."
+    )
+    return "\n" + _para(text) + "\n\n" + report(result) + "\n"
+
+
 BLOCKS = {
     "example": example,
     "front-damped": _front("front-damped"),
@@ -459,6 +475,7 @@ BLOCKS = {
     "segments": segments,
     "periodic": periodic,
     "clusters": clusters,
+    "busy": busy,
 }
 
 

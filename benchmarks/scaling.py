@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import statistics
 import subprocess
 import sys
@@ -48,6 +47,7 @@ import numpy as np
 
 import mstmm
 
+from .machine import new_topology_env
 from .workprecision import fmt_time, in_child, profile_solve, stage, timed
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -223,8 +223,7 @@ def measure_derive(res: Results, ns, log) -> None:
             scene = random_scene(n, "in band", left="pinned")
             path = Path(tmp) / f"{scene.name}.toml"
             path.write_text(scene_toml(scene, scene.name))
-            env = dict(os.environ)
-            env["MSTMM_CACHE"] = str(Path(tmp) / f"cache-{n}")
+            env = new_topology_env(Path(tmp) / f"cache-{n}")
             env["MSTMM_INTERPRET_BUDGET"] = "0"  # compiled: what is measured here
             env["MSTMM_COMPILE_HELPERS"] = "1"  # as a user's process compiles
             t = time.perf_counter()

@@ -29,6 +29,7 @@ import time
 import numpy as np
 
 from . import figures
+from .machine import new_topology_env
 
 
 def simply_supported(L, EI, mbar, kGA=0.0, rhoI=0.0, t=0.0, kw=0.0, n_max=400):
@@ -192,7 +193,7 @@ def first_run() -> dict:
     out = {}
     for label, budget in (("default", None), ("compiled", "0")):
         with tempfile.TemporaryDirectory() as cache:
-            env = dict(os.environ, MSTMM_CACHE=cache, MSTMM_COMPILE_HELPERS="1")  # a user's
+            env = new_topology_env(cache, MSTMM_COMPILE_HELPERS="1")  # a user's
             if budget is not None:
                 env["MSTMM_INTERPRET_BUDGET"] = budget
             t0 = time.perf_counter()

@@ -49,6 +49,7 @@ from mpmath import mp, mpf
 import mstmm
 
 from . import fem
+from .machine import new_topology_env
 from .table1 import QUOTED
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -524,7 +525,8 @@ def measure_first_derive(res: Results, scene, repeats: int) -> None:
             runs = []
             for i in range(repeats if modes == 5 else 1):
                 env = _env("0")  # compiled: what this point measures
-                env["MSTMM_CACHE"] = str(Path(tmp) / f"cache-{modes}-{i}")
+                env.update(new_topology_env(Path(tmp) / f"cache-{modes}-{i}"))
+                env["MSTMM_INTERPRET_BUDGET"] = "0"
                 env["MSTMM_COMPILE_HELPERS"] = "1"  # as a user's process compiles
                 runs.append(_cli(path, modes, env))
             t = statistics.median(r[0] for r in runs)
