@@ -396,13 +396,18 @@ def _kernel_functions(module) -> tuple[str, ...]:
 def start_kernel(module) -> None:
     """Start a helper that compiles the kernel functions of :data:`KERNEL_BACKGROUND` of
     ``module`` into numba's cache, if numba's cache lacks one of them (once per kernel and
-    process). It runs beside the drivers' helpers of a machine's first run too: this
-    process needs the kernel's functions before the drivers (it runs those as Python)."""
+    process, and none while another kernel's helper of this process runs). It runs beside
+    the drivers' helpers of a machine's first run too: this process needs the kernel's
+    functions before the drivers (it runs those as Python)."""
     name = module.__name__
     if name in _State.kernels:
         return
     _State.kernels[name] = None
     if not enabled():
+        return
+    # one kernel helper at a time: a process solving many new topologies in a row compiles
+    # (or runs as Python) what the running one does not cover, rather than pile helpers up
+    if any(h is not None and h.poll() is None for h in _State.kernels.values()):
         return
     functions = _kernel_functions(module)
     if any(not _holds(getattr(module, f)) for f in functions):
