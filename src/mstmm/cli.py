@@ -16,11 +16,23 @@ import sys
 import time
 import warnings
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__, progress
-from .kernels import FORMULATIONS, KernelError
-from .output import CannotWrite
-from .scene import Scene, SceneError, check_band, load_scene
+from .signals import EXIT_TERMINATED, Terminated, sigterm_as_interrupt
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
+
+def _load() -> None:
+    """Import the modules that load numpy, scipy and numba (a second or more on a busy
+    machine): called by :func:`main` once Ctrl-C and SIGTERM are handled, so that an
+    interrupt during the imports prints one line, not a traceback."""
+    global FORMULATIONS, KernelError, CannotWrite, SceneError, check_band, load_scene
+    from .kernels import FORMULATIONS, KernelError
+    from .output import CannotWrite
+    from .scene import SceneError, check_band, load_scene
 
 EXIT_FAILURE = 1
 EXIT_BAD_INPUT = 2
@@ -39,6 +51,7 @@ exit status:
   3    results written, but a root is NOT TRUSTED, the roots disagree with the
        Wittrick-Williams count, or (sweep) a point could not be certified (NaN)
   130  interrupted (Ctrl-C)
+  143  terminated (SIGTERM); as with Ctrl-C, no temporary file is left behind
 """
 
 SCENE_HELP = "scene file (TOML); default: the bundled paper example wu_chou_1998"
@@ -69,6 +82,11 @@ def _scene(path: str | None) -> Scene:
         return load_scene(example_path("wu_chou_1998"))
     return load_scene(path)
 
+
+OUT_HELP = (
+    "write the --format output to this file instead of standard output, which then gets"
+    " the file's name (a regular file or a new one; through a symbolic link to its target)"
+)
 
 #: ``--quantity`` of ``frf`` and ``plot --frf``.
 _QUANTITY = {"choices": ("receptance", "mobility", "accelerance"), "default": "receptance"}
@@ -107,6 +125,7 @@ class _Help(argparse.RawDescriptionHelpFormatter):
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``mstmm`` argument parser: every option has help text and shows its default."""
+    _load()
     ap = _Parser(
         prog="mstmm",
         description="Natural frequencies and mode shapes of beams by MSTMM.",
@@ -133,9 +152,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument(
         "--format",
         choices=("table", "json", "csv"),
-        default="table",
-        help="output on standard output: a table, one JSON object, or CSV (default: %(default)s)",
+        help="a table, one JSON object, or CSV (default: table; csv with --out)",
     )
+    s.add_argument("--out", type=Path, help=OUT_HELP)
     s.add_argument("--formulation", choices=FORMULATIONS, default="stable", help=FORMULATION_HELP)
     s.add_argument(
         "--shapes",
@@ -228,11 +247,11 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument(
         "--format",
         choices=("table", "json", "csv"),
-        default="table",
         help="the edges and gaps as a table, everything as one JSON object, or the"
-        " dispersion as CSV (omega, f, propagating pairs, Re k and Im k of both pairs in"
-        " 1/m) (default: %(default)s)",
+        " dispersion curves as CSV (omega, f, propagating pairs, Re k and Im k of both pairs"
+        " in 1/m) (default: table; csv with --out)",
     )
+    b.add_argument("--out", type=Path, help=OUT_HELP)
     b.add_argument("--hz", action="store_true", help="--band in Hz (default: rad/s)")
     b.add_argument(
         "--plot",
@@ -333,12 +352,16 @@ def _checked_band(args, scene: Scene) -> tuple[float, float] | None:
     return band
 
 
-def _check_out_dir(path: Path, option: str = "--out") -> None:
-    """An output file's directory must exist and take a new file before any work is done."""
-    from .output import CannotWrite, check_writable
+def _check_out_dir(path: Path, option: str = "--out") -> Path:
+    """Before any work: an output file's directory must exist and take a new file, and the
+    path must be a regular file or nothing yet (:func:`mstmm.output.check_out_file`).
+    Returns the file to write (a symbolic link's target)."""
+    from .output import CannotWrite, NotAFile, check_out_file
 
     try:
-        check_writable(path)
+        return check_out_file(path)
+    except NotAFile as exc:
+        raise SceneError(COMMAND_LINE, option, exc.problem, str(path)) from None
     except CannotWrite as exc:  # the path in full (a value's repr is cut at 80 characters)
         raise SceneError(COMMAND_LINE, option, str(exc)) from None
 
@@ -360,6 +383,7 @@ def _solve(args) -> int:
     from .solve import solve
     from .topology import topology_of
 
+    _out_format(args)
     scene = _scene(args.scene)
     band = _checked_band(args, scene)
     damped = topology_of(scene).damped
@@ -376,9 +400,9 @@ def _solve(args) -> int:
     )
     if sol.buckling is not None and sol.buckling.buckled:
         if args.format == "json":
-            print(output.dumps(sol.to_dict())[0])
+            _emit(args, output.dumps(sol.to_dict())[0] + "\n")
         else:
-            print(f"{scene.name}: {sol.buckling.message()}")
+            _emit(args, f"{scene.name}: {sol.buckling.message()}\n")
         return EXIT_UNTRUSTED
     if band is not None and not sol.omega.size:
         raise NoRoots(
@@ -388,28 +412,38 @@ def _solve(args) -> int:
     _phase(args, "solve", **sol.timings)
     if args.format == "json":
         text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
-        print(text)
+        _emit(args, text + "\n")
         if nulls:
             _warn(
                 f"{len(nulls)} non-finite number(s) written as null in the JSON output"
                 f" (first: {nulls[0]}); they cannot be trusted"
             )
-    elif args.format == "csv" and damped:
-        sys.stdout.write(output.damped_shapes_csv(sol) if args.shapes else output.damped_csv(sol))
-    elif args.format == "csv":
-        sys.stdout.write(output.shapes_csv(sol) if args.shapes else output.frequencies_csv(sol))
-    elif damped:
-        sys.stdout.write(output.damped_table(sol))
-        if args.shapes:
-            sys.stdout.write(output.damped_shapes_table(sol))
     else:
-        sys.stdout.write(output.frequencies_table(sol))
-        if args.shapes:
-            sys.stdout.write(output.shapes_table(sol))
+        _emit(args, output.solution_text(sol, args.format, args.shapes))
     for warning in sol.warnings:
         _warn(warning)
     trusted = bool(sol.count_checked) and bool(sol.converged.all())
     return 0 if trusted else EXIT_UNTRUSTED
+
+
+def _out_format(args) -> None:
+    """``--out`` of ``solve`` and ``bands`` checked before any work (a symbolic link: its
+    target); ``--format`` unset: csv into a file, a table on standard output."""
+    if args.out is not None:
+        args.out_file = _check_out_dir(args.out)
+    if args.format is None:
+        args.format = "table" if args.out is None else "csv"
+
+
+def _emit(args, text: str) -> None:
+    """``text`` on standard output, or written atomically to ``--out`` (its name printed)."""
+    if args.out is None:
+        sys.stdout.write(text)
+        return
+    from .output import write_atomically
+
+    write_atomically(args.out_file, text)
+    print(args.out)
 
 
 class NoRoots(RuntimeError):
@@ -535,7 +569,7 @@ def _plot(args) -> int:
             f"unknown image format; use one of {sorted(plot.formats())}",
             str(args.out),
         )
-    _check_out_dir(args.out)
+    target = _check_out_dir(args.out)  # a symbolic link: its target
     scene = _scene(args.scene)
     if args.frf:
         if args.band is None or args.sweep is not None:
@@ -543,21 +577,21 @@ def _plot(args) -> int:
         omegas, src, dst = _frf_request(args, scene)
         if args.hz:
             omegas = omegas * (2.0 * math.pi)
-        plot.frf_figure(scene, src, dst, omegas, path=args.out, quantity=args.quantity, hz=args.hz)
+        plot.frf_figure(scene, src, dst, omegas, path=target, quantity=args.quantity, hz=args.hz)
     elif args.hz:
         raise SceneError(COMMAND_LINE, "--hz", "only with --frf", None)
     elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
         path, values = _vary_item(args.sweep, "--sweep")
-        plot.veering(scene, path, values, modes=args.modes or 5, path=args.out)
+        plot.veering(scene, path, values, modes=args.modes or 5, path=target)
     else:
         if args.input is not None or args.output:
             option = "--input" if args.input is not None else "--output"
             raise SceneError(COMMAND_LINE, option, "needs --frf (a frequency response plot)")
         band = _checked_band(args, scene)
         plot.figure2(
-            scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
+            scene, target, modes=args.modes or 4, band=band, formulation=args.formulation
         )
     print(args.out)
     return 0
@@ -568,7 +602,7 @@ def _bands(args) -> int:
     from .bands import bands, cell_of
 
     if args.plot is not None:
-        _check_out_dir(args.plot, "--plot")
+        plot_to = _check_out_dir(args.plot, "--plot")
         try:
             from . import plot
         except ModuleNotFoundError as exc:
@@ -577,6 +611,7 @@ def _bands(args) -> int:
             raise SceneError(
                 COMMAND_LINE, "--plot", 'needs matplotlib: pip install "mstmm[plot]"'
             ) from None
+    _out_format(args)
     cell = cell_of(_scene(args.scene))
     band = None
     if args.band is not None:
@@ -587,13 +622,13 @@ def _bands(args) -> int:
             raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
     result = bands(cell, band=band, points=args.points)
     if args.format == "json":
-        print(output.dumps(output.bands_dict(result))[0])
+        _emit(args, output.dumps(output.bands_dict(result))[0] + "\n")
     elif args.format == "csv":
-        sys.stdout.write(output.bands_csv(result))
+        _emit(args, output.bands_csv(result))
     else:
-        sys.stdout.write(output.bands_table(result))
+        _emit(args, output.bands_table(result))
     if args.plot is not None:
-        plot.dispersion(result, path=args.plot, hz=args.hz)
+        plot.dispersion(result, path=plot_to, hz=args.hz)
         print(args.plot, file=sys.stderr)
     _phase(args, "bands", **result.timings)
     for note in result.notes:
@@ -798,10 +833,15 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
     try:
-        return _main(argv)
-    except KeyboardInterrupt:  # Ctrl-C: one line, the conventional 128 + SIGINT
+        with sigterm_as_interrupt():
+            _load()
+            return _main(argv)
+    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: one line, 128 + the signal
         if "--debug" in (sys.argv[1:] if argv is None else argv):
             raise
+        if isinstance(exc, Terminated):
+            print("mstmm: terminated", file=sys.stderr)
+            return EXIT_TERMINATED
         print("mstmm: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
 

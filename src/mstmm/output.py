@@ -20,7 +20,9 @@ import csv
 import io
 import json
 import math
+import os
 import re
+import stat
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -38,8 +40,11 @@ __all__ = [
     "damped_shapes_table",
     "damped_table",
     "CannotWrite",
+    "NotAFile",
     "atomic_file",
+    "check_out_file",
     "check_writable",
+    "out_target",
     "frf_csv",
     "frf_csv_header",
     "frf_csv_rows",
@@ -241,6 +246,19 @@ def frequencies_table(sol: Solution) -> str:
     if getattr(sol, "buckling", None) is not None:
         lines.append(sol.buckling.message())
     return "\n".join(lines) + "\n"
+
+
+def solution_text(sol, fmt: str, shapes: bool) -> str:
+    """What ``mstmm solve --format table|csv`` writes for ``sol`` (undamped or damped),
+    with the shapes' CSV blocks or summary when ``shapes``."""
+    damped = getattr(sol, "damped", False)
+    if fmt == "csv" and damped:
+        return damped_shapes_csv(sol) if shapes else damped_csv(sol)
+    if fmt == "csv":
+        return shapes_csv(sol) if shapes else frequencies_csv(sol)
+    if damped:
+        return damped_table(sol) + (damped_shapes_table(sol) if shapes else "")
+    return frequencies_table(sol) + (shapes_table(sol) if shapes else "")
 
 
 def _shapes(sol: Solution) -> list:
@@ -522,6 +540,55 @@ class CannotWrite(OSError):
         self.directory, self.reason = directory, reason
 
 
+class NotAFile(CannotWrite):
+    """An output path names something other than a regular file (a directory, a device, a
+    FIFO, a socket): never replaced. ``problem`` says what it is, ``path`` the path given."""
+
+    def __init__(self, path, problem: str):
+        OSError.__init__(self, f"{path}: {problem}")
+        self.directory, self.reason = _directory(path), problem
+        self.path, self.problem = path, problem
+
+
+#: What a path that is not a regular file is, by its ``stat`` type.
+_NOT_FILES = (
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def out_target(path) -> Path:
+    """The file that writing ``path`` replaces: ``path`` itself, or the file a symbolic link
+    leads to (its final target: the link stays a link and its target gets the content).
+    Raises :class:`NotAFile` when that is not a regular file (only a regular file, or
+    nothing yet, is replaced) and :class:`CannotWrite` when it cannot be looked at."""
+    path = Path(path)
+    target = Path(os.path.realpath(path)) if path.is_symlink() else path
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        return target
+    except OSError as exc:  # a loop of links, a directory that cannot be searched
+        raise CannotWrite(_directory(target), _reason(exc)) from None
+    via = f" (the link leads to {target})" if target != path else ""
+    if stat.S_ISDIR(mode):
+        raise NotAFile(path, f"a directory{via}: give a file name inside it")
+    for test, what in _NOT_FILES:
+        if test(mode):
+            raise NotAFile(path, f"{what}{via}, not a regular file: mstmm never replaces one")
+    return target
+
+
+def check_out_file(path) -> Path:
+    """Before any work: the file writing ``path`` will replace (:func:`out_target`), after
+    checking that its directory takes a new file (:func:`check_writable`)."""
+    target = out_target(path)
+    check_writable(target)
+    return target
+
+
 def _directory(path) -> Path:
     path = Path(path)
     return path.parent if str(path.parent) else Path(".")
@@ -548,15 +615,27 @@ def check_writable(path) -> None:
         raise CannotWrite(directory, _reason(exc)) from None
 
 
+def _new_mode(target: Path) -> int:
+    """The permissions of a file replacing ``target``: its own if it exists, else as
+    ``open()`` would make a new one (mkstemp makes 0600)."""
+    try:
+        return stat.S_IMODE(os.stat(target).st_mode)
+    except OSError:
+        mask = os.umask(0o022)
+        os.umask(mask)
+        return 0o666 & ~mask
+
+
 @contextmanager
 def atomic_file(path) -> Iterator[Any]:
-    """A text file to write ``path`` through: a temporary file in its directory, put in
-    place when the block ends, removed if it fails or is interrupted (never half written).
-    Raises :class:`CannotWrite` when the directory takes no new file."""
-    import os
+    """A text file to write ``path`` through: a temporary file beside it, put in place when
+    the block ends, removed if it fails or is interrupted (never half written). Through a
+    symbolic link to its target (:func:`out_target`). Raises :class:`NotAFile` when
+    ``path`` is not a regular file, :class:`CannotWrite` when its directory takes no file."""
     import tempfile
 
-    directory = _directory(path)
+    target = out_target(path)
+    directory = _directory(target)
     try:
         fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-")
     except OSError as exc:
@@ -564,10 +643,8 @@ def atomic_file(path) -> Iterator[Any]:
     try:
         with os.fdopen(fd, "w") as fh:
             yield fh
-        mask = os.umask(0o022)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)  # as open() would make it (mkstemp made it 0600)
-        os.replace(tmp, path)
+        os.chmod(tmp, _new_mode(target))
+        os.replace(tmp, target)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
