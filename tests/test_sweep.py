@@ -137,7 +137,7 @@ def test_cli_sweep_writes_csv(tmp_path, data_dir):
         text=True,
     )
     rows = out.read_text().strip().splitlines()
-    assert rows[0] == "attachments[2].k,omega_1,omega_2,omega_3"
+    assert rows[0] == "attachments[2].k [N/m],omega_1 [rad/s],omega_2 [rad/s],omega_3 [rad/s]"
     assert len(rows) == 5
     assert not list(tmp_path.glob(".tmp-*"))
 

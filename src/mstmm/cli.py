@@ -7,8 +7,6 @@ and exits with status 2, before anything is written. Exit statuses: see ``EPILOG
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import math
 import os
 import re
@@ -485,8 +483,6 @@ def _phase(args, what: str, **seconds: float) -> None:
 
 
 def _sweep(args) -> int:
-    import numpy as np
-
     from . import output
     from .study import sweep
 
@@ -506,24 +502,11 @@ def _sweep(args) -> int:
             scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
         )
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
-    buf = io.StringIO()
-    wr = csv.writer(buf, lineterminator="\n")
-    modes = range(1, args.modes + 1)
-    if np.iscomplexobj(omega):  # damped: per mode w_d, sigma and the damping ratio
-        wr.writerow([*vary, *(f"{q}_{i}" for i in modes for q in ("w_d", "sigma", "zeta"))])
-        mag = np.abs(omega)
-        zeta = np.divide(omega.imag, mag, out=np.zeros_like(mag), where=mag > 0)
-        zeta[np.isnan(mag)] = np.nan
-        cells = np.stack([omega.real, omega.imag, zeta], axis=2).reshape(len(omega), -1)
-    else:
-        wr.writerow([*vary, *(f"omega_{i}" for i in modes)])
-        cells = omega
-    for j in range(omega.shape[0]):
-        wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, cells[j].tolist())])
+    text = output.sweep_csv(scene, vary, omega)
     if args.out is None:
-        sys.stdout.write(buf.getvalue())
+        sys.stdout.write(text)
     else:
-        output.write_atomically(args.out, buf.getvalue())
+        output.write_atomically(args.out, text)
         print(args.out)
     for w in caught:
         _warn(str(w.message))
@@ -675,7 +658,7 @@ def _frf(args) -> int:
         _check_out_dir(args.out)
     scene = _scene(args.scene)
     omegas, src, dst = _frf_request(args, scene)
-    labels = [str(d) for d in dst]
+    labels, units = [str(d) for d in dst], output.frf_units(args.quantity, src, dst)
     t0 = time.perf_counter()
     chunks = frf_chunks(scene, [src], dst, omegas, quantity=args.quantity, source=COMMAND_LINE)
     with contextlib.ExitStack() as stack:
@@ -689,7 +672,7 @@ def _frf(args) -> int:
                 _warn(f"{nulls} non-finite value(s) written as null in the JSON output")
         else:
             header, rows = (
-                (output.frf_csv_header(labels), output.frf_csv_rows)
+                (output.frf_csv_header(labels, units), output.frf_csv_rows)
                 if args.format == "csv"
                 else (
                     output.frf_table_header(scene.name, args.quantity, str(src), labels),
