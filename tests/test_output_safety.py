@@ -214,3 +214,33 @@ def test_the_package_imports_nothing_heavy():
     )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
+
+
+def _mapped(pid: int, library: str) -> bool:
+    try:
+        with open(f"/proc/{pid}/maps") as fh:
+            return library in fh.read()
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/maps").exists(), reason="needs Linux /proc")
+def test_ctrl_c_in_a_fresh_process_as_numpy_loads():
+    """``python -m mstmm solve``, SIGINT the moment numpy's C extension is mapped into
+    the process (the heavy imports under way; no hook in the child)."""
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "mstmm", "solve", "--modes", "2"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 120.0
+        while not _mapped(proc.pid, "_multiarray_umath"):
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline
+            time.sleep(0.001)
+        proc.send_signal(signal.SIGINT)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, stderr
+    assert stderr == "mstmm: interrupted\n" and stdout == ""
