@@ -141,6 +141,23 @@ def _default_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
+def _signal_when(proc, ready, signum: int, settle: float = 0.0, poll: float = 0.05):
+    """Send ``proc`` the signal once ``ready()`` holds (and ``settle`` s more, the child
+    still running); its standard output and error once it has exited."""
+    try:
+        deadline = time.monotonic() + 300.0
+        while not ready():
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline, "not ready in 300 s"
+            time.sleep(poll)
+        time.sleep(settle)
+        assert proc.poll() is None, "the run ended before the signal"
+        proc.send_signal(signum)
+        return proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+
+
 def test_sigterm_removes_the_temporary_file_and_exits_143(tmp_path):
     """``frf --points 5e6 --out``: SIGTERM once the hidden temporary file exists."""
     out = tmp_path / "h.csv"
@@ -149,18 +166,8 @@ def test_sigterm_removes_the_temporary_file_and_exits_143(tmp_path):
          "--points", "5000000", "--out", str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
     )  # fmt: skip
-    try:
-        deadline = time.monotonic() + 300.0
-        while not list(tmp_path.glob(".tmp-*")):
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline, "no temporary file in 300 s"
-            time.sleep(0.05)
-        time.sleep(0.5)  # writing rows
-        assert proc.poll() is None, "the run ended before it could be terminated"
-        proc.send_signal(signal.SIGTERM)
-        stdout, stderr = proc.communicate(timeout=120)
-    finally:
-        proc.kill()
+    ready = lambda: bool(list(tmp_path.glob(".tmp-*")))  # noqa: E731
+    stdout, stderr = _signal_when(proc, ready, signal.SIGTERM, settle=0.5)  # writing rows
     assert proc.returncode == 143, stderr
     assert stderr == "mstmm: terminated\n" and stdout == ""
     assert list(tmp_path.iterdir()) == []
@@ -232,15 +239,7 @@ def test_ctrl_c_in_a_fresh_process_as_numpy_loads():
         [sys.executable, "-m", "mstmm", "solve", "--modes", "2"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint,
     )  # fmt: skip
-    try:
-        deadline = time.monotonic() + 120.0
-        while not _mapped(proc.pid, "_multiarray_umath"):
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline
-            time.sleep(0.001)
-        proc.send_signal(signal.SIGINT)
-        stdout, stderr = proc.communicate(timeout=120)
-    finally:
-        proc.kill()
+    ready = lambda: _mapped(proc.pid, "_multiarray_umath")  # noqa: E731
+    stdout, stderr = _signal_when(proc, ready, signal.SIGINT, poll=0.001)
     assert proc.returncode == 130, stderr
     assert stderr == "mstmm: interrupted\n" and stdout == ""
