@@ -161,8 +161,9 @@ def build_parser() -> argparse.ArgumentParser:
         " samples (x, Y, theta, M, Q, mass_x, mass_Y) and its modal mass, participation and"
         " effective mass; with --format csv three blocks separated by an empty line: one row"
         " per mode (omega, f, multiplicity, modal mass, participation, effective mass), then"
-        " x,Y_1..Y_n (one row per point along the beam), then mass_x,Y_1..Y_n (one row per"
-        " carried mass); with --format table a per-mode summary and the sum of effective"
+        " x, Y_1..Y_n, theta_1..theta_n, M_1..M_n, Q_1..Q_n (one row per point along the"
+        " beam; every header with its unit), then mass_x,Y_1..Y_n (one row per carried"
+        " mass); with --format table a per-mode summary and the sum of effective"
         " masses against the total mass (a damped scene: w_d, sigma, where |Y| peaks and"
         " the shape's complexity) (default: off)",
     )
