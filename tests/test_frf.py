@@ -250,7 +250,9 @@ def test_cli_frf_csv_and_json(tmp_path):
     )
     assert res.returncode == 0, res.stderr
     rows = list(csv.reader(io.StringIO(res.stdout)))
-    assert rows[0][:4] == ["omega_rad_s", "f_hz", "displacement:x=5.0_re", "displacement:x=5.0_im"]
+    assert rows[0][:4] == [
+        "omega [rad/s]", "f [Hz]", "displacement:x=5.0_re [m/N]", "displacement:x=5.0_im [m/N]"
+    ]  # fmt: skip
     assert len(rows) == 8 and len(rows[1]) == 2 + 4 * 2
     sc = mstmm.load_scene(scene)
     w = float(rows[3][0])

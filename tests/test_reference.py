@@ -70,7 +70,7 @@ def test_default_scene_is_the_paper_example(reference):
         check=True,
     )
     rows = out.stdout.strip().splitlines()
-    assert rows[0].startswith("mode,omega_rad_s")
+    assert rows[0].startswith("mode,omega [rad/s],f [Hz]")
     omega = [float(r.split(",")[1]) for r in rows[1:]]
     assert rel_err(omega, reference["wu_chou_1998"][:5]).max() < 1e-13
 

@@ -90,9 +90,13 @@ def test_csv_shapes_round_trip(solved, capsys):
     # what a spreadsheet sees: three blocks, each under its own header row
     blocks = text.split("\n\n")
     assert len(blocks) == 3
-    assert blocks[0].splitlines()[0].startswith("mode,omega_rad_s,f_hz,multiplicity")
-    assert blocks[1].splitlines()[0] == "x,Y_1,Y_2,Y_3,Y_4,Y_5"
-    assert blocks[2].splitlines()[0] == "mass_x,Y_1,Y_2,Y_3,Y_4,Y_5"
+    assert blocks[0].splitlines()[0].startswith("mode,omega [rad/s],f [Hz],multiplicity")
+    state = [f"{q}_{i} [{u}]" for q, u in output.STATE for i in range(1, 6)]
+    assert blocks[1].splitlines()[0] == ",".join(["x [m]", *state])
+    assert blocks[2].splitlines()[0] == "mass_x [m]," + ",".join(state[:5])
+    for name in ("theta", "M", "Q"):
+        expected = np.column_stack([getattr(s, name) for s in shapes])
+        np.testing.assert_array_equal(back[name], expected)
     assert len(blocks[1].splitlines()) == 1 + len(shapes[0].x)
     assert len(blocks[2].strip().splitlines()) == 1 + 3
 

@@ -137,7 +137,7 @@ def test_cli_sweep_writes_csv(tmp_path, data_dir):
         text=True,
     )
     rows = out.read_text().strip().splitlines()
-    assert rows[0] == "attachments[2].k,omega_1,omega_2,omega_3"
+    assert rows[0] == "attachments[2].k [N/m],omega_1 [rad/s],omega_2 [rad/s],omega_3 [rad/s]"
     assert len(rows) == 5
     assert not list(tmp_path.glob(".tmp-*"))
 
@@ -390,9 +390,10 @@ def test_cli_damped_sweep_writes_w_d_sigma_zeta(tmp_path):
     res = _cli(str(scene), "--vary", "attachments[0].c=0,30", "--modes", "2", "--out", str(out))
     assert res.returncode == 0, res.stderr
     rows = [line.split(",") for line in out.read_text().strip().splitlines()]
+    units = {"w_d": "rad/s", "sigma": "1/s", "zeta": "-"}
     assert rows[0] == [
-        "attachments[0].c",
-        *(f"{q}_{i}" for i in (1, 2) for q in ("w_d", "sigma", "zeta")),
+        "attachments[0].c [N s/m]",
+        *(f"{q}_{i} [{units[q]}]" for i in (1, 2) for q in ("w_d", "sigma", "zeta")),
     ]
     for row, c in zip(rows[1:], (0.0, 30.0)):
         data = {**TMD, "attachments": [{**TMD["attachments"][0], "c": c}]}

@@ -366,9 +366,21 @@ def bands(
     return out
 
 
+def _waves(c: _Cell, omegas: np.ndarray) -> np.ndarray:
+    """:meth:`_Cell.waves` in time-bounded chunks (:func:`mstmm.chunks.spans`): Ctrl-C gets
+    through between them, and a long run draws a bar (:func:`mstmm.progress.counted`)."""
+    from .chunks import spans
+    from .progress import counted
+
+    out = np.empty((omegas.size, 5), dtype=np.complex128)
+    for at in counted(spans(omegas.size), omegas.size, "dispersion"):
+        out[at] = c.waves(omegas[at])
+    return out
+
+
 def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Bands:
     """Bands with the wavenumbers at ``omegas`` only (no edges)."""
-    waves = c.waves(omegas)
+    waves = _waves(c, omegas)
     mu = waves[:, :2]
     k = np.empty_like(mu)  # part by part: (pi + i inf) / L stays finite in its real part
     k.real = waves[:, 2:4].real / c.cell.beam.length + 0.0  # no -0.0

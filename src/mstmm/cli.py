@@ -7,8 +7,6 @@ and exits with status 2, before anything is written. Exit statuses: see ``EPILOG
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import math
 import os
 import re
@@ -16,11 +14,23 @@ import sys
 import time
 import warnings
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__, progress
-from .kernels import FORMULATIONS, KernelError
-from .output import CannotWrite
-from .scene import Scene, SceneError, check_band, load_scene
+from .signals import EXIT_TERMINATED, Terminated, sigterm_as_interrupt
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
+
+def _load() -> None:
+    """Import the modules that load numpy, scipy and numba (a second or more on a busy
+    machine): called by :func:`main` once Ctrl-C and SIGTERM are handled, so that an
+    interrupt during the imports prints one line, not a traceback."""
+    global FORMULATIONS, KernelError, CannotWrite, SceneError, check_band, load_scene
+    from .kernels import FORMULATIONS, KernelError
+    from .output import CannotWrite
+    from .scene import SceneError, check_band, load_scene
 
 EXIT_FAILURE = 1
 EXIT_BAD_INPUT = 2
@@ -39,6 +49,7 @@ exit status:
   3    results written, but a root is NOT TRUSTED, the roots disagree with the
        Wittrick-Williams count, or (sweep) a point could not be certified (NaN)
   130  interrupted (Ctrl-C)
+  143  terminated (SIGTERM); as with Ctrl-C, no temporary file is left behind
 """
 
 SCENE_HELP = "scene file (TOML); default: the bundled paper example wu_chou_1998"
@@ -69,6 +80,11 @@ def _scene(path: str | None) -> Scene:
         return load_scene(example_path("wu_chou_1998"))
     return load_scene(path)
 
+
+OUT_HELP = (
+    "write the --format output to this file instead of standard output, which then gets"
+    " the file's name (a regular file or a new one; through a symbolic link to its target)"
+)
 
 #: ``--quantity`` of ``frf`` and ``plot --frf``.
 _QUANTITY = {"choices": ("receptance", "mobility", "accelerance"), "default": "receptance"}
@@ -107,6 +123,7 @@ class _Help(argparse.RawDescriptionHelpFormatter):
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``mstmm`` argument parser: every option has help text and shows its default."""
+    _load()
     ap = _Parser(
         prog="mstmm",
         description="Natural frequencies and mode shapes of beams by MSTMM.",
@@ -133,9 +150,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument(
         "--format",
         choices=("table", "json", "csv"),
-        default="table",
-        help="output on standard output: a table, one JSON object, or CSV (default: %(default)s)",
+        help="a table, one JSON object, or CSV (default: table; csv with --out)",
     )
+    s.add_argument("--out", type=Path, help=OUT_HELP)
     s.add_argument("--formulation", choices=FORMULATIONS, default="stable", help=FORMULATION_HELP)
     s.add_argument(
         "--shapes",
@@ -144,8 +161,9 @@ def build_parser() -> argparse.ArgumentParser:
         " samples (x, Y, theta, M, Q, mass_x, mass_Y) and its modal mass, participation and"
         " effective mass; with --format csv three blocks separated by an empty line: one row"
         " per mode (omega, f, multiplicity, modal mass, participation, effective mass), then"
-        " x,Y_1..Y_n (one row per point along the beam), then mass_x,Y_1..Y_n (one row per"
-        " carried mass); with --format table a per-mode summary and the sum of effective"
+        " x, Y_1..Y_n, theta_1..theta_n, M_1..M_n, Q_1..Q_n (one row per point along the"
+        " beam; every header with its unit), then mass_x,Y_1..Y_n (one row per carried"
+        " mass); with --format table a per-mode summary and the sum of effective"
         " masses against the total mass (a damped scene: w_d, sigma, where |Y| peaks and"
         " the shape's complexity) (default: off)",
     )
@@ -228,11 +246,11 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument(
         "--format",
         choices=("table", "json", "csv"),
-        default="table",
         help="the edges and gaps as a table, everything as one JSON object, or the"
-        " dispersion as CSV (omega, f, propagating pairs, Re k and Im k of both pairs in"
-        " 1/m) (default: %(default)s)",
+        " dispersion curves as CSV (omega, f, propagating pairs, Re k and Im k of both pairs"
+        " in 1/m) (default: table; csv with --out)",
     )
+    b.add_argument("--out", type=Path, help=OUT_HELP)
     b.add_argument("--hz", action="store_true", help="--band in Hz (default: rad/s)")
     b.add_argument(
         "--plot",
@@ -333,12 +351,16 @@ def _checked_band(args, scene: Scene) -> tuple[float, float] | None:
     return band
 
 
-def _check_out_dir(path: Path, option: str = "--out") -> None:
-    """An output file's directory must exist and take a new file before any work is done."""
-    from .output import CannotWrite, check_writable
+def _check_out_dir(path: Path, option: str = "--out") -> Path:
+    """Before any work: an output file's directory must exist and take a new file, and the
+    path must be a regular file or nothing yet (:func:`mstmm.output.check_out_file`).
+    Returns the file to write (a symbolic link's target)."""
+    from .output import CannotWrite, NotAFile, check_out_file
 
     try:
-        check_writable(path)
+        return check_out_file(path)
+    except NotAFile as exc:
+        raise SceneError(COMMAND_LINE, option, exc.problem, str(path)) from None
     except CannotWrite as exc:  # the path in full (a value's repr is cut at 80 characters)
         raise SceneError(COMMAND_LINE, option, str(exc)) from None
 
@@ -360,6 +382,7 @@ def _solve(args) -> int:
     from .solve import solve
     from .topology import topology_of
 
+    _out_format(args)
     scene = _scene(args.scene)
     band = _checked_band(args, scene)
     damped = topology_of(scene).damped
@@ -376,9 +399,9 @@ def _solve(args) -> int:
     )
     if sol.buckling is not None and sol.buckling.buckled:
         if args.format == "json":
-            print(output.dumps(sol.to_dict())[0])
+            _emit(args, output.dumps(sol.to_dict())[0] + "\n")
         else:
-            print(f"{scene.name}: {sol.buckling.message()}")
+            _emit(args, f"{scene.name}: {sol.buckling.message()}\n")
         return EXIT_UNTRUSTED
     if band is not None and not sol.omega.size:
         raise NoRoots(
@@ -388,28 +411,38 @@ def _solve(args) -> int:
     _phase(args, "solve", **sol.timings)
     if args.format == "json":
         text, nulls = output.dumps(sol.to_dict(shapes=args.shapes))
-        print(text)
+        _emit(args, text + "\n")
         if nulls:
             _warn(
                 f"{len(nulls)} non-finite number(s) written as null in the JSON output"
                 f" (first: {nulls[0]}); they cannot be trusted"
             )
-    elif args.format == "csv" and damped:
-        sys.stdout.write(output.damped_shapes_csv(sol) if args.shapes else output.damped_csv(sol))
-    elif args.format == "csv":
-        sys.stdout.write(output.shapes_csv(sol) if args.shapes else output.frequencies_csv(sol))
-    elif damped:
-        sys.stdout.write(output.damped_table(sol))
-        if args.shapes:
-            sys.stdout.write(output.damped_shapes_table(sol))
     else:
-        sys.stdout.write(output.frequencies_table(sol))
-        if args.shapes:
-            sys.stdout.write(output.shapes_table(sol))
+        _emit(args, output.solution_text(sol, args.format, args.shapes))
     for warning in sol.warnings:
         _warn(warning)
     trusted = bool(sol.count_checked) and bool(sol.converged.all())
     return 0 if trusted else EXIT_UNTRUSTED
+
+
+def _out_format(args) -> None:
+    """``--out`` of ``solve`` and ``bands`` checked before any work (a symbolic link: its
+    target); ``--format`` unset: csv into a file, a table on standard output."""
+    if args.out is not None:
+        args.out_file = _check_out_dir(args.out)
+    if args.format is None:
+        args.format = "table" if args.out is None else "csv"
+
+
+def _emit(args, text: str) -> None:
+    """``text`` on standard output, or written atomically to ``--out`` (its name printed)."""
+    if args.out is None:
+        sys.stdout.write(text)
+        return
+    from .output import write_atomically
+
+    write_atomically(args.out_file, text)
+    print(args.out)
 
 
 class NoRoots(RuntimeError):
@@ -460,8 +493,6 @@ def _report_waits(args) -> None:
 
 
 def _sweep(args) -> int:
-    import numpy as np
-
     from . import output
     from .study import sweep
 
@@ -481,24 +512,11 @@ def _sweep(args) -> int:
             scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
         )
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
-    buf = io.StringIO()
-    wr = csv.writer(buf, lineterminator="\n")
-    modes = range(1, args.modes + 1)
-    if np.iscomplexobj(omega):  # damped: per mode w_d, sigma and the damping ratio
-        wr.writerow([*vary, *(f"{q}_{i}" for i in modes for q in ("w_d", "sigma", "zeta"))])
-        mag = np.abs(omega)
-        zeta = np.divide(omega.imag, mag, out=np.zeros_like(mag), where=mag > 0)
-        zeta[np.isnan(mag)] = np.nan
-        cells = np.stack([omega.real, omega.imag, zeta], axis=2).reshape(len(omega), -1)
-    else:
-        wr.writerow([*vary, *(f"omega_{i}" for i in modes)])
-        cells = omega
-    for j in range(omega.shape[0]):
-        wr.writerow([*(repr(float(v[j])) for v in vary.values()), *map(repr, cells[j].tolist())])
+    text = output.sweep_csv(scene, vary, omega)
     if args.out is None:
-        sys.stdout.write(buf.getvalue())
+        sys.stdout.write(text)
     else:
-        output.write_atomically(args.out, buf.getvalue())
+        output.write_atomically(args.out, text)
         print(args.out)
     for w in caught:
         _warn(str(w.message))
@@ -544,7 +562,7 @@ def _plot(args) -> int:
             f"unknown image format; use one of {sorted(plot.formats())}",
             str(args.out),
         )
-    _check_out_dir(args.out)
+    target = _check_out_dir(args.out)  # a symbolic link: its target
     scene = _scene(args.scene)
     if args.frf:
         if args.band is None or args.sweep is not None:
@@ -552,21 +570,21 @@ def _plot(args) -> int:
         omegas, src, dst = _frf_request(args, scene)
         if args.hz:
             omegas = omegas * (2.0 * math.pi)
-        plot.frf_figure(scene, src, dst, omegas, path=args.out, quantity=args.quantity, hz=args.hz)
+        plot.frf_figure(scene, src, dst, omegas, path=target, quantity=args.quantity, hz=args.hz)
     elif args.hz:
         raise SceneError(COMMAND_LINE, "--hz", "only with --frf", None)
     elif args.sweep is not None:
         if args.band is not None:
             raise SceneError(COMMAND_LINE, "--band", "not with --sweep", list(args.band))
         path, values = _vary_item(args.sweep, "--sweep")
-        plot.veering(scene, path, values, modes=args.modes or 5, path=args.out)
+        plot.veering(scene, path, values, modes=args.modes or 5, path=target)
     else:
         if args.input is not None or args.output:
             option = "--input" if args.input is not None else "--output"
             raise SceneError(COMMAND_LINE, option, "needs --frf (a frequency response plot)")
         band = _checked_band(args, scene)
         plot.figure2(
-            scene, args.out, modes=args.modes or 4, band=band, formulation=args.formulation
+            scene, target, modes=args.modes or 4, band=band, formulation=args.formulation
         )
     print(args.out)
     return 0
@@ -577,7 +595,7 @@ def _bands(args) -> int:
     from .bands import bands, cell_of
 
     if args.plot is not None:
-        _check_out_dir(args.plot, "--plot")
+        plot_to = _check_out_dir(args.plot, "--plot")
         try:
             from . import plot
         except ModuleNotFoundError as exc:
@@ -586,6 +604,7 @@ def _bands(args) -> int:
             raise SceneError(
                 COMMAND_LINE, "--plot", 'needs matplotlib: pip install "mstmm[plot]"'
             ) from None
+    _out_format(args)
     cell = cell_of(_scene(args.scene))
     band = None
     if args.band is not None:
@@ -596,13 +615,13 @@ def _bands(args) -> int:
             raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
     result = bands(cell, band=band, points=args.points)
     if args.format == "json":
-        print(output.dumps(output.bands_dict(result))[0])
+        _emit(args, output.dumps(output.bands_dict(result))[0] + "\n")
     elif args.format == "csv":
-        sys.stdout.write(output.bands_csv(result))
+        _emit(args, output.bands_csv(result))
     else:
-        sys.stdout.write(output.bands_table(result))
+        _emit(args, output.bands_table(result))
     if args.plot is not None:
-        plot.dispersion(result, path=args.plot, hz=args.hz)
+        plot.dispersion(result, path=plot_to, hz=args.hz)
         print(args.plot, file=sys.stderr)
     _phase(args, "bands", **result.timings)
     for note in result.notes:
@@ -649,7 +668,7 @@ def _frf(args) -> int:
         _check_out_dir(args.out)
     scene = _scene(args.scene)
     omegas, src, dst = _frf_request(args, scene)
-    labels = [str(d) for d in dst]
+    labels, units = [str(d) for d in dst], output.frf_units(args.quantity, src, dst)
     t0 = time.perf_counter()
     chunks = frf_chunks(scene, [src], dst, omegas, quantity=args.quantity, source=COMMAND_LINE)
     with contextlib.ExitStack() as stack:
@@ -663,7 +682,7 @@ def _frf(args) -> int:
                 _warn(f"{nulls} non-finite value(s) written as null in the JSON output")
         else:
             header, rows = (
-                (output.frf_csv_header(labels), output.frf_csv_rows)
+                (output.frf_csv_header(labels, units), output.frf_csv_rows)
                 if args.format == "csv"
                 else (
                     output.frf_table_header(scene.name, args.quantity, str(src), labels),
@@ -807,10 +826,15 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
     try:
-        return _main(argv)
-    except KeyboardInterrupt:  # Ctrl-C: one line, the conventional 128 + SIGINT
+        with sigterm_as_interrupt():
+            _load()
+            return _main(argv)
+    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: one line, 128 + the signal
         if "--debug" in (sys.argv[1:] if argv is None else argv):
             raise
+        if isinstance(exc, Terminated):
+            print("mstmm: terminated", file=sys.stderr)
+            return EXIT_TERMINATED
         print("mstmm: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
 

@@ -48,6 +48,7 @@ import numpy as np
 from mstmm import catalog
 
 from .decay_bound import sigma_max
+from .frames import Tabulated
 from .kernels import Kernel
 from .undamped import solve_undamped
 
@@ -963,8 +964,8 @@ def undamped_twin(scene):
     return twin
 
 
-@dataclass
-class DampedSolution:
+@dataclass(repr=False)
+class DampedSolution(Tabulated):
     """Damped natural frequencies ``omega = w_d + i sigma`` (rad/s, complex; time
     dependence exp(i w t), sigma > 0 decays), ascending in w_d with overdamped roots
     (w_d = 0) first by sigma and rigid-body zeros first of all, repeated by multiplicity."""

@@ -303,6 +303,7 @@ def frf_chunks(
     asking for the next). Checks everything, and warns of a rigid-body mode at omega = 0,
     before the first chunk."""
     from .chunks import spans
+    from .progress import counted
 
     ws = checked_omega(scene, omega, source)
     job = _Job(scene, input, output, quantity, kernel, source, ws.size)
@@ -317,7 +318,7 @@ def frf_chunks(
             stacklevel=2,
         )
     singular: list[float] = []
-    for at in spans(ws.size):
+    for at in counted(spans(ws.size), ws.size, "frf"):
         w = ws[at]
         H = job.empty(w.size)
         live = ~static[at] if rigid else np.ones(w.size, dtype=bool)

@@ -15,6 +15,7 @@ import numpy as np
 
 from . import compiling, interpret, repeated
 from .buckling import Buckling, buckling
+from .frames import Tabulated
 from .kernels import Kernel, load_kernel
 from .modes import ModeShape, beside, mode_shapes, too_close, unresolved
 from .scan import TRUST, find_roots
@@ -22,8 +23,8 @@ from .scene import Scene
 from .topology import parameter_vector, topology_of
 
 
-@dataclass
-class Solution:
+@dataclass(repr=False)
+class Solution(Tabulated):
     """Natural frequencies (rad/s, ascending, repeated by multiplicity) and what to trust."""
 
     scene: Scene
