@@ -128,5 +128,6 @@ def test_a_run_as_python_whose_estimate_proves_wrong_goes_on_compiled(fresh_proc
         exact = k * k * math.sqrt(EI / mbar) * math.sqrt(1.0 + P / (EI * k * k))
         assert abs(w / exact - 1.0) < 1e-12, n
     assert sol.count_checked and sol.kernel_mode == "compiled"
-    # one evaluation as Python takes seconds here: the run stopped within its allowance
-    assert interpret._Process.spent < 2.5 * interpret.DEFAULT_BUDGET + 0.5
+    # the whole search as Python takes minutes here: the run stopped at its allowance
+    # (twice the budget of a kernel not compiled yet), one piece of a segment past it
+    assert interpret._Process.spent < 2.0 * interpret.COLD_BUDGET + 0.5
