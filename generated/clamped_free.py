@@ -14,7 +14,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "115c174103f361190a2ed23609dd2bf3292e92e7"
+SIGNATURE = "d563c5a011a7a7eb94600a090ecda184eaf713b4"
 NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
 KINDS = ()
 DAMPERS = {}

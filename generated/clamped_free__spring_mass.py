@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "f3fc8e1e54cd6cb3104c97567e40db452eb17eb1"
+SIGNATURE = "9b509a2bc9823ddd930df766cb41dbc801784e99"
 NUMERICS = "9d7453b347c6d843539581dd9b0d7b0a84bc5dc6"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

@@ -344,3 +344,18 @@ def test_veering_draws_the_own_frequencies_of_any_kind():
         )
         got = [line.get_ydata()[i] for line in unc]
         np.testing.assert_allclose(got, want, rtol=1e-12)
+
+
+# ---------------------------------------------------------------- issue 41, plots
+
+
+def test_delta_is_continuous_away_from_roots():
+    """hinged_absorber: the chain's condensation takes out powers of two; dropped, they
+    scaled Delta by a factor that jumped (steps of log10 2 between 15 and 52 rad/s)."""
+    scene = mstmm.load_scene(EXAMPLES / "hinged_absorber.toml")
+    fig = plot.characteristic(scene, band=(1.0, 66.0), n=2000)
+    (curve,) = lines(fig, "delta")
+    w, y = curve.get_xdata(), curve.get_ydata()
+    roots = lines(fig, "roots")[0].get_xdata()
+    away = np.all(np.abs(w[:-1, None] - roots[None, :]) > 0.03 * roots, axis=1)
+    assert np.max(np.abs(np.diff(y))[away]) < 0.05
