@@ -130,10 +130,11 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     np.testing.assert_array_equal(att.get_xdata(), [a.x for a in scene.attachments])
     np.testing.assert_array_equal(att.get_ydata(), 0.0)
     for curve, mass, shape in zip(curves, masses, sol.shapes, strict=False):
-        np.testing.assert_array_equal(curve.get_ydata(), shape.Y)
+        scale = 1.0 / np.max(np.abs(shape.Y))  # the beam at its own scale
+        np.testing.assert_allclose(curve.get_ydata(), shape.Y * scale, rtol=1e-15)
         np.testing.assert_array_equal(mass.get_xdata(), shape.mass_x)
-        np.testing.assert_array_equal(mass.get_ydata(), shape.mass_Y)
-        assert np.max(np.abs(curve.get_ydata())) > 1e-3  # a real shape, not a flat line
+        want = np.clip(shape.mass_Y * scale, -plot.MASS_CLIP, plot.MASS_CLIP)
+        np.testing.assert_allclose(mass.get_ydata(), want, rtol=1e-15)
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     for i, w in enumerate(sol.omega[:4]):
         assert f"{w:.6g} rad/s" in labels[i] and f"{w / (2 * np.pi):.6g} Hz" in labels[i]
@@ -359,3 +360,90 @@ def test_delta_is_continuous_away_from_roots():
     roots = lines(fig, "roots")[0].get_xdata()
     away = np.all(np.abs(w[:-1, None] - roots[None, :]) > 0.03 * roots, axis=1)
     assert np.max(np.abs(np.diff(y))[away]) < 0.05
+
+
+def _inside_canvas(fig) -> None:
+    """Everything drawn of ``fig`` lies inside its canvas, and no legend covers another
+    axes than its own."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)  # as the PNG is drawn
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    tight, box = fig.get_tightbbox(renderer), fig.bbox_inches
+    assert tight.x0 >= box.x0 - 0.01 and tight.x1 <= box.x1 + 0.01, (tight, box)
+    assert tight.y0 >= box.y0 - 0.01 and tight.y1 <= box.y1 + 0.01, (tight, box)
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        ext = legend.get_window_extent(renderer)
+        assert fig.bbox.x0 <= ext.x0 and ext.x1 <= fig.bbox.x1 + 1, ext
+        assert fig.bbox.y0 <= ext.y0 and ext.y1 <= fig.bbox.y1 + 1, ext
+        for other in fig.axes:
+            if other is not ax and other not in ax.child_axes:
+                assert not ext.overlaps(other.get_window_extent(renderer)), (ax, other)
+
+
+@pytest.fixture
+def no_warnings():
+    """Any warning raised inside the test is an error."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        yield
+
+
+def test_mode_shapes_show_the_beam_at_its_own_scale(no_warnings):
+    """absorbers: 36 light masses swing 60-80 times the beam; the beam's line spans
+    max |Y| = 1, every mass sits within the clip, and the legend says how far they go."""
+    scene = mstmm.load_scene(EXAMPLES / "absorbers.toml")
+    fig = plot.figure2(scene, modes=4, n=200)
+    curves = lines(fig, "mode", ax=1)
+    assert len(curves) == 4
+    for curve in curves:
+        assert np.max(np.abs(curve.get_ydata())) == pytest.approx(1.0)
+        assert "masses to" in curve.get_label()
+    for mass in lines(fig, "mass", ax=1):
+        assert np.max(np.abs(mass.get_ydata())) <= plot.MASS_CLIP
+    assert lines(fig, "mass-clipped", ax=1)
+    assert "clipped at 1.5" in fig.axes[1].get_ylabel()
+    _inside_canvas(fig)
+
+
+def test_fifty_modes_on_a_colour_scale_inside_the_figure(no_warnings):
+    """metamaterial --modes 50: a colour bar of mode numbers instead of a legend that ran
+    off the figure (modes 28-50 lost) and over panel (b)."""
+    scene = mstmm.load_scene(EXAMPLES / "metamaterial.toml")
+    fig = plot.figure2(scene, modes=50, n=200)
+    curves = lines(fig, "mode", ax=1)
+    assert len(curves) == 48  # two rigid-body zeros
+    legend = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    assert legend == ["spring-mass (200)"]
+    (bar,) = [a for a in fig.axes if a.get_label() == "<colorbar>"]
+    assert "mode number" in bar.get_xlabel()
+    assert bar.get_xlim() == (3.0, 50.0)
+    _inside_canvas(fig)
+
+
+def test_plot_a_buckled_cantilever_says_buckled(tmp_path):
+    """axial_force < 0 is compression: beyond the buckling load there is nothing to plot;
+    plot says so as solve does (exit 3, the same line), instead of an IndexError."""
+    text = (
+        'name = "buckled"\n[beam]\nlength = 10.0\nEI = 7.8e5\nmass_per_length = 78.0\n'
+        'axial_force = -1e8\nleft = "clamped"\nright = "free"\n'
+    )
+    path = tmp_path / "buckled.toml"
+    path.write_text(text)
+    with pytest.raises(plot.Buckled, match="buckled: the axial forces exceed"):
+        plot.figure2(mstmm.load_scene(path))
+    out = tmp_path / "b.png"
+    runs = [
+        subprocess.run([sys.executable, "-m", "mstmm", *args, str(path)], capture_output=True,
+                       text=True, timeout=300)
+        for args in (["plot", "-o", str(out)], ["solve"])
+    ]  # fmt: skip
+    assert [r.returncode for r in runs] == [3, 3], runs[0].stderr
+    assert runs[0].stdout == runs[1].stdout and "buckled" in runs[0].stdout
+    assert not out.exists()

@@ -60,6 +60,7 @@ from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 __all__ = [
+    "Buckled",
     "characteristic",
     "figure2",
     "formats",
@@ -214,17 +215,35 @@ def _modes_below(scene: Scene, omega: float) -> int:
     return int(kernel.count_below(np.array([omega]), parameter_vector(scene))[0])
 
 
+class Buckled(ValueError):
+    """The scene's axial forces reach its buckling load: it has no natural frequencies to
+    plot. ``str()`` is the line ``mstmm solve`` prints; ``buckling`` the
+    :class:`mstmm.buckling.Buckling` it reads."""
+
+    def __init__(self, buckling) -> None:
+        super().__init__(buckling.message())
+        self.buckling = buckling
+
+
+def _checked(sol: Solution) -> Solution:
+    """``sol``, or :class:`Buckled` when its scene is buckled."""
+    if sol.buckling is not None and sol.buckling.buckled:
+        raise Buckled(sol.buckling)
+    return sol
+
+
 def _band_solution(
     scene: Scene, band: tuple[float, float] | None, modes: int | None, formulation: str
 ) -> tuple[Solution, float, float]:
-    """Solve for the roots and return them with the band to plot."""
+    """Solve for the roots and return them with the band to plot (:class:`Buckled` when
+    the scene is buckled)."""
     if band is not None:
         lo, hi = float(band[0]), float(band[1])
         if not (0.0 <= lo < hi and math.isfinite(hi)):
             raise ValueError(f"band must satisfy 0 <= lo < hi < inf (got {band!r})")
-        return solve(scene, band=(lo, hi), formulation=formulation), lo, hi
+        return _checked(solve(scene, band=(lo, hi), formulation=formulation)), lo, hi
     count = modes or 10
-    lowest = solve(scene, modes=count + 1, formulation=formulation, shapes=False)
+    lowest = _checked(solve(scene, modes=count + 1, formulation=formulation, shapes=False))
     top = float(lowest.omega[count - 1]) if len(lowest.omega) >= count else 0.0
     if top <= 0.0:  # only rigid-body modes asked for: show up to the first elastic one
         first = solve(scene, modes=_rigid_body_modes(scene) + 1, shapes=False)
@@ -322,53 +341,110 @@ def _copy_labels(sol: Solution, first_mode: int = 0) -> list[str]:
     return labels
 
 
-def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
-    if sol.shapes is None:
-        raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
-    scene = sol.scene
+#: Hanging masses are drawn at the beam's scale (its max |Y| = 1), clipped at this |Y|.
+MASS_CLIP = 1.5
+#: Beyond this many drawn modes, the mode shapes are coloured on a scale of mode numbers
+#: (a colour bar) instead of one legend entry each.
+LEGEND_MODES = 10
+
+
+def _beam_scale(shape) -> float:
+    """The factor that brings the beam's largest |Y| of ``shape`` to 1 (1 for a still beam)."""
+    top = float(np.max(np.abs(shape.Y))) if len(shape.Y) else 0.0
+    return 1.0 / top if top > 0.0 and math.isfinite(top) else 1.0
+
+
+def _draw_masses(ax: Axes, shape, scale: float, color) -> float:
+    """The hanging masses of one mode at the beam's scale, each joined to its attachment
+    point by a thin line (its spring); a mass beyond :data:`MASS_CLIP` sits on the clip
+    as a triangle pointing its way. Returns its largest |Y| on the beam's scale."""
+    y = shape.mass_Y * scale
+    shown = np.clip(y, -MASS_CLIP, MASS_CLIP)
+    at_beam = np.interp(shape.mass_x, shape.x, shape.Y * scale)
+    nan = np.full_like(at_beam, np.nan)
+    sx = np.column_stack([shape.mass_x, shape.mass_x, nan]).ravel()
+    sy = np.column_stack([at_beam, shown, nan]).ravel()
+    ax.plot(sx, sy, color=color, lw=0.6, alpha=0.7, gid="spring")
+    ax.plot(shape.mass_x, shown, ls="none", marker="o", ms=5, mfc="white", mec=color, gid="mass")
+    out = np.abs(y) > MASS_CLIP
+    for sign, marker in ((1.0, "^"), (-1.0, "v")):
+        pick = out & (np.sign(y) == sign)
+        if pick.any():
+            ax.plot(shape.mass_x[pick], shown[pick], ls="none", marker=marker, ms=6, color=color,
+                    gid="mass-clipped")  # fmt: skip
+    return float(np.max(np.abs(y)))
+
+
+def _drawn_modes(sol: Solution, modes: int, first_mode: int) -> list[tuple]:
+    """``(shape, label, multiplicity)`` of the first ``modes`` roots, rigid-body zeros
+    left out (counted, not drawn)."""
     labels = _copy_labels(sol, first_mode)
     count = max(int(modes), 0)
-    drawn = [
+    return [
         (shape, label, int(m))
         for shape, label, m in zip(
             sol.shapes[:count], labels[:count], sol.multiplicity[:count], strict=True
         )
-        if shape.omega > 0.0  # rigid-body zeros: counted, not drawn
+        if shape.omega > 0.0
     ]
-    for i, (shape, label, m) in enumerate(drawn):
-        color = f"C{i % 10}"
+
+
+def _mode_colors(ax: Axes, drawn: list[tuple]) -> list:
+    """One colour per drawn mode: the colour cycle, or (beyond :data:`LEGEND_MODES`) a
+    colour scale of mode numbers with its colour bar beside the axes."""
+    if len(drawn) <= LEGEND_MODES:
+        return [f"C{i % 10}" for i in range(len(drawn))]
+    from matplotlib import colormaps
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    numbers = [int(re.match(r"\d+", label).group()) for _s, label, _m in drawn]
+    norm = Normalize(min(numbers), max(numbers))
+    bar = ax.get_figure().colorbar(
+        ScalarMappable(norm, colormaps["viridis"]), ax=ax, location="bottom", shrink=0.8,
+        aspect=40, pad=0.02,
+    )  # fmt: skip
+    w = [d[0].omega for d in drawn]
+    bar.set_label(
+        f"mode number ({len(drawn)} modes, {min(w):.4g} to {max(w):.4g} rad/s)", fontsize=8
+    )
+    return [colormaps["viridis"](norm(n)) for n in numbers]
+
+
+def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
+    if sol.shapes is None:
+        raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
+    scene = sol.scene
+    drawn = _drawn_modes(sol, modes, first_mode)
+    colors = _mode_colors(ax, drawn)
+    legend = len(drawn) <= LEGEND_MODES
+    clipped = False
+    for (shape, label, m), color in zip(drawn, colors, strict=True):
         w = shape.omega
-        mult = f", x{m}" if m > 1 else ""
-        ax.plot(
-            shape.x,
-            shape.Y,
-            color=color,
-            lw=1.4,
-            gid="mode",
-            label=f"mode {label}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz{mult}",
-        )
-        if len(shape.mass_x):
-            at_beam = np.interp(shape.mass_x, shape.x, shape.Y)
-            nan = np.full_like(at_beam, np.nan)
-            sx = np.column_stack([shape.mass_x, shape.mass_x, nan]).ravel()
-            sy = np.column_stack([at_beam, shape.mass_Y, nan]).ravel()
-            ax.plot(sx, sy, color=color, lw=0.6, alpha=0.7, gid="spring")
-            ax.plot(
-                shape.mass_x,
-                shape.mass_Y,
-                ls="none",
-                marker="o",
-                ms=5,
-                mfc="white",
-                mec=color,
-                gid="mass",
-            )
+        scale = _beam_scale(shape)
+        text = f"mode {label}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz" + (f", x{m}" if m > 1 else "")
+        lw = 1.4 if legend else 0.9
+        line = ax.plot(shape.x, shape.Y * scale, color=color, lw=lw, gid="mode", label=text)[0]
+        if legend and len(shape.mass_x):  # beyond LEGEND_MODES, the beam lines only
+            top = _draw_masses(ax, shape, scale, color)
+            if top > MASS_CLIP:
+                clipped = True
+                line.set_label(f"{text}; masses to {top:.3g}")
+        if not legend:
+            line.set_label(f"_{text}")  # a colour bar tells the modes apart
     ax.axhline(0.0, color="0.4", lw=0.8, gid="axis")
     _draw_attachments(ax, scene)
     L = scene.beam.length
     ax.set_xlim(-0.02 * L, 1.02 * L)
+    if clipped:
+        ax.set_ylim(-1.1 * MASS_CLIP, 1.1 * MASS_CLIP)
     ax.set_xlabel(f"x [m]   ({scene.beam.left} - {scene.beam.right})")
-    ax.set_ylabel("Y [-] (normalised: max |Y| = 1; circles: hanging masses)")
+    masses = ""
+    if any(len(d[0].mass_x) for d in drawn):
+        masses = "; circles: hanging masses" if legend else "; hanging masses not drawn"
+    if clipped:
+        masses += f", clipped at {MASS_CLIP:g}"
+    ax.set_ylabel(f"Y [-] (beam's max |Y| = 1{masses})", fontsize=9)
     ax.set_title(f"{scene.name}: mode shapes", fontsize=10)
     _legend(ax)
 
@@ -385,18 +461,21 @@ def mode_shapes(
     ``mstmm solve --modes``); the zeros are not drawn. Given a
     :class:`~mstmm.scene.Scene`, it is solved for ``modes`` frequencies; a
     :class:`~mstmm.solve.Solution` (with shapes) is drawn as is. Each mode is a
-    curve ``Y(x)`` (paper Eq. (5), normalised to max ``|Y|`` = 1 over the beam and
-    the masses); every shape of a multiple root is drawn, labelled ``7a``, ``7b``,
+    curve ``Y(x)`` (paper Eq. (5), scaled to max ``|Y|`` = 1 over the beam, whatever
+    its masses do); every shape of a multiple root is drawn, labelled ``7a``, ``7b``,
     ... The attachment points are triangles on the beam axis, each hanging mass a
-    circle at its own displacement above its attachment point, joined to the beam
-    by a thin line (its spring). The legend gives each frequency in rad/s and Hz,
-    numbered as ``mstmm solve`` numbers them.
+    circle at its own displacement (on the beam's scale) above its attachment point,
+    joined to the beam by a thin line (its spring); a mass beyond
+    :data:`MASS_CLIP` sits on the clip as a triangle pointing its way, and the legend
+    says how far it goes. The legend gives each frequency in rad/s and Hz, numbered as
+    ``mstmm solve`` numbers them; beyond :data:`LEGEND_MODES` modes a colour bar of
+    mode numbers below the axes takes its place.
     """
     fig, ax = _axes(ax)
     if isinstance(solution_or_scene, Solution):
         sol = solution_or_scene
     else:
-        sol = solve(solution_or_scene, modes=int(modes))
+        sol = _checked(solve(solution_or_scene, modes=int(modes)))
     _draw_mode_shapes(ax, sol, modes)
     return _finish(fig, path)
 
