@@ -447,3 +447,69 @@ def test_plot_a_buckled_cantilever_says_buckled(tmp_path):
     assert [r.returncode for r in runs] == [3, 3], runs[0].stderr
     assert runs[0].stdout == runs[1].stdout and "buckled" in runs[0].stdout
     assert not out.exists()
+
+
+def test_every_sweep_field_has_its_unit():
+    """Units from the declarations (catalog.SEGMENT_PHYSICS, each kind's KEYS): every
+    field a sweep may vary has one; only a loss factor is dimensionless."""
+    from mstmm.study import _paths
+
+    scene = mstmm.scene_from_dict(
+        {
+            "beam": {"length": 4.0, "EI": 1e4, "mass_per_length": 10.0, "left": "clamped",
+                     "right": "free", "axial_force": 10.0, "kappa_GA": 1e6, "loss_factor": 0.01},
+            "attachments": [
+                {"type": "hinge", "x": 1.0, "k": 1e3},
+                {"type": "oscillator_chain", "x": 2.0, "k": [1e3, 1e3], "m": [1.0, 1.0]},
+                {"type": "dashpot", "x": 2.5, "c": 3.0},
+                {"type": "mass", "x": 3.0, "m": 5.0},
+            ],
+        }
+    )  # fmt: skip
+    units = {path: plot._field_unit(scene, path) for path in _paths(scene)}
+    assert [p for p, u in units.items() if u == "-"] == ["beam.loss_factor"]
+    assert units["beam.axial_force"] == units["beam.kappa_GA"] == "N"
+    assert units["beam.foundation_k"] == "N/m^2" and units["beam.rho_I"] == "kg m"
+    assert units["attachments[0].k"] == "N m/rad" and units["attachments[1].k[1]"] == "N/m"
+    assert units["attachments[2].c"] == "N s/m" and units["attachments[3].J"] == "kg m^2"
+
+
+def test_axial_force_sweep_marks_the_buckled_range(no_warnings):
+    """A cantilever from -1e5 N (compression) to 1e5 N: the axis in N, the range beyond the
+    buckling load pi^2 EI / (4 L^2) shaded and labelled "buckled", no warning."""
+    scene = mstmm.scene_from_dict(
+        {"beam": {"length": 10.0, "EI": 7.8e5, "mass_per_length": 78.0, "left": "clamped",
+                  "right": "free"}}
+    )  # fmt: skip
+    forces = np.linspace(-1e5, 1e5, 11)
+    fig = plot.veering(scene, "beam.axial_force", forces, modes=2)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "beam.axial_force [N]"
+    (span,) = [p for p in ax.patches if p.get_gid() == "buckled"]
+    x = np.array([span.get_x(), span.get_x() + span.get_width()])
+    critical = -(np.pi**2) * 7.8e5 / (4 * 10.0**2)
+    assert x.min() == -1e5 and x.max() == pytest.approx(critical, rel=1e-9)
+    assert [t.get_text() for t in ax.texts if t.get_gid() == "buckled-text"] == ["buckled"]
+    assert "buckled" in [t.get_text() for t in fig.legends[0].get_texts()]
+    for curve in lines(fig, "mode"):
+        y = curve.get_ydata()
+        assert np.all(np.isnan(y[forces < critical])) and np.all(y[forces > critical] > 0)
+    _inside_canvas(fig)
+
+
+def test_damped_sweep_draws_w_d_and_zeta(no_warnings):
+    """The TMD designer's figure: w_d and zeta of each mode against the damper's c (no
+    ComplexWarning); the two modes the damper splits reach one zeta near Den Hartog's c."""
+    scene = mstmm.load_scene(EXAMPLES / "tmd_den_hartog.toml")
+    cs = np.logspace(-1, 2, 7)
+    fig = plot.veering(scene, "attachments[0].c", cs, modes=2)
+    ax_w, ax_z = fig.axes[:2]
+    assert "[rad/s]" in ax_w.get_ylabel() and "zeta" in ax_z.get_ylabel()
+    assert ax_z.get_xlabel() == "attachments[0].c [N s/m]"
+    omega = mstmm.sweep(scene, {"attachments[0].c": cs}, modes=2)
+    w = [c.get_ydata() for c in lines(fig, "mode", ax=0)]
+    z = [c.get_ydata() for c in lines(fig, "mode", ax=1)]
+    np.testing.assert_array_equal(np.array(w).T, omega.real)
+    np.testing.assert_allclose(np.array(z).T, omega.imag / np.abs(omega))
+    assert 0.0 < np.min(z) and np.max(z) < 1.0
+    _inside_canvas(fig)

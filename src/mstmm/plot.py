@@ -90,14 +90,30 @@ def _to_rad(f):
     return np.asarray(f) * _TWO_PI
 
 
-def _new_figure(ncols: int = 1, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, list]:
+def _figure(size: tuple[float, float]) -> Figure:
+    """A new constrained-layout figure (a pyplot one when pyplot is imported)."""
     if "matplotlib.pyplot" in sys.modules:
         import matplotlib.pyplot as plt
 
-        fig = plt.figure(figsize=size, layout="constrained")
-    else:
-        fig = Figure(figsize=size, layout="constrained")
+        return plt.figure(figsize=size, layout="constrained")
+    return Figure(figsize=size, layout="constrained")
+
+
+def _new_figure(ncols: int = 1, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, list]:
+    fig = _figure(size)
     return fig, list(np.atleast_1d(fig.subplots(1, ncols)))
+
+
+def _pair(
+    ax: tuple[Axes, Axes] | None, size: tuple[float, float], rows: int, **share
+) -> tuple[Figure, Axes, Axes]:
+    """The two axes given, or a new figure of two panels (``rows`` 2: one above the other;
+    1: side by side) sharing an axis (``sharex=True`` or ``sharey=True``)."""
+    if ax is not None:
+        return ax[0].get_figure(), ax[0], ax[1]
+    fig = _figure(size)
+    first, second = fig.subplots(rows, 3 - rows, **share)
+    return fig, first, second
 
 
 def _axes(ax: Axes | None, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, Axes]:
@@ -518,21 +534,23 @@ def figure2(
     return _finish(fig, path)
 
 
-_BEAM_UNITS = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
+def _beam_units() -> dict[str, str]:
+    """The unit of each key of the beam and its segments: the kernel's three reference
+    quantities (``catalog.BEAM_PARAMETERS``: length, EI, mass per length), the loss
+    factor's none, and each physics key's as ``catalog.SEGMENT_PHYSICS`` declares it."""
+    reference = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
+    return {**reference, **{key: unit for key, _check, unit in catalog.SEGMENT_PHYSICS}}
 
 
 def _field_unit(scene: Scene, path_name: str) -> str:
-    """The unit of a sweep field: the beam's, or the key's as its kind declares it."""
-    from mstmm.catalog import kind
-
+    """The unit of a sweep field: the beam's (:func:`_beam_units`), or the key's as its
+    kind declares it (``catalog.Key.unit``)."""
     name = re.sub(r"\[\d+\]$", "", path_name).rsplit(".", 1)[-1]
     match = re.match(r"attachments\[(\d+)\]\.", path_name)
     if match:
-        a = scene.attachments[int(match.group(1))]
-        for key in kind(a.kind).KEYS:
-            if key.name == name:
-                return key.unit or "-"
-    return _BEAM_UNITS.get(name, "-")
+        kind = scene.attachments[int(match.group(1))].kind
+        return next((k.unit for k in catalog.kind(kind).KEYS if k.name == name), "-")
+    return _beam_units().get(name, "-")
 
 
 def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
@@ -560,6 +578,74 @@ def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
     return np.array([np.pad(f, (0, width - len(f)), constant_values=np.nan) for f in found])
 
 
+def _buckled(scene: Scene, path_name: str, values: np.ndarray) -> tuple[np.ndarray, float]:
+    """Which points of a sweep are buckled (:mod:`mstmm.buckling`), and the value of an
+    axial force at which the structure buckles (NaN for another field, or none buckled)."""
+    from .buckling import buckling, compressed
+    from .study import parameter_matrix
+
+    P = parameter_matrix(scene, {path_name: values})
+    kernel = load_kernel(topology_of(scene))
+    mask = np.zeros(len(P), dtype=bool)
+    critical = math.nan
+    for i, p in enumerate(P):
+        if compressed(p):
+            state = buckling(kernel, p)
+            mask[i] = state.buckled
+            if path_name.endswith("axial_force") and math.isfinite(state.load_factor):
+                critical = float(values[i]) * state.load_factor
+    return mask, critical
+
+
+def _shade_buckled(axes: Sequence[Axes], v: np.ndarray, buckled: np.ndarray, critical: float):
+    """Shade and label the buckled runs of a sweep (``gid`` ``"buckled"``), from the
+    buckling value ``critical`` when known, else half way to the next point."""
+    edges = np.concatenate([[v[0]], 0.5 * (v[1:] + v[:-1]), [v[-1]]])
+    runs = np.flatnonzero(np.diff(np.concatenate([[0], buckled.astype(int), [0]])))
+    for start, stop in zip(runs[::2], runs[1::2], strict=True):
+        lo, hi = edges[start], edges[stop]
+        if math.isfinite(critical):
+            lo, hi = (lo, critical) if stop < len(v) else (critical, hi)
+        for k, ax in enumerate(axes):
+            ax.axvspan(lo, hi, color="0.88", zorder=0, gid="buckled",
+                       label="buckled" if k == 0 and start == runs[0] else None)  # fmt: skip
+            where = ax.get_xaxis_transform()
+            ax.text(0.5 * (lo + hi), 0.5, "buckled", transform=where, ha="center",
+                    va="center", rotation=90, color="0.4", gid="buckled-text")  # fmt: skip
+
+
+def _sweep_axes(ax, v: np.ndarray, y: np.ndarray, log_ok: bool) -> None:
+    """Log x when the values span more than two decades; log y (``log_ok``) when the
+    curves do, else linear from 0."""
+    finite = y[np.isfinite(y) & (y > 0)]
+    top = float(finite.max()) if finite.size else 1.0
+    bottom = float(finite.min()) if finite.size else 0.0
+    if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
+        ax.set_xscale("log")
+    else:  # 1e5 as "1 x 1e5": the long tick labels ran into each other
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
+    if log_ok and bottom > 0 and top / bottom > 100.0:
+        ax.set_yscale("log")
+        ax.set_ylim(bottom / 1.3, top * 1.3)
+    else:
+        ax.set_ylim(0.0, top * 1.05)
+
+
+def _mode_lines(ax: Axes, v: np.ndarray, y: np.ndarray, first: int) -> None:
+    """One line per column of ``y`` (``gid`` ``"mode"``), numbered from ``first`` + 1."""
+    for j in range(y.shape[1]):
+        ax.plot(v, y[:, j], color=f"C{j % 10}", lw=1.4, gid="mode", label=f"mode {first + j + 1}")
+
+
+def _sweep_legend(fig: Figure, ax: Axes, own: bool) -> None:
+    """In our ``own`` figure, the legend right of everything (of the Hz axis, which it
+    would otherwise cover); in given axes, beside them."""
+    if own:
+        fig.legend(*ax.get_legend_handles_labels(), loc="outside right upper", fontsize=8)
+    else:
+        _legend(ax)
+
+
 def veering(
     scene: Scene,
     path_name: str,
@@ -575,28 +661,35 @@ def veering(
     ``attachments[2].k``, ...) and ``values`` the values it takes; the lowest
     ``modes`` natural frequencies at every value (counted as ``mstmm solve --modes``
     counts them, rigid-body zeros included) are drawn, one line per mode index
-    (the zeros left out; a point the sweep cannot certify is a gap).
-    The x axis is logarithmic when the values span more than two decades, the
-    y axis when the frequencies do. When ``path_name`` is a value of an attachment
-    (not its x) and ``uncoupled``, that attachment's own frequencies (a spring-mass's
-    ``sqrt(k/m)``, a chain's, any kind's with unknowns) are drawn dashed: the curves
-    veer where they cross them.
+    (the zeros left out; a point the sweep cannot certify is a gap). The x axis is
+    labelled with the field's unit (its kind's declaration), logarithmic when the
+    values span more than two decades; the y axis is logarithmic when the frequencies
+    do. The buckled range of a sweep under compression is shaded and labelled
+    "buckled" (its edge the buckling load when an axial force is swept). When
+    ``path_name`` is a value of an attachment (not its x) and ``uncoupled``, that
+    attachment's own frequencies (a spring-mass's ``sqrt(k/m)``, a chain's, any
+    kind's with unknowns) are drawn dashed: the curves veer where they cross them.
+
+    A damped sweep (a damped scene, or a damping value swept) draws two panels, the
+    TMD designer's figure: the damped frequencies ``w_d`` and the damping ratios
+    ``zeta = sigma / |omega|`` of the same modes (``ax``: a pair of axes).
     """
+    import warnings
+
     from .study import sweep
 
     values = np.asarray(values, dtype=float).ravel()
     nrigid = _rigid_body_modes(scene)
-    omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
-    fig, ax = _axes(ax)
+    with warnings.catch_warnings():  # the figure marks the buckled points
+        warnings.filterwarnings("ignore", message=r".*points are buckled", category=RuntimeWarning)
+        omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
     order = np.argsort(values, kind="stable")
     v, omega = values[order], omega[order]
-    for j in range(omega.shape[1]):
-        ax.plot(
-            v, omega[:, j], color=f"C{j % 10}", lw=1.4, gid="mode", label=f"mode {nrigid + j + 1}"
-        )
-    finite = omega[np.isfinite(omega) & (omega > 0)]
-    top = float(finite.max()) if finite.size else 1.0
-    bottom = float(finite.min()) if finite.size else 0.0
+    if np.iscomplexobj(omega):
+        return _finish(_damped_veering(scene, path_name, v, omega, nrigid, ax), path)
+    own_figure = ax is None
+    fig, ax = _axes(ax)
+    _mode_lines(ax, v, omega, nrigid)
     match = _ATTACHMENT_FIELD.match(path_name)
     own = _own_frequencies(scene, int(match.group(1)), path_name, v) if match else None
     if uncoupled and own is not None:
@@ -610,23 +703,39 @@ def veering(
                 gid="uncoupled",
                 label=f"own frequencies of attachments[{match.group(1)}]" if j == 0 else None,
             )
-    if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
-        ax.set_xscale("log")
-    if bottom > 0 and top / bottom > 100.0:
-        ax.set_yscale("log")
-        ax.set_ylim(bottom / 1.3, top * 1.3)
-    else:
-        ax.set_ylim(0.0, top * 1.05)
+    buckled, critical = _buckled(scene, path_name, v)
+    if buckled.any():
+        _shade_buckled([ax], v, buckled, critical)
+    _sweep_axes(ax, v, omega, log_ok=True)
     ax.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
     ax.set_ylabel(r"$\omega$ [rad/s]")
     ax.set_title(f"{scene.name}: natural frequencies against {path_name}", fontsize=10)
     sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
     sec.set_ylabel("f [Hz]")
-    if len(fig.axes) == 1:  # our own figure: the legend right of the Hz axis, which it
-        fig.legend(loc="outside right upper", fontsize=8)  # would otherwise cover
-    else:
-        _legend(ax)
+    _sweep_legend(fig, ax, own_figure)
     return _finish(fig, path)
+
+
+def _damped_veering(
+    scene: Scene, path_name: str, v: np.ndarray, omega: np.ndarray, nrigid: int, ax
+) -> Figure:
+    """A damped sweep's two panels: ``w_d`` (above) and ``zeta`` (below) of each mode."""
+    fig, ax_w, ax_z = _pair(ax, (8.0, 6.4), 2, sharex=True)
+    w_d = omega.real
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zeta = omega.imag / np.abs(omega)
+    _mode_lines(ax_w, v, w_d, nrigid)
+    _mode_lines(ax_z, v, zeta, nrigid)
+    _sweep_axes(ax_w, v, w_d, log_ok=True)
+    _sweep_axes(ax_z, v, zeta, log_ok=False)
+    ax_w.set_ylabel(r"damped frequency $\omega_d$ [rad/s]")
+    ax_z.set_ylabel(r"damping ratio $\zeta = \sigma/|\omega|$ [-]")
+    ax_z.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
+    ax_w.set_title(f"{scene.name}: damped modes against {path_name}", fontsize=10)
+    sec = ax_w.secondary_yaxis("right", functions=(_to_hz, _to_rad))
+    sec.set_ylabel("f [Hz]")
+    _sweep_legend(fig, ax_w, ax is None)
+    return fig
 
 
 def frf_figure(
@@ -652,12 +761,7 @@ def frf_figure(
     src = parse_point(source, "input")
     dst = [parse_point(o, "output") for o in (outputs if isinstance(outputs, list) else [outputs])]
     H = frf(scene, [src], dst, omegas, quantity=quantity)[:, 0, :]
-    if ax is None:
-        fig = Figure(figsize=(8.0, 6.0), layout="constrained")
-        ax_mag, ax_ph = fig.subplots(2, 1, sharex=True)
-    else:
-        ax_mag, ax_ph = ax
-        fig = ax_mag.get_figure()
+    fig, ax_mag, ax_ph = _pair(ax, (8.0, 6.0), 2, sharex=True)
     f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
     units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
     for j, d in enumerate(dst):
@@ -712,12 +816,7 @@ def dispersion(
     pairs (left) and the attenuation Im k L per cell of both pairs (right, log scale)
     against frequency (rad/s, or Hz with ``hz``), the stop bands shaded and the edges
     marked."""
-    if ax is None:
-        fig = Figure(figsize=(9.0, 5.0), layout="constrained")
-        ax_re, ax_im = fig.subplots(1, 2, sharey=True)
-    else:
-        ax_re, ax_im = ax
-        fig = ax_re.get_figure()
+    fig, ax_re, ax_im = _pair(ax, (9.0, 5.0), 1, sharey=True)
     from .bands import propagating_pairs
 
     scale = 1.0 / _TWO_PI if hz else 1.0
