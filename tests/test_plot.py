@@ -513,3 +513,52 @@ def test_damped_sweep_draws_w_d_and_zeta(no_warnings):
     np.testing.assert_allclose(np.array(z).T, omega.imag / np.abs(omega))
     assert 0.0 < np.min(z) and np.max(z) < 1.0
     _inside_canvas(fig)
+
+
+def test_frf_legend_names_the_plotted_quantity(scene, no_warnings):
+    omegas = np.linspace(50.0, 400.0, 200)
+    out = ["displacement:x=1.0", "rotation:x=1.0"]
+    names = {
+        quantity: [t.get_text() for t in plot.frf_figure(
+            scene, "force:x=0.5", out, omegas, quantity=quantity).axes[0].get_legend().get_texts()]
+        for quantity in ("receptance", "mobility", "accelerance")
+    }  # fmt: skip
+    assert names["receptance"][0].startswith("displacement:x=1.0")
+    assert names["mobility"][0].startswith("velocity:x=1.0")
+    assert names["accelerance"][0].startswith("acceleration:x=1.0")
+    assert names["accelerance"][1].startswith("angular acceleration:x=1.0")
+
+
+def test_undamped_frf_phase_falls_through_each_resonance(scene, no_warnings):
+    """An undamped response is real: its sign flips by exactly 180 deg, which unwrapping
+    cannot orient (it toggled 0/180). Through a resonance the phase falls by 180."""
+    omegas = np.linspace(20.0, 2000.0, 4000)
+    fig = plot.frf_figure(scene, "force:x=1.0", "displacement:x=1.0", omegas)
+    (phase,) = [ln.get_ydata() for ln in fig.axes[1].get_lines() if ln.get_gid() == "phase"]
+    assert np.allclose(np.mod(phase, 180.0), 0.0)
+    roots = mstmm.solve(scene, band=(20.0, 2000.0), shapes=False).omega
+    changed = 0
+    for r in roots:
+        i = np.searchsorted(omegas, r)
+        step = phase[i] - phase[i - 1]
+        assert step in (0.0, -180.0), (r, step)
+        changed += step != 0.0
+    assert changed >= 3
+    assert np.all(np.abs(np.diff(phase)) <= 180.0)
+
+
+def test_frf_magnitude_axis_clipped_and_said(scene, no_warnings):
+    """A response at x = 1e-20 next to the clamped end is ~1e-40 of the others: the axis
+    stops 10 decades below the peak and says so."""
+    omegas = np.linspace(50.0, 400.0, 200)
+    fig = plot.frf_figure(scene, "force:x=0.5", ["displacement:x=1e-20", "displacement:x=1.0"],
+                          omegas)  # fmt: skip
+    ax = fig.axes[0]
+    mags = [ln.get_ydata() for ln in ax.get_lines() if ln.get_gid() == "frf"]
+    peak = max(np.nanmax(m) for m in mags)
+    assert np.nanmin(mags[0]) < 1e-20 * peak
+    lo, hi = ax.get_ylim()
+    assert lo == pytest.approx(peak * 10.0**-plot.FRF_DECADES) and hi >= peak
+    (note,) = [t for t in ax.texts if t.get_gid() == "clip-note"]
+    assert "10 decades below the peak" in note.get_text()
+    _inside_canvas(fig)

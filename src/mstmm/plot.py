@@ -738,6 +738,61 @@ def _damped_veering(
     return fig
 
 
+#: The magnitude axis of an frf spans at most this many decades below its peak (a zero
+#: of the response, or a point near a support, reaches 1e-100 and hid everything else).
+FRF_DECADES = 10
+
+
+def _frf_phase(H: np.ndarray, omegas: np.ndarray, natural: np.ndarray, damped: bool):
+    """The unwrapped phase (degrees) of one response, NaN where it is 0 or not finite.
+    A damped response is unwrapped as is; an undamped one is a real function times a
+    constant phase (1, i, -1: receptance, mobility, accelerance) that changes sign by
+    exactly 180 deg, which no unwrapping can orient: it falls by 180 through a natural
+    frequency (a resonance) and rises by 180 through an antiresonance."""
+    phase = np.full(len(H), np.nan)
+    with np.errstate(invalid="ignore"):
+        ok = np.flatnonzero(np.isfinite(H) & (np.abs(H) > 0))
+    if not ok.size:
+        return phase
+    if damped:
+        phase[ok] = np.degrees(np.unwrap(np.angle(H[ok])))
+        return phase
+    base = float(np.angle(H[ok[0]]))
+    sign = np.sign(np.real(H[ok] * np.exp(-1j * base)))
+    w = np.asarray(omegas, dtype=float)[ok]
+    steps = np.zeros(len(ok))
+    for i in np.flatnonzero(sign[1:] != sign[:-1]):
+        resonance = np.any((natural > w[i]) & (natural <= w[i + 1]))
+        steps[i + 1] = -180.0 if resonance else 180.0
+    phase[ok] = math.degrees(base) + np.cumsum(steps)
+    return phase
+
+
+def _frf_name(quantity: str, point) -> str:
+    """A response's legend entry: what is plotted where, ``acceleration:x=5.0`` for the
+    accelerance of ``displacement:x=5.0``."""
+    angular = point.quantity.lower() in ("rotation", "theta")
+    word = {"mobility": "velocity", "accelerance": "acceleration"}.get(quantity)
+    if word is None:
+        return str(point)
+    rest = str(point).split(":", 1)[1]
+    return f"{'angular ' if angular else ''}{word}:{rest}"
+
+
+def _clip_magnitude(ax: Axes, mags: list[np.ndarray]) -> None:
+    """Clip the magnitude axis at :data:`FRF_DECADES` below the peak, and say so on it."""
+    values = np.concatenate(mags)
+    values = values[np.isfinite(values) & (values > 0)]
+    if not values.size:
+        return
+    peak = float(values.max())
+    floor = peak * 10.0**-FRF_DECADES
+    if values.min() < floor:
+        ax.set_ylim(floor, peak * 3.0)
+        ax.text(0.01, 0.02, f"axis clipped {FRF_DECADES} decades below the peak",
+                transform=ax.transAxes, fontsize=7, color="0.35", gid="clip-note")  # fmt: skip
+
+
 def frf_figure(
     scene: Scene,
     source,
@@ -751,32 +806,35 @@ def frf_figure(
 ) -> Figure:
     """Frequency response of ``outputs`` to ``source`` (``mstmm.response`` points or their
     strings) over ``omegas`` (rad/s): magnitude (log scale, in the quantity's unit: m/N,
-    rad/N, m/(N m), ... for a receptance) above, the unwrapped phase (degrees) below, the
-    natural frequencies in the band marked (w_d of a damped scene). The frequency axis is
-    in rad/s, or in Hz when ``hz``. ``ax``: draw into these two axes (a before/after
-    comparison), labelled ``label``."""
+    rad/N, m/(N m), ... for a receptance; at most :data:`FRF_DECADES` decades below the
+    peak, said on the axes when clipped) above, the unwrapped phase (degrees) below, the
+    natural frequencies in the band marked (w_d of a damped scene). An undamped phase
+    falls by 180 deg through each resonance and rises by 180 through each antiresonance.
+    The legend names what is plotted (``velocity:x=5.0`` for a mobility). The frequency
+    axis is in rad/s, or in Hz when ``hz``. ``ax``: draw into these two axes (a
+    before/after comparison), labelled ``label``."""
     from .response import frf, parse_point
     from .solve import solve
 
     src = parse_point(source, "input")
     dst = [parse_point(o, "output") for o in (outputs if isinstance(outputs, list) else [outputs])]
     H = frf(scene, [src], dst, omegas, quantity=quantity)[:, 0, :]
+    sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
+    marks = np.unique(np.real(sol.omega))
+    damped = topology_of(scene).damped
     fig, ax_mag, ax_ph = _pair(ax, (8.0, 6.0), 2, sharex=True)
     f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
     units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
+    mags = []
     for j, d in enumerate(dst):
-        name = f"{label}: {d}" if label else str(d)
+        name = f"{label}: {_frf_name(quantity, d)}" if label else _frf_name(quantity, d)
         if len(units) > 1:
             name += f" [{_frf_unit(quantity, d.quantity, src.quantity)}]"
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mag = np.abs(H[:, j])
-            phase = np.full(len(f), np.nan)
-            ok = np.isfinite(H[:, j]) & (mag > 0)
-            phase[ok] = np.degrees(np.unwrap(np.angle(H[ok, j])))
-        ax_mag.semilogy(f, mag, lw=1.2, label=name, gid="frf")
+        mags.append(np.abs(H[:, j]))
+        ax_mag.semilogy(f, mags[-1], lw=1.2, label=name, gid="frf")
+        phase = _frf_phase(H[:, j], omegas, marks, damped)
         ax_ph.plot(f, phase, lw=1.0, label=name, gid="phase")
-    sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
-    marks = np.unique(np.real(sol.omega))
+    _clip_magnitude(ax_mag, mags)
     scale = 1.0 / _TWO_PI if hz else 1.0
     for w in marks[marks > 0]:
         ax_mag.axvline(w * scale, color="0.6", lw=0.6, ls=":", gid="root-line")
