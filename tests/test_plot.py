@@ -562,3 +562,18 @@ def test_frf_magnitude_axis_clipped_and_said(scene, no_warnings):
     (note,) = [t for t in ax.texts if t.get_gid() == "clip-note"]
     assert "10 decades below the peak" in note.get_text()
     _inside_canvas(fig)
+
+
+def test_dispersion_legend_tells_the_pairs_and_parts_apart(no_warnings):
+    from mstmm.bands import bands, cell_of
+
+    cell = cell_of(mstmm.load_scene(EXAMPLES / "metamaterial.toml"))
+    fig = plot.dispersion(bands(cell, band=(0.0, 6000.0), points=60))
+    (legend,) = fig.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    for pair in plot._PAIRS:
+        assert f"{pair}: Re k L / pi" in labels and f"{pair}: Im k L" in labels
+    assert "stop band" in labels and "band edge" in labels
+    for ax in fig.axes[:2]:
+        assert "[" in ax.get_xlabel() and "]" in ax.get_xlabel()
+    _inside_canvas(fig)

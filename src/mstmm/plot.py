@@ -864,6 +864,10 @@ def _frf_unit(quantity: str, response: str, load: str) -> str:
     return f"{top}/({bottom})" if " " in bottom else f"{top}/{bottom}"
 
 
+#: The two Bloch pairs of a cell (``Bands.k``'s columns): the more attenuated first.
+_PAIRS = ("pair 1 (more attenuated)", "pair 2 (less attenuated)")
+
+
 def dispersion(
     bands,
     path: PathLike | None = None,
@@ -873,8 +877,10 @@ def dispersion(
     """Dispersion of a periodic cell (``mstmm.bands``): Re k L / pi of the propagating
     pairs (left) and the attenuation Im k L per cell of both pairs (right, log scale)
     against frequency (rad/s, or Hz with ``hz``), the stop bands shaded and the edges
-    marked."""
-    fig, ax_re, ax_im = _pair(ax, (9.0, 5.0), 1, sharey=True)
+    marked. The legend (right of both panels in a new figure) tells the pairs (the more
+    attenuated dashed), their Re and Im parts, the stop bands and the edges apart."""
+    own_figure = ax is None
+    fig, ax_re, ax_im = _pair(ax, (10.5, 5.0), 1, sharey=True)
     from .bands import propagating_pairs
 
     scale = 1.0 / _TWO_PI if hz else 1.0
@@ -885,20 +891,31 @@ def dispersion(
         re = np.abs(kL[:, j].real) / np.pi
         if not bands.damped:
             re = np.where(moving[:, j], re, np.nan)
-        ax_re.plot(re, f, style, color=f"C{j}", lw=1.2, gid="dispersion")
-        ax_im.semilogx(np.abs(kL[:, j].imag), f, style, color=f"C{j}", lw=1.2, gid="attenuation")
-    for lo, hi in bands.gaps:
+        ax_re.plot(re, f, style, color=f"C{j}", lw=1.2, gid="dispersion",
+                   label=f"{_PAIRS[j]}: Re k L / pi")  # fmt: skip
+        ax_im.semilogx(np.abs(kL[:, j].imag), f, style, color=f"C{j}", lw=1.2,
+                       gid="attenuation", label=f"{_PAIRS[j]}: Im k L")  # fmt: skip
+    for i, (lo, hi) in enumerate(bands.gaps):
         for a in (ax_re, ax_im):
-            a.axhspan(lo * scale, hi * scale, color="0.85", zorder=0, gid="gap")
-    for e in bands.edges:
-        ax_re.axhline(e.omega * scale, color="0.5", lw=0.5, ls=":", gid="edge")
+            label = "stop band" if i == 0 and a is ax_re else None
+            a.axhspan(lo * scale, hi * scale, color="0.85", zorder=0, gid="gap", label=label)
+    for i, e in enumerate(bands.edges):
+        ax_re.axhline(e.omega * scale, color="0.5", lw=0.5, ls=":", gid="edge",
+                      label="band edge" if i == 0 else None)  # fmt: skip
     ax_re.set_xlim(0.0, 1.0)
-    ax_re.set_xlabel("Re k L / pi")
-    ax_im.set_xlabel("Im k L (attenuation per cell, Np)")
-    ax_re.set_ylabel("f [Hz]" if hz else "omega [rad/s]")
+    ax_re.set_xlabel("Re k L / pi [-]")
+    ax_im.set_xlabel("Im k L (attenuation per cell) [Np]")
+    ax_re.set_ylabel("f [Hz]" if hz else r"$\omega$ [rad/s]")
     ax_re.set_ylim(f[0], f[-1])
     title = f"{bands.cell.name}: dispersion"
     if bands.gaps:
         title += f", {len(bands.gaps)} stop band(s) shaded"
-    ax_re.set_title(title, loc="left")
+    ax_re.set_title(title, loc="left", fontsize=10)
+    handles, labels = ax_re.get_legend_handles_labels()
+    more = ax_im.get_legend_handles_labels()
+    if own_figure:
+        fig.legend(handles + more[0], labels + more[1], loc="outside right upper", fontsize=8)
+    else:
+        _legend(ax_im)
+        ax_re.legend(fontsize=8)
     return _finish(fig, path)
