@@ -16,12 +16,17 @@ Artists carry a ``gid`` so that a figure can be inspected: ``"delta"`` (the curv
 ``log10|Delta|``), ``"roots"`` (one marker per root, repeated by multiplicity),
 ``"root-line"`` (one vertical line per distinct root), ``"mode"`` (a mode-shape or
 veering curve), ``"mass"`` / ``"spring"`` (hanging masses of one mode and their
-springs), ``"attachment"`` (attachment points on the beam axis: one line per kind,
+springs, on the beam's scale), ``"mass-clipped"`` (the masses beyond
+:data:`MASS_CLIP`), ``"buckled"`` / ``"buckled-text"`` (the buckled range of a sweep
+and its word), ``"clip-note"`` (an frf axis clipped below the peak),
+``"attachment"`` (attachment points on the beam axis: one line per kind,
 its marker the one its kind declares (``MARKER``), labelled ``"spring-mass (3)"``),
 ``"axis"`` (the beam axis), ``"uncoupled"`` (the own frequencies of a varied attachment,
 ``sqrt(k/m)`` for a spring-mass), ``"frf"`` /
-``"phase"`` (an frf's magnitude and unwrapped phase). Every axis is labelled with its
-unit; legends sit beside the axes, where they cover no curve.
+``"phase"`` (an frf's magnitude and unwrapped phase), ``"dispersion"`` /
+``"attenuation"`` / ``"gap"`` / ``"edge"`` (a cell's Re k L, Im k L, stop bands and band
+edges). Every axis is labelled with its unit; legends sit beside the axes, where they
+cover no curve. A buckled scene has nothing to plot: :class:`Buckled`.
 """
 
 from __future__ import annotations
