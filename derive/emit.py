@@ -207,9 +207,11 @@ def _tip_lines(complex_: bool = False) -> list:
 
 
 def _stable_lines(module, d: descriptor.Descriptor) -> list:
-    """v <- the component's pole-free compound step (docs/components.md)."""
+    """v <- the component's pole-free compound step (docs/components.md); a kind of stages
+    returns the log of the factor its condensation took out (dropped, it scaled Delta by a
+    power of two that jumps with omega)."""
     if _staged(module):
-        return _tip_lines() + _step_lines(d)
+        return _tip_lines() + _step_lines(d) + [Return(sp.Symbol("chain_log"))]
     return _value_lines(module)[0] + _step_lines(d)
 
 

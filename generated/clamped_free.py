@@ -14,7 +14,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "3a85cce28fdff58c6861ac664dae0fd2bd663a6e"
+SIGNATURE = "068177614324a2638debf798d6d33a7b7c9f0ad1"
 NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
 KINDS = ()
 DAMPERS = {}

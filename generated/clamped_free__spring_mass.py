@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "0639727b4bc80a9fb7d0c9f10eabdb93f6eda173"
+SIGNATURE = "6d70e49669fcbeb2ac4758003ceddb5b0335e00a"
 NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

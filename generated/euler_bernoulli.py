@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "3b3b3a6b0946dd3c894cacb76ce20cf9de7f9a64"
+DIGEST = "283946c4e5410968d5ba278b69ce8f25f3854adb"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

@@ -130,10 +130,11 @@ def test_mode_shapes_draw_beam_masses_and_attachments(scene, tmp_path):
     np.testing.assert_array_equal(att.get_xdata(), [a.x for a in scene.attachments])
     np.testing.assert_array_equal(att.get_ydata(), 0.0)
     for curve, mass, shape in zip(curves, masses, sol.shapes, strict=False):
-        np.testing.assert_array_equal(curve.get_ydata(), shape.Y)
+        scale = 1.0 / np.max(np.abs(shape.Y))  # the beam at its own scale
+        np.testing.assert_allclose(curve.get_ydata(), shape.Y * scale, rtol=1e-15)
         np.testing.assert_array_equal(mass.get_xdata(), shape.mass_x)
-        np.testing.assert_array_equal(mass.get_ydata(), shape.mass_Y)
-        assert np.max(np.abs(curve.get_ydata())) > 1e-3  # a real shape, not a flat line
+        want = np.clip(shape.mass_Y * scale, -plot.MASS_CLIP, plot.MASS_CLIP)
+        np.testing.assert_allclose(mass.get_ydata(), want, rtol=1e-15)
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     for i, w in enumerate(sol.omega[:4]):
         assert f"{w:.6g} rad/s" in labels[i] and f"{w / (2 * np.pi):.6g} Hz" in labels[i]
@@ -347,3 +348,235 @@ def test_veering_draws_the_own_frequencies_of_any_kind():
         )
         got = [line.get_ydata()[i] for line in unc]
         np.testing.assert_allclose(got, want, rtol=1e-12)
+
+
+# ---------------------------------------------------------------- issue 41, plots
+
+
+def test_delta_is_continuous_away_from_roots():
+    """hinged_absorber: the chain's condensation takes out powers of two; dropped, they
+    scaled Delta by a factor that jumped (steps of log10 2 between 15 and 52 rad/s)."""
+    scene = mstmm.load_scene(EXAMPLES / "hinged_absorber.toml")
+    fig = plot.characteristic(scene, band=(1.0, 66.0), n=2000)
+    (curve,) = lines(fig, "delta")
+    w, y = curve.get_xdata(), curve.get_ydata()
+    roots = lines(fig, "roots")[0].get_xdata()
+    away = np.all(np.abs(w[:-1, None] - roots[None, :]) > 0.03 * roots, axis=1)
+    assert np.max(np.abs(np.diff(y))[away]) < 0.05
+
+
+def _inside_canvas(fig) -> None:
+    """Everything drawn of ``fig`` lies inside its canvas, and no legend covers another
+    axes than its own."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)  # as the PNG is drawn
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    tight, box = fig.get_tightbbox(renderer), fig.bbox_inches
+    assert tight.x0 >= box.x0 - 0.01 and tight.x1 <= box.x1 + 0.01, (tight, box)
+    assert tight.y0 >= box.y0 - 0.01 and tight.y1 <= box.y1 + 0.01, (tight, box)
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        ext = legend.get_window_extent(renderer)
+        assert fig.bbox.x0 <= ext.x0 and ext.x1 <= fig.bbox.x1 + 1, ext
+        assert fig.bbox.y0 <= ext.y0 and ext.y1 <= fig.bbox.y1 + 1, ext
+        for other in fig.axes:
+            if other is not ax and other not in ax.child_axes:
+                assert not ext.overlaps(other.get_window_extent(renderer)), (ax, other)
+
+
+@pytest.fixture
+def no_warnings():
+    """Any warning raised inside the test is an error."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        yield
+
+
+def test_mode_shapes_show_the_beam_at_its_own_scale(no_warnings):
+    """absorbers: 36 light masses swing 60-80 times the beam; the beam's line spans
+    max |Y| = 1, every mass sits within the clip, and the legend says how far they go."""
+    scene = mstmm.load_scene(EXAMPLES / "absorbers.toml")
+    fig = plot.figure2(scene, modes=4, n=200)
+    curves = lines(fig, "mode", ax=1)
+    assert len(curves) == 4
+    for curve in curves:
+        assert np.max(np.abs(curve.get_ydata())) == pytest.approx(1.0)
+        assert "masses to" in curve.get_label()
+    for mass in lines(fig, "mass", ax=1):
+        assert np.max(np.abs(mass.get_ydata())) <= plot.MASS_CLIP
+    assert lines(fig, "mass-clipped", ax=1)
+    assert "clipped at 1.5" in fig.axes[1].get_ylabel()
+    _inside_canvas(fig)
+
+
+def test_fifty_modes_on_a_colour_scale_inside_the_figure(no_warnings):
+    """metamaterial --modes 50: a colour bar of mode numbers instead of a legend that ran
+    off the figure (modes 28-50 lost) and over panel (b)."""
+    scene = mstmm.load_scene(EXAMPLES / "metamaterial.toml")
+    fig = plot.figure2(scene, modes=50, n=200)
+    curves = lines(fig, "mode", ax=1)
+    assert len(curves) == 48  # two rigid-body zeros
+    legend = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    assert legend == ["spring-mass (200)"]
+    (bar,) = [a for a in fig.axes if a.get_label() == "<colorbar>"]
+    assert "mode number" in bar.get_xlabel()
+    assert bar.get_xlim() == (3.0, 50.0)
+    _inside_canvas(fig)
+
+
+def test_plot_a_buckled_cantilever_says_buckled(tmp_path):
+    """axial_force < 0 is compression: beyond the buckling load there is nothing to plot;
+    plot says so as solve does (exit 3, the same line), instead of an IndexError."""
+    text = (
+        'name = "buckled"\n[beam]\nlength = 10.0\nEI = 7.8e5\nmass_per_length = 78.0\n'
+        'axial_force = -1e8\nleft = "clamped"\nright = "free"\n'
+    )
+    path = tmp_path / "buckled.toml"
+    path.write_text(text)
+    with pytest.raises(plot.Buckled, match="buckled: the axial forces exceed"):
+        plot.figure2(mstmm.load_scene(path))
+    out = tmp_path / "b.png"
+    runs = [
+        subprocess.run([sys.executable, "-m", "mstmm", *args, str(path)], capture_output=True,
+                       text=True, timeout=300)
+        for args in (["plot", "-o", str(out)], ["solve"])
+    ]  # fmt: skip
+    assert [r.returncode for r in runs] == [3, 3], runs[0].stderr
+    assert runs[0].stdout == runs[1].stdout and "buckled" in runs[0].stdout
+    assert not out.exists()
+
+
+def test_every_sweep_field_has_its_unit():
+    """Units from the declarations (catalog.SEGMENT_PHYSICS, each kind's KEYS): every
+    field a sweep may vary has one; only a loss factor is dimensionless."""
+    from mstmm.study import _paths
+
+    scene = mstmm.scene_from_dict(
+        {
+            "beam": {"length": 4.0, "EI": 1e4, "mass_per_length": 10.0, "left": "clamped",
+                     "right": "free", "axial_force": 10.0, "kappa_GA": 1e6, "loss_factor": 0.01},
+            "attachments": [
+                {"type": "hinge", "x": 1.0, "k": 1e3},
+                {"type": "oscillator_chain", "x": 2.0, "k": [1e3, 1e3], "m": [1.0, 1.0]},
+                {"type": "dashpot", "x": 2.5, "c": 3.0},
+                {"type": "mass", "x": 3.0, "m": 5.0},
+            ],
+        }
+    )  # fmt: skip
+    units = {path: plot._field_unit(scene, path) for path in _paths(scene)}
+    assert [p for p, u in units.items() if u == "-"] == ["beam.loss_factor"]
+    assert units["beam.axial_force"] == units["beam.kappa_GA"] == "N"
+    assert units["beam.foundation_k"] == "N/m^2" and units["beam.rho_I"] == "kg m"
+    assert units["attachments[0].k"] == "N m/rad" and units["attachments[1].k[1]"] == "N/m"
+    assert units["attachments[2].c"] == "N s/m" and units["attachments[3].J"] == "kg m^2"
+
+
+def test_axial_force_sweep_marks_the_buckled_range(no_warnings):
+    """A cantilever from -1e5 N (compression) to 1e5 N: the axis in N, the range beyond the
+    buckling load pi^2 EI / (4 L^2) shaded and labelled "buckled", no warning."""
+    scene = mstmm.scene_from_dict(
+        {"beam": {"length": 10.0, "EI": 7.8e5, "mass_per_length": 78.0, "left": "clamped",
+                  "right": "free"}}
+    )  # fmt: skip
+    forces = np.linspace(-1e5, 1e5, 11)
+    fig = plot.veering(scene, "beam.axial_force", forces, modes=2)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "beam.axial_force [N]"
+    (span,) = [p for p in ax.patches if p.get_gid() == "buckled"]
+    x = np.array([span.get_x(), span.get_x() + span.get_width()])
+    critical = -(np.pi**2) * 7.8e5 / (4 * 10.0**2)
+    assert x.min() == -1e5 and x.max() == pytest.approx(critical, rel=1e-9)
+    assert [t.get_text() for t in ax.texts if t.get_gid() == "buckled-text"] == ["buckled"]
+    assert "buckled" in [t.get_text() for t in fig.legends[0].get_texts()]
+    for curve in lines(fig, "mode"):
+        y = curve.get_ydata()
+        assert np.all(np.isnan(y[forces < critical])) and np.all(y[forces > critical] > 0)
+    _inside_canvas(fig)
+
+
+def test_damped_sweep_draws_w_d_and_zeta(no_warnings):
+    """The TMD designer's figure: w_d and zeta of each mode against the damper's c (no
+    ComplexWarning); the two modes the damper splits reach one zeta near Den Hartog's c."""
+    scene = mstmm.load_scene(EXAMPLES / "tmd_den_hartog.toml")
+    cs = np.logspace(-1, 2, 7)
+    fig = plot.veering(scene, "attachments[0].c", cs, modes=2)
+    ax_w, ax_z = fig.axes[:2]
+    assert "[rad/s]" in ax_w.get_ylabel() and "zeta" in ax_z.get_ylabel()
+    assert ax_z.get_xlabel() == "attachments[0].c [N s/m]"
+    omega = mstmm.sweep(scene, {"attachments[0].c": cs}, modes=2)
+    w = [c.get_ydata() for c in lines(fig, "mode", ax=0)]
+    z = [c.get_ydata() for c in lines(fig, "mode", ax=1)]
+    np.testing.assert_array_equal(np.array(w).T, omega.real)
+    np.testing.assert_allclose(np.array(z).T, omega.imag / np.abs(omega))
+    assert 0.0 < np.min(z) and np.max(z) < 1.0
+    _inside_canvas(fig)
+
+
+def test_frf_legend_names_the_plotted_quantity(scene, no_warnings):
+    omegas = np.linspace(50.0, 400.0, 200)
+    out = ["displacement:x=1.0", "rotation:x=1.0"]
+    names = {
+        quantity: [t.get_text() for t in plot.frf_figure(
+            scene, "force:x=0.5", out, omegas, quantity=quantity).axes[0].get_legend().get_texts()]
+        for quantity in ("receptance", "mobility", "accelerance")
+    }  # fmt: skip
+    assert names["receptance"][0].startswith("displacement:x=1.0")
+    assert names["mobility"][0].startswith("velocity:x=1.0")
+    assert names["accelerance"][0].startswith("acceleration:x=1.0")
+    assert names["accelerance"][1].startswith("angular acceleration:x=1.0")
+
+
+def test_undamped_frf_phase_falls_through_each_resonance(scene, no_warnings):
+    """An undamped response is real: its sign flips by exactly 180 deg, which unwrapping
+    cannot orient (it toggled 0/180). Through a resonance the phase falls by 180."""
+    omegas = np.linspace(20.0, 2000.0, 4000)
+    fig = plot.frf_figure(scene, "force:x=1.0", "displacement:x=1.0", omegas)
+    (phase,) = [ln.get_ydata() for ln in fig.axes[1].get_lines() if ln.get_gid() == "phase"]
+    assert np.allclose(np.mod(phase, 180.0), 0.0)
+    roots = mstmm.solve(scene, band=(20.0, 2000.0), shapes=False).omega
+    changed = 0
+    for r in roots:
+        i = np.searchsorted(omegas, r)
+        step = phase[i] - phase[i - 1]
+        assert step in (0.0, -180.0), (r, step)
+        changed += step != 0.0
+    assert changed >= 3
+    assert np.all(np.abs(np.diff(phase)) <= 180.0)
+
+
+def test_frf_magnitude_axis_clipped_and_said(scene, no_warnings):
+    """A response at x = 1e-20 next to the clamped end is ~1e-40 of the others: the axis
+    stops 10 decades below the peak and says so."""
+    omegas = np.linspace(50.0, 400.0, 200)
+    fig = plot.frf_figure(scene, "force:x=0.5", ["displacement:x=1e-20", "displacement:x=1.0"],
+                          omegas)  # fmt: skip
+    ax = fig.axes[0]
+    mags = [ln.get_ydata() for ln in ax.get_lines() if ln.get_gid() == "frf"]
+    peak = max(np.nanmax(m) for m in mags)
+    assert np.nanmin(mags[0]) < 1e-20 * peak
+    lo, hi = ax.get_ylim()
+    assert lo == pytest.approx(peak * 10.0**-plot.FRF_DECADES) and hi >= peak
+    (note,) = [t for t in ax.texts if t.get_gid() == "clip-note"]
+    assert "10 decades below the peak" in note.get_text()
+    _inside_canvas(fig)
+
+
+def test_dispersion_legend_tells_the_pairs_and_parts_apart(no_warnings):
+    from mstmm.bands import bands, cell_of
+
+    cell = cell_of(mstmm.load_scene(EXAMPLES / "metamaterial.toml"))
+    fig = plot.dispersion(bands(cell, band=(0.0, 6000.0), points=60))
+    (legend,) = fig.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    for pair in plot._PAIRS:
+        assert f"{pair}: Re k L / pi" in labels and f"{pair}: Im k L" in labels
+    assert "stop band" in labels and "band edge" in labels
+    for ax in fig.axes[:2]:
+        assert "[" in ax.get_xlabel() and "]" in ax.get_xlabel()
+    _inside_canvas(fig)

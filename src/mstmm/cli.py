@@ -583,9 +583,13 @@ def _plot(args) -> int:
             option = "--input" if args.input is not None else "--output"
             raise SceneError(COMMAND_LINE, option, "needs --frf (a frequency response plot)")
         band = _checked_band(args, scene)
-        plot.figure2(
-            scene, target, modes=args.modes or 4, band=band, formulation=args.formulation
-        )
+        try:
+            plot.figure2(
+                scene, target, modes=args.modes or 4, band=band, formulation=args.formulation
+            )
+        except plot.Buckled as exc:  # as solve says it
+            print(f"{scene.name}: {exc}")
+            return EXIT_UNTRUSTED
     print(args.out)
     return 0
 

@@ -16,12 +16,17 @@ Artists carry a ``gid`` so that a figure can be inspected: ``"delta"`` (the curv
 ``log10|Delta|``), ``"roots"`` (one marker per root, repeated by multiplicity),
 ``"root-line"`` (one vertical line per distinct root), ``"mode"`` (a mode-shape or
 veering curve), ``"mass"`` / ``"spring"`` (hanging masses of one mode and their
-springs), ``"attachment"`` (attachment points on the beam axis: one line per kind,
+springs, on the beam's scale), ``"mass-clipped"`` (the masses beyond
+:data:`MASS_CLIP`), ``"buckled"`` / ``"buckled-text"`` (the buckled range of a sweep
+and its word), ``"clip-note"`` (an frf axis clipped below the peak),
+``"attachment"`` (attachment points on the beam axis: one line per kind,
 its marker the one its kind declares (``MARKER``), labelled ``"spring-mass (3)"``),
 ``"axis"`` (the beam axis), ``"uncoupled"`` (the own frequencies of a varied attachment,
 ``sqrt(k/m)`` for a spring-mass), ``"frf"`` /
-``"phase"`` (an frf's magnitude and unwrapped phase). Every axis is labelled with its
-unit; legends sit beside the axes, where they cover no curve.
+``"phase"`` (an frf's magnitude and unwrapped phase), ``"dispersion"`` /
+``"attenuation"`` / ``"gap"`` / ``"edge"`` (a cell's Re k L, Im k L, stop bands and band
+edges). Every axis is labelled with its unit; legends sit beside the axes, where they
+cover no curve. A buckled scene has nothing to plot: :class:`Buckled`.
 """
 
 from __future__ import annotations
@@ -60,6 +65,7 @@ from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 __all__ = [
+    "Buckled",
     "characteristic",
     "figure2",
     "formats",
@@ -89,14 +95,30 @@ def _to_rad(f):
     return np.asarray(f) * _TWO_PI
 
 
-def _new_figure(ncols: int = 1, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, list]:
+def _figure(size: tuple[float, float]) -> Figure:
+    """A new constrained-layout figure (a pyplot one when pyplot is imported)."""
     if "matplotlib.pyplot" in sys.modules:
         import matplotlib.pyplot as plt
 
-        fig = plt.figure(figsize=size, layout="constrained")
-    else:
-        fig = Figure(figsize=size, layout="constrained")
+        return plt.figure(figsize=size, layout="constrained")
+    return Figure(figsize=size, layout="constrained")
+
+
+def _new_figure(ncols: int = 1, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, list]:
+    fig = _figure(size)
     return fig, list(np.atleast_1d(fig.subplots(1, ncols)))
+
+
+def _pair(
+    ax: tuple[Axes, Axes] | None, size: tuple[float, float], rows: int, **share
+) -> tuple[Figure, Axes, Axes]:
+    """The two axes given, or a new figure of two panels (``rows`` 2: one above the other;
+    1: side by side) sharing an axis (``sharex=True`` or ``sharey=True``)."""
+    if ax is not None:
+        return ax[0].get_figure(), ax[0], ax[1]
+    fig = _figure(size)
+    first, second = fig.subplots(rows, 3 - rows, **share)
+    return fig, first, second
 
 
 def _axes(ax: Axes | None, size: tuple[float, float] = (7.0, 4.8)) -> tuple[Figure, Axes]:
@@ -214,17 +236,35 @@ def _modes_below(scene: Scene, omega: float) -> int:
     return int(kernel.count_below(np.array([omega]), parameter_vector(scene))[0])
 
 
+class Buckled(ValueError):
+    """The scene's axial forces reach its buckling load: it has no natural frequencies to
+    plot. ``str()`` is the line ``mstmm solve`` prints; ``buckling`` the
+    :class:`mstmm.buckling.Buckling` it reads."""
+
+    def __init__(self, buckling) -> None:
+        super().__init__(buckling.message())
+        self.buckling = buckling
+
+
+def _checked(sol: Solution) -> Solution:
+    """``sol``, or :class:`Buckled` when its scene is buckled."""
+    if sol.buckling is not None and sol.buckling.buckled:
+        raise Buckled(sol.buckling)
+    return sol
+
+
 def _band_solution(
     scene: Scene, band: tuple[float, float] | None, modes: int | None, formulation: str
 ) -> tuple[Solution, float, float]:
-    """Solve for the roots and return them with the band to plot."""
+    """Solve for the roots and return them with the band to plot (:class:`Buckled` when
+    the scene is buckled)."""
     if band is not None:
         lo, hi = float(band[0]), float(band[1])
         if not (0.0 <= lo < hi and math.isfinite(hi)):
             raise ValueError(f"band must satisfy 0 <= lo < hi < inf (got {band!r})")
-        return solve(scene, band=(lo, hi), formulation=formulation), lo, hi
+        return _checked(solve(scene, band=(lo, hi), formulation=formulation)), lo, hi
     count = modes or 10
-    lowest = solve(scene, modes=count + 1, formulation=formulation, shapes=False)
+    lowest = _checked(solve(scene, modes=count + 1, formulation=formulation, shapes=False))
     top = float(lowest.omega[count - 1]) if len(lowest.omega) >= count else 0.0
     if top <= 0.0:  # only rigid-body modes asked for: show up to the first elastic one
         first = solve(scene, modes=_rigid_body_modes(scene) + 1, shapes=False)
@@ -322,53 +362,110 @@ def _copy_labels(sol: Solution, first_mode: int = 0) -> list[str]:
     return labels
 
 
-def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
-    if sol.shapes is None:
-        raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
-    scene = sol.scene
+#: Hanging masses are drawn at the beam's scale (its max |Y| = 1), clipped at this |Y|.
+MASS_CLIP = 1.5
+#: Beyond this many drawn modes, the mode shapes are coloured on a scale of mode numbers
+#: (a colour bar) instead of one legend entry each.
+LEGEND_MODES = 10
+
+
+def _beam_scale(shape) -> float:
+    """The factor that brings the beam's largest |Y| of ``shape`` to 1 (1 for a still beam)."""
+    top = float(np.max(np.abs(shape.Y))) if len(shape.Y) else 0.0
+    return 1.0 / top if top > 0.0 and math.isfinite(top) else 1.0
+
+
+def _draw_masses(ax: Axes, shape, scale: float, color) -> float:
+    """The hanging masses of one mode at the beam's scale, each joined to its attachment
+    point by a thin line (its spring); a mass beyond :data:`MASS_CLIP` sits on the clip
+    as a triangle pointing its way. Returns its largest |Y| on the beam's scale."""
+    y = shape.mass_Y * scale
+    shown = np.clip(y, -MASS_CLIP, MASS_CLIP)
+    at_beam = np.interp(shape.mass_x, shape.x, shape.Y * scale)
+    nan = np.full_like(at_beam, np.nan)
+    sx = np.column_stack([shape.mass_x, shape.mass_x, nan]).ravel()
+    sy = np.column_stack([at_beam, shown, nan]).ravel()
+    ax.plot(sx, sy, color=color, lw=0.6, alpha=0.7, gid="spring")
+    ax.plot(shape.mass_x, shown, ls="none", marker="o", ms=5, mfc="white", mec=color, gid="mass")
+    out = np.abs(y) > MASS_CLIP
+    for sign, marker in ((1.0, "^"), (-1.0, "v")):
+        pick = out & (np.sign(y) == sign)
+        if pick.any():
+            ax.plot(shape.mass_x[pick], shown[pick], ls="none", marker=marker, ms=6, color=color,
+                    gid="mass-clipped")  # fmt: skip
+    return float(np.max(np.abs(y)))
+
+
+def _drawn_modes(sol: Solution, modes: int, first_mode: int) -> list[tuple]:
+    """``(shape, label, multiplicity)`` of the first ``modes`` roots, rigid-body zeros
+    left out (counted, not drawn)."""
     labels = _copy_labels(sol, first_mode)
     count = max(int(modes), 0)
-    drawn = [
+    return [
         (shape, label, int(m))
         for shape, label, m in zip(
             sol.shapes[:count], labels[:count], sol.multiplicity[:count], strict=True
         )
-        if shape.omega > 0.0  # rigid-body zeros: counted, not drawn
+        if shape.omega > 0.0
     ]
-    for i, (shape, label, m) in enumerate(drawn):
-        color = f"C{i % 10}"
+
+
+def _mode_colors(ax: Axes, drawn: list[tuple]) -> list:
+    """One colour per drawn mode: the colour cycle, or (beyond :data:`LEGEND_MODES`) a
+    colour scale of mode numbers with its colour bar beside the axes."""
+    if len(drawn) <= LEGEND_MODES:
+        return [f"C{i % 10}" for i in range(len(drawn))]
+    from matplotlib import colormaps
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    numbers = [int(re.match(r"\d+", label).group()) for _s, label, _m in drawn]
+    norm = Normalize(min(numbers), max(numbers))
+    bar = ax.get_figure().colorbar(
+        ScalarMappable(norm, colormaps["viridis"]), ax=ax, location="bottom", shrink=0.8,
+        aspect=40, pad=0.02,
+    )  # fmt: skip
+    w = [d[0].omega for d in drawn]
+    bar.set_label(
+        f"mode number ({len(drawn)} modes, {min(w):.4g} to {max(w):.4g} rad/s)", fontsize=8
+    )
+    return [colormaps["viridis"](norm(n)) for n in numbers]
+
+
+def _draw_mode_shapes(ax: Axes, sol: Solution, modes: int, first_mode: int = 0) -> None:
+    if sol.shapes is None:
+        raise ValueError("the solution carries no mode shapes: solve it with shapes=True")
+    scene = sol.scene
+    drawn = _drawn_modes(sol, modes, first_mode)
+    colors = _mode_colors(ax, drawn)
+    legend = len(drawn) <= LEGEND_MODES
+    clipped = False
+    for (shape, label, m), color in zip(drawn, colors, strict=True):
         w = shape.omega
-        mult = f", x{m}" if m > 1 else ""
-        ax.plot(
-            shape.x,
-            shape.Y,
-            color=color,
-            lw=1.4,
-            gid="mode",
-            label=f"mode {label}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz{mult}",
-        )
-        if len(shape.mass_x):
-            at_beam = np.interp(shape.mass_x, shape.x, shape.Y)
-            nan = np.full_like(at_beam, np.nan)
-            sx = np.column_stack([shape.mass_x, shape.mass_x, nan]).ravel()
-            sy = np.column_stack([at_beam, shape.mass_Y, nan]).ravel()
-            ax.plot(sx, sy, color=color, lw=0.6, alpha=0.7, gid="spring")
-            ax.plot(
-                shape.mass_x,
-                shape.mass_Y,
-                ls="none",
-                marker="o",
-                ms=5,
-                mfc="white",
-                mec=color,
-                gid="mass",
-            )
+        scale = _beam_scale(shape)
+        text = f"mode {label}: {w:.6g} rad/s = {w / _TWO_PI:.6g} Hz" + (f", x{m}" if m > 1 else "")
+        lw = 1.4 if legend else 0.9
+        line = ax.plot(shape.x, shape.Y * scale, color=color, lw=lw, gid="mode", label=text)[0]
+        if legend and len(shape.mass_x):  # beyond LEGEND_MODES, the beam lines only
+            top = _draw_masses(ax, shape, scale, color)
+            if top > MASS_CLIP:
+                clipped = True
+                line.set_label(f"{text}; masses to {top:.3g}")
+        if not legend:
+            line.set_label(f"_{text}")  # a colour bar tells the modes apart
     ax.axhline(0.0, color="0.4", lw=0.8, gid="axis")
     _draw_attachments(ax, scene)
     L = scene.beam.length
     ax.set_xlim(-0.02 * L, 1.02 * L)
+    if clipped:
+        ax.set_ylim(-1.1 * MASS_CLIP, 1.1 * MASS_CLIP)
     ax.set_xlabel(f"x [m]   ({scene.beam.left} - {scene.beam.right})")
-    ax.set_ylabel("Y [-] (normalised: max |Y| = 1; circles: hanging masses)")
+    masses = ""
+    if any(len(d[0].mass_x) for d in drawn):
+        masses = "; circles: hanging masses" if legend else "; hanging masses not drawn"
+    if clipped:
+        masses += f", clipped at {MASS_CLIP:g}"
+    ax.set_ylabel(f"Y [-] (beam's max |Y| = 1{masses})", fontsize=9)
     ax.set_title(f"{scene.name}: mode shapes", fontsize=10)
     _legend(ax)
 
@@ -385,18 +482,21 @@ def mode_shapes(
     ``mstmm solve --modes``); the zeros are not drawn. Given a
     :class:`~mstmm.scene.Scene`, it is solved for ``modes`` frequencies; a
     :class:`~mstmm.solve.Solution` (with shapes) is drawn as is. Each mode is a
-    curve ``Y(x)`` (paper Eq. (5), normalised to max ``|Y|`` = 1 over the beam and
-    the masses); every shape of a multiple root is drawn, labelled ``7a``, ``7b``,
+    curve ``Y(x)`` (paper Eq. (5), scaled to max ``|Y|`` = 1 over the beam, whatever
+    its masses do); every shape of a multiple root is drawn, labelled ``7a``, ``7b``,
     ... The attachment points are triangles on the beam axis, each hanging mass a
-    circle at its own displacement above its attachment point, joined to the beam
-    by a thin line (its spring). The legend gives each frequency in rad/s and Hz,
-    numbered as ``mstmm solve`` numbers them.
+    circle at its own displacement (on the beam's scale) above its attachment point,
+    joined to the beam by a thin line (its spring); a mass beyond
+    :data:`MASS_CLIP` sits on the clip as a triangle pointing its way, and the legend
+    says how far it goes. The legend gives each frequency in rad/s and Hz, numbered as
+    ``mstmm solve`` numbers them; beyond :data:`LEGEND_MODES` modes a colour bar of
+    mode numbers below the axes takes its place.
     """
     fig, ax = _axes(ax)
     if isinstance(solution_or_scene, Solution):
         sol = solution_or_scene
     else:
-        sol = solve(solution_or_scene, modes=int(modes))
+        sol = _checked(solve(solution_or_scene, modes=int(modes)))
     _draw_mode_shapes(ax, sol, modes)
     return _finish(fig, path)
 
@@ -439,21 +539,23 @@ def figure2(
     return _finish(fig, path)
 
 
-_BEAM_UNITS = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
+def _beam_units() -> dict[str, str]:
+    """The unit of each key of the beam and its segments: the kernel's three reference
+    quantities (``catalog.BEAM_PARAMETERS``: length, EI, mass per length), the loss
+    factor's none, and each physics key's as ``catalog.SEGMENT_PHYSICS`` declares it."""
+    reference = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
+    return {**reference, **{key: unit for key, _check, unit in catalog.SEGMENT_PHYSICS}}
 
 
 def _field_unit(scene: Scene, path_name: str) -> str:
-    """The unit of a sweep field: the beam's, or the key's as its kind declares it."""
-    from mstmm.catalog import kind
-
+    """The unit of a sweep field: the beam's (:func:`_beam_units`), or the key's as its
+    kind declares it (``catalog.Key.unit``)."""
     name = re.sub(r"\[\d+\]$", "", path_name).rsplit(".", 1)[-1]
     match = re.match(r"attachments\[(\d+)\]\.", path_name)
     if match:
-        a = scene.attachments[int(match.group(1))]
-        for key in kind(a.kind).KEYS:
-            if key.name == name:
-                return key.unit or "-"
-    return _BEAM_UNITS.get(name, "-")
+        kind = scene.attachments[int(match.group(1))].kind
+        return next((k.unit for k in catalog.kind(kind).KEYS if k.name == name), "-")
+    return _beam_units().get(name, "-")
 
 
 def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
@@ -481,6 +583,74 @@ def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
     return np.array([np.pad(f, (0, width - len(f)), constant_values=np.nan) for f in found])
 
 
+def _buckled(scene: Scene, path_name: str, values: np.ndarray) -> tuple[np.ndarray, float]:
+    """Which points of a sweep are buckled (:mod:`mstmm.buckling`), and the value of an
+    axial force at which the structure buckles (NaN for another field, or none buckled)."""
+    from .buckling import buckling, compressed
+    from .study import parameter_matrix
+
+    P = parameter_matrix(scene, {path_name: values})
+    kernel = load_kernel(topology_of(scene))
+    mask = np.zeros(len(P), dtype=bool)
+    critical = math.nan
+    for i, p in enumerate(P):
+        if compressed(p):
+            state = buckling(kernel, p)
+            mask[i] = state.buckled
+            if path_name.endswith("axial_force") and math.isfinite(state.load_factor):
+                critical = float(values[i]) * state.load_factor
+    return mask, critical
+
+
+def _shade_buckled(axes: Sequence[Axes], v: np.ndarray, buckled: np.ndarray, critical: float):
+    """Shade and label the buckled runs of a sweep (``gid`` ``"buckled"``), from the
+    buckling value ``critical`` when known, else half way to the next point."""
+    edges = np.concatenate([[v[0]], 0.5 * (v[1:] + v[:-1]), [v[-1]]])
+    runs = np.flatnonzero(np.diff(np.concatenate([[0], buckled.astype(int), [0]])))
+    for start, stop in zip(runs[::2], runs[1::2], strict=True):
+        lo, hi = edges[start], edges[stop]
+        if math.isfinite(critical):
+            lo, hi = (lo, critical) if stop < len(v) else (critical, hi)
+        for k, ax in enumerate(axes):
+            ax.axvspan(lo, hi, color="0.88", zorder=0, gid="buckled",
+                       label="buckled" if k == 0 and start == runs[0] else None)  # fmt: skip
+            where = ax.get_xaxis_transform()
+            ax.text(0.5 * (lo + hi), 0.5, "buckled", transform=where, ha="center",
+                    va="center", rotation=90, color="0.4", gid="buckled-text")  # fmt: skip
+
+
+def _sweep_axes(ax, v: np.ndarray, y: np.ndarray, log_ok: bool) -> None:
+    """Log x when the values span more than two decades; log y (``log_ok``) when the
+    curves do, else linear from 0."""
+    finite = y[np.isfinite(y) & (y > 0)]
+    top = float(finite.max()) if finite.size else 1.0
+    bottom = float(finite.min()) if finite.size else 0.0
+    if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
+        ax.set_xscale("log")
+    else:  # 1e5 as "1 x 1e5": the long tick labels ran into each other
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
+    if log_ok and bottom > 0 and top / bottom > 100.0:
+        ax.set_yscale("log")
+        ax.set_ylim(bottom / 1.3, top * 1.3)
+    else:
+        ax.set_ylim(0.0, top * 1.05)
+
+
+def _mode_lines(ax: Axes, v: np.ndarray, y: np.ndarray, first: int) -> None:
+    """One line per column of ``y`` (``gid`` ``"mode"``), numbered from ``first`` + 1."""
+    for j in range(y.shape[1]):
+        ax.plot(v, y[:, j], color=f"C{j % 10}", lw=1.4, gid="mode", label=f"mode {first + j + 1}")
+
+
+def _sweep_legend(fig: Figure, ax: Axes, own: bool) -> None:
+    """In our ``own`` figure, the legend right of everything (of the Hz axis, which it
+    would otherwise cover); in given axes, beside them."""
+    if own:
+        fig.legend(*ax.get_legend_handles_labels(), loc="outside right upper", fontsize=8)
+    else:
+        _legend(ax)
+
+
 def veering(
     scene: Scene,
     path_name: str,
@@ -496,28 +666,35 @@ def veering(
     ``attachments[2].k``, ...) and ``values`` the values it takes; the lowest
     ``modes`` natural frequencies at every value (counted as ``mstmm solve --modes``
     counts them, rigid-body zeros included) are drawn, one line per mode index
-    (the zeros left out; a point the sweep cannot certify is a gap).
-    The x axis is logarithmic when the values span more than two decades, the
-    y axis when the frequencies do. When ``path_name`` is a value of an attachment
-    (not its x) and ``uncoupled``, that attachment's own frequencies (a spring-mass's
-    ``sqrt(k/m)``, a chain's, any kind's with unknowns) are drawn dashed: the curves
-    veer where they cross them.
+    (the zeros left out; a point the sweep cannot certify is a gap). The x axis is
+    labelled with the field's unit (its kind's declaration), logarithmic when the
+    values span more than two decades; the y axis is logarithmic when the frequencies
+    do. The buckled range of a sweep under compression is shaded and labelled
+    "buckled" (its edge the buckling load when an axial force is swept). When
+    ``path_name`` is a value of an attachment (not its x) and ``uncoupled``, that
+    attachment's own frequencies (a spring-mass's ``sqrt(k/m)``, a chain's, any
+    kind's with unknowns) are drawn dashed: the curves veer where they cross them.
+
+    A damped sweep (a damped scene, or a damping value swept) draws two panels, the
+    TMD designer's figure: the damped frequencies ``w_d`` and the damping ratios
+    ``zeta = sigma / |omega|`` of the same modes (``ax``: a pair of axes).
     """
+    import warnings
+
     from .study import sweep
 
     values = np.asarray(values, dtype=float).ravel()
     nrigid = _rigid_body_modes(scene)
-    omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
-    fig, ax = _axes(ax)
+    with warnings.catch_warnings():  # the figure marks the buckled points
+        warnings.filterwarnings("ignore", message=r".*points are buckled", category=RuntimeWarning)
+        omega = sweep(scene, {path_name: values}, modes=int(modes))[:, nrigid:]
     order = np.argsort(values, kind="stable")
     v, omega = values[order], omega[order]
-    for j in range(omega.shape[1]):
-        ax.plot(
-            v, omega[:, j], color=f"C{j % 10}", lw=1.4, gid="mode", label=f"mode {nrigid + j + 1}"
-        )
-    finite = omega[np.isfinite(omega) & (omega > 0)]
-    top = float(finite.max()) if finite.size else 1.0
-    bottom = float(finite.min()) if finite.size else 0.0
+    if np.iscomplexobj(omega):
+        return _finish(_damped_veering(scene, path_name, v, omega, nrigid, ax), path)
+    own_figure = ax is None
+    fig, ax = _axes(ax)
+    _mode_lines(ax, v, omega, nrigid)
     match = _ATTACHMENT_FIELD.match(path_name)
     own = _own_frequencies(scene, int(match.group(1)), path_name, v) if match else None
     if uncoupled and own is not None:
@@ -531,23 +708,94 @@ def veering(
                 gid="uncoupled",
                 label=f"own frequencies of attachments[{match.group(1)}]" if j == 0 else None,
             )
-    if v.size and v.min() > 0 and v.max() / v.min() > 100.0:
-        ax.set_xscale("log")
-    if bottom > 0 and top / bottom > 100.0:
-        ax.set_yscale("log")
-        ax.set_ylim(bottom / 1.3, top * 1.3)
-    else:
-        ax.set_ylim(0.0, top * 1.05)
+    buckled, critical = _buckled(scene, path_name, v)
+    if buckled.any():
+        _shade_buckled([ax], v, buckled, critical)
+    _sweep_axes(ax, v, omega, log_ok=True)
     ax.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
     ax.set_ylabel(r"$\omega$ [rad/s]")
     ax.set_title(f"{scene.name}: natural frequencies against {path_name}", fontsize=10)
     sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
     sec.set_ylabel("f [Hz]")
-    if len(fig.axes) == 1:  # our own figure: the legend right of the Hz axis, which it
-        fig.legend(loc="outside right upper", fontsize=8)  # would otherwise cover
-    else:
-        _legend(ax)
+    _sweep_legend(fig, ax, own_figure)
     return _finish(fig, path)
+
+
+def _damped_veering(
+    scene: Scene, path_name: str, v: np.ndarray, omega: np.ndarray, nrigid: int, ax
+) -> Figure:
+    """A damped sweep's two panels: ``w_d`` (above) and ``zeta`` (below) of each mode."""
+    fig, ax_w, ax_z = _pair(ax, (8.0, 6.4), 2, sharex=True)
+    w_d = omega.real
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zeta = omega.imag / np.abs(omega)
+    _mode_lines(ax_w, v, w_d, nrigid)
+    _mode_lines(ax_z, v, zeta, nrigid)
+    _sweep_axes(ax_w, v, w_d, log_ok=True)
+    _sweep_axes(ax_z, v, zeta, log_ok=False)
+    ax_w.set_ylabel(r"damped frequency $\omega_d$ [rad/s]")
+    ax_z.set_ylabel(r"damping ratio $\zeta = \sigma/|\omega|$ [-]")
+    ax_z.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
+    ax_w.set_title(f"{scene.name}: damped modes against {path_name}", fontsize=10)
+    sec = ax_w.secondary_yaxis("right", functions=(_to_hz, _to_rad))
+    sec.set_ylabel("f [Hz]")
+    _sweep_legend(fig, ax_w, ax is None)
+    return fig
+
+
+#: The magnitude axis of an frf spans at most this many decades below its peak (a zero
+#: of the response, or a point near a support, reaches 1e-100 and hid everything else).
+FRF_DECADES = 10
+
+
+def _frf_phase(H: np.ndarray, omegas: np.ndarray, natural: np.ndarray, damped: bool):
+    """The unwrapped phase (degrees) of one response, NaN where it is 0 or not finite.
+    A damped response is unwrapped as is; an undamped one is a real function times a
+    constant phase (1, i, -1: receptance, mobility, accelerance) that changes sign by
+    exactly 180 deg, which no unwrapping can orient: it falls by 180 through a natural
+    frequency (a resonance) and rises by 180 through an antiresonance."""
+    phase = np.full(len(H), np.nan)
+    with np.errstate(invalid="ignore"):
+        ok = np.flatnonzero(np.isfinite(H) & (np.abs(H) > 0))
+    if not ok.size:
+        return phase
+    if damped:
+        phase[ok] = np.degrees(np.unwrap(np.angle(H[ok])))
+        return phase
+    base = float(np.angle(H[ok[0]]))
+    sign = np.sign(np.real(H[ok] * np.exp(-1j * base)))
+    w = np.asarray(omegas, dtype=float)[ok]
+    steps = np.zeros(len(ok))
+    for i in np.flatnonzero(sign[1:] != sign[:-1]):
+        resonance = np.any((natural > w[i]) & (natural <= w[i + 1]))
+        steps[i + 1] = -180.0 if resonance else 180.0
+    phase[ok] = math.degrees(base) + np.cumsum(steps)
+    return phase
+
+
+def _frf_name(quantity: str, point) -> str:
+    """A response's legend entry: what is plotted where, ``acceleration:x=5.0`` for the
+    accelerance of ``displacement:x=5.0``."""
+    angular = point.quantity.lower() in ("rotation", "theta")
+    word = {"mobility": "velocity", "accelerance": "acceleration"}.get(quantity)
+    if word is None:
+        return str(point)
+    rest = str(point).split(":", 1)[1]
+    return f"{'angular ' if angular else ''}{word}:{rest}"
+
+
+def _clip_magnitude(ax: Axes, mags: list[np.ndarray]) -> None:
+    """Clip the magnitude axis at :data:`FRF_DECADES` below the peak, and say so on it."""
+    values = np.concatenate(mags)
+    values = values[np.isfinite(values) & (values > 0)]
+    if not values.size:
+        return
+    peak = float(values.max())
+    floor = peak * 10.0**-FRF_DECADES
+    if values.min() < floor:
+        ax.set_ylim(floor, peak * 3.0)
+        ax.text(0.01, 0.02, f"axis clipped {FRF_DECADES} decades below the peak",
+                transform=ax.transAxes, fontsize=7, color="0.35", gid="clip-note")  # fmt: skip
 
 
 def frf_figure(
@@ -563,37 +811,35 @@ def frf_figure(
 ) -> Figure:
     """Frequency response of ``outputs`` to ``source`` (``mstmm.response`` points or their
     strings) over ``omegas`` (rad/s): magnitude (log scale, in the quantity's unit: m/N,
-    rad/N, m/(N m), ... for a receptance) above, the unwrapped phase (degrees) below, the
-    natural frequencies in the band marked (w_d of a damped scene). The frequency axis is
-    in rad/s, or in Hz when ``hz``. ``ax``: draw into these two axes (a before/after
-    comparison), labelled ``label``."""
+    rad/N, m/(N m), ... for a receptance; at most :data:`FRF_DECADES` decades below the
+    peak, said on the axes when clipped) above, the unwrapped phase (degrees) below, the
+    natural frequencies in the band marked (w_d of a damped scene). An undamped phase
+    falls by 180 deg through each resonance and rises by 180 through each antiresonance.
+    The legend names what is plotted (``velocity:x=5.0`` for a mobility). The frequency
+    axis is in rad/s, or in Hz when ``hz``. ``ax``: draw into these two axes (a
+    before/after comparison), labelled ``label``."""
     from .response import frf, parse_point
     from .solve import solve
 
     src = parse_point(source, "input")
     dst = [parse_point(o, "output") for o in (outputs if isinstance(outputs, list) else [outputs])]
     H = frf(scene, [src], dst, omegas, quantity=quantity)[:, 0, :]
-    if ax is None:
-        fig = Figure(figsize=(8.0, 6.0), layout="constrained")
-        ax_mag, ax_ph = fig.subplots(2, 1, sharex=True)
-    else:
-        ax_mag, ax_ph = ax
-        fig = ax_mag.get_figure()
-    f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
-    units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
-    for j, d in enumerate(dst):
-        name = f"{label}: {d}" if label else str(d)
-        if len(units) > 1:
-            name += f" [{_frf_unit(quantity, d.quantity, src.quantity)}]"
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mag = np.abs(H[:, j])
-            phase = np.full(len(f), np.nan)
-            ok = np.isfinite(H[:, j]) & (mag > 0)
-            phase[ok] = np.degrees(np.unwrap(np.angle(H[ok, j])))
-        ax_mag.semilogy(f, mag, lw=1.2, label=name, gid="frf")
-        ax_ph.plot(f, phase, lw=1.0, label=name, gid="phase")
     sol = solve(scene, band=(float(omegas[0]), float(omegas[-1])), shapes=False)
     marks = np.unique(np.real(sol.omega))
+    damped = topology_of(scene).damped
+    fig, ax_mag, ax_ph = _pair(ax, (8.0, 6.0), 2, sharex=True)
+    f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
+    units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
+    mags = []
+    for j, d in enumerate(dst):
+        name = f"{label}: {_frf_name(quantity, d)}" if label else _frf_name(quantity, d)
+        if len(units) > 1:
+            name += f" [{_frf_unit(quantity, d.quantity, src.quantity)}]"
+        mags.append(np.abs(H[:, j]))
+        ax_mag.semilogy(f, mags[-1], lw=1.2, label=name, gid="frf")
+        phase = _frf_phase(H[:, j], omegas, marks, damped)
+        ax_ph.plot(f, phase, lw=1.0, label=name, gid="phase")
+    _clip_magnitude(ax_mag, mags)
     scale = 1.0 / _TWO_PI if hz else 1.0
     for w in marks[marks > 0]:
         ax_mag.axvline(w * scale, color="0.6", lw=0.6, ls=":", gid="root-line")
@@ -623,6 +869,10 @@ def _frf_unit(quantity: str, response: str, load: str) -> str:
     return f"{top}/({bottom})" if " " in bottom else f"{top}/{bottom}"
 
 
+#: The two Bloch pairs of a cell (``Bands.k``'s columns): the more attenuated first.
+_PAIRS = ("pair 1 (more attenuated)", "pair 2 (less attenuated)")
+
+
 def dispersion(
     bands,
     path: PathLike | None = None,
@@ -632,13 +882,10 @@ def dispersion(
     """Dispersion of a periodic cell (``mstmm.bands``): Re k L / pi of the propagating
     pairs (left) and the attenuation Im k L per cell of both pairs (right, log scale)
     against frequency (rad/s, or Hz with ``hz``), the stop bands shaded and the edges
-    marked."""
-    if ax is None:
-        fig = Figure(figsize=(9.0, 5.0), layout="constrained")
-        ax_re, ax_im = fig.subplots(1, 2, sharey=True)
-    else:
-        ax_re, ax_im = ax
-        fig = ax_re.get_figure()
+    marked. The legend (right of both panels in a new figure) tells the pairs (the more
+    attenuated dashed), their Re and Im parts, the stop bands and the edges apart."""
+    own_figure = ax is None
+    fig, ax_re, ax_im = _pair(ax, (10.5, 5.0), 1, sharey=True)
     from .bands import propagating_pairs
 
     scale = 1.0 / _TWO_PI if hz else 1.0
@@ -649,20 +896,31 @@ def dispersion(
         re = np.abs(kL[:, j].real) / np.pi
         if not bands.damped:
             re = np.where(moving[:, j], re, np.nan)
-        ax_re.plot(re, f, style, color=f"C{j}", lw=1.2, gid="dispersion")
-        ax_im.semilogx(np.abs(kL[:, j].imag), f, style, color=f"C{j}", lw=1.2, gid="attenuation")
-    for lo, hi in bands.gaps:
+        ax_re.plot(re, f, style, color=f"C{j}", lw=1.2, gid="dispersion",
+                   label=f"{_PAIRS[j]}: Re k L / pi")  # fmt: skip
+        ax_im.semilogx(np.abs(kL[:, j].imag), f, style, color=f"C{j}", lw=1.2,
+                       gid="attenuation", label=f"{_PAIRS[j]}: Im k L")  # fmt: skip
+    for i, (lo, hi) in enumerate(bands.gaps):
         for a in (ax_re, ax_im):
-            a.axhspan(lo * scale, hi * scale, color="0.85", zorder=0, gid="gap")
-    for e in bands.edges:
-        ax_re.axhline(e.omega * scale, color="0.5", lw=0.5, ls=":", gid="edge")
+            label = "stop band" if i == 0 and a is ax_re else None
+            a.axhspan(lo * scale, hi * scale, color="0.85", zorder=0, gid="gap", label=label)
+    for i, e in enumerate(bands.edges):
+        ax_re.axhline(e.omega * scale, color="0.5", lw=0.5, ls=":", gid="edge",
+                      label="band edge" if i == 0 else None)  # fmt: skip
     ax_re.set_xlim(0.0, 1.0)
-    ax_re.set_xlabel("Re k L / pi")
-    ax_im.set_xlabel("Im k L (attenuation per cell, Np)")
-    ax_re.set_ylabel("f [Hz]" if hz else "omega [rad/s]")
+    ax_re.set_xlabel("Re k L / pi [-]")
+    ax_im.set_xlabel("Im k L (attenuation per cell) [Np]")
+    ax_re.set_ylabel("f [Hz]" if hz else r"$\omega$ [rad/s]")
     ax_re.set_ylim(f[0], f[-1])
     title = f"{bands.cell.name}: dispersion"
     if bands.gaps:
         title += f", {len(bands.gaps)} stop band(s) shaded"
-    ax_re.set_title(title, loc="left")
+    ax_re.set_title(title, loc="left", fontsize=10)
+    handles, labels = ax_re.get_legend_handles_labels()
+    more = ax_im.get_legend_handles_labels()
+    if own_figure:
+        fig.legend(handles + more[0], labels + more[1], loc="outside right upper", fontsize=8)
+    else:
+        _legend(ax_im)
+        ax_re.legend(fontsize=8)
     return _finish(fig, path)
