@@ -360,7 +360,7 @@ def _check_out_dir(path: Path, option: str = "--out") -> Path:
     try:
         return check_out_file(path)
     except NotAFile as exc:
-        raise SceneError(COMMAND_LINE, option, exc.problem, str(path)) from None
+        raise SceneError(COMMAND_LINE, option, exc.problem, Path(path)) from None
     except CannotWrite as exc:  # the path in full (a value's repr is cut at 80 characters)
         raise SceneError(COMMAND_LINE, option, str(exc)) from None
 

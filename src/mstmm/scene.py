@@ -171,6 +171,8 @@ def _plain(value: Any) -> Any:
 
 
 def _short_repr(value: Any) -> str:
+    if isinstance(value, os.PathLike):  # a path is shown whole: its end names the file
+        return _one_line(repr(os.fspath(value)))
     try:
         text = repr(_plain(value))
     except Exception:  # a broken __repr__ must not hide the real error
