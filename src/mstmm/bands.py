@@ -33,7 +33,14 @@ from pathlib import Path
 import numpy as np
 
 from .kernels import Kernel, load_kernel, numerics
-from .scene import Scene, SceneError, load_scene, scene_from_dict, scene_to_dict
+from .limits import MAX_BAND_POINTS, check_bands_band, check_count
+from .scene import (
+    Scene,
+    SceneError,
+    load_scene,
+    scene_from_dict,
+    scene_to_dict,
+)
 from .topology import parameter_vector, topology_of
 
 __all__ = ["Bands", "Edge", "bands", "cell_of"]
@@ -333,9 +340,11 @@ def bands(
     if not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0.0 or hi <= lo:
         raise SceneError(cell.source, "band", "must be finite with 0 <= lo < hi (rad/s)", [lo, hi])
     given = omegas is not None
+    check_bands_band(cell, (lo, hi), cell.source, "band")
     if omegas is None:
         if int(points) < 2:
             raise SceneError(cell.source, "points", "must be a whole number >= 2", points)
+        check_count(points, MAX_BAND_POINTS, "frequencies", cell.source, "points")
         omegas = np.linspace(lo, hi, int(points))
     omegas = np.asarray(omegas, dtype=np.float64)
     c = _Cell(cell)

@@ -17,7 +17,7 @@ import time
 import warnings
 from pathlib import Path
 
-from . import __version__, progress
+from . import __version__, limits, progress
 from .kernels import FORMULATIONS, KernelError
 from .output import CannotWrite
 from .scene import Scene, SceneError, check_band, load_scene
@@ -585,6 +585,7 @@ def _bands(args) -> int:
             band = tuple(v * 2.0 * math.pi for v in band)
         if band[1] <= band[0]:
             raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
+        limits.check_bands_band(cell, band, COMMAND_LINE, "--band")
     result = bands(cell, band=band, points=args.points)
     if args.format == "json":
         print(output.dumps(output.bands_dict(result))[0])
@@ -814,6 +815,7 @@ def _main(argv: list[str] | None) -> int:
     shown = warnings.showwarning
     warnings.showwarning = _one_line_warning
     try:
+        limits.check_command_line(args, COMMAND_LINE)
         commands = {
             "solve": _solve,
             "frf": _frf,
