@@ -528,13 +528,7 @@ def _plot(args) -> int:
             file=sys.stderr,
         )
         return EXIT_FAILURE
-    if args.out.suffix[1:].lower() not in plot.formats():
-        raise SceneError(
-            COMMAND_LINE,
-            "--out",
-            f"unknown image format; use one of {sorted(plot.formats())}",
-            str(args.out),
-        )
+    _check_image_format(plot, args.out, "--out")
     _check_out_dir(args.out)
     scene = _scene(args.scene)
     if args.frf:
@@ -563,6 +557,17 @@ def _plot(args) -> int:
     return 0
 
 
+def _check_image_format(plot, path: Path, option: str) -> None:
+    """An image file's suffix must name a format matplotlib writes, before any work."""
+    if path.suffix[1:].lower() not in plot.formats():
+        raise SceneError(
+            COMMAND_LINE,
+            option,
+            f"unknown image format; use one of {sorted(plot.formats())}",
+            str(path),
+        )
+
+
 def _bands(args) -> int:
     from . import output
     from .bands import bands, cell_of
@@ -577,6 +582,7 @@ def _bands(args) -> int:
             raise SceneError(
                 COMMAND_LINE, "--plot", 'needs matplotlib: pip install "mstmm[plot]"'
             ) from None
+        _check_image_format(plot, args.plot, "--plot")
     cell = cell_of(_scene(args.scene))
     band = None
     if args.band is not None:

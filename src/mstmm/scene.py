@@ -70,6 +70,7 @@ This module only reads; it writes nothing anywhere.
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import gc
 import itertools
 import math
@@ -1524,9 +1525,23 @@ def _reject_unknown(
             raise SceneError(
                 source,
                 _path(prefix, key),
-                "unknown key (allowed: " + ", ".join(allowed) + ")",
+                "unknown key"
+                + _did_you_mean(key, allowed)
+                + " (allowed: "
+                + ", ".join(allowed)
+                + ")",
                 table[key],
             )
+
+
+def _did_you_mean(key: Any, allowed: Sequence[str]) -> str:
+    """``; did you mean 'kappa_GA'?`` for the allowed key closest to a mistyped one (case
+    aside, :func:`difflib.get_close_matches`), or "" when none is close."""
+    if not isinstance(key, str):
+        return ""
+    lowered = {name.lower(): name for name in allowed}
+    close = difflib.get_close_matches(key.lower(), list(lowered), n=1)
+    return f"; did you mean {lowered[close[0]]!r}?" if close else ""
 
 
 def _table(value: Any, field_path: str, source: str) -> Mapping[str, Any]:
