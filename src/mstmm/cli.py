@@ -593,6 +593,9 @@ def _bands(args) -> int:
             raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
         limits.check_bands_band(cell, band, COMMAND_LINE, "--band")
     result = bands(cell, band=band, points=args.points)
+    if result.buckling is not None:  # as solve: one line, no curves, exit 3
+        print(f"{cell.name}: {result.buckling}")
+        return EXIT_UNTRUSTED
     if args.format == "json":
         print(output.dumps(output.bands_dict(result))[0])
     elif args.format == "csv":
