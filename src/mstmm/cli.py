@@ -743,6 +743,8 @@ def _derive(args) -> int:
 #: attachments: its size grows about 16-fold per two attachments (count_ops: 631 with
 #: one, 13355 with three, 219670 with five).
 SHOW_FULL_MAX_ATTACHMENTS = 1
+#: ``mstmm show`` draws U_bar's zero pattern up to this size (a line of 2 n characters).
+SHOW_PATTERN_MAX = 60
 
 
 def _show(args) -> int:
@@ -751,6 +753,8 @@ def _show(args) -> int:
     import sympy as sp
 
     from mstmm.derive import MAX_DETERMINANT_SIZE, component_matrices, symbolic
+
+    from .structure import structure_of
 
     scene = _scene(args.scene)
     render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
@@ -769,18 +773,19 @@ def _show(args) -> int:
             f" Z' = A Z, its transfer E{s}(l) = exp(A l) in place of U_B(l), A ="
         )
         print(render(general_field(scene, s)))
-    der = symbolic(scene, evaluate=False)  # sizes and zero pattern only: fast for any n
+    der = structure_of(scene)  # sizes and zero pattern only, no SymPy product: fast for any n
     print("chain (x = 0 to L):")
-    print(textwrap.fill(" -> ".join(der.chain()), 100, subsequent_indent="  "))
-    print(f"Z_all ({der.Z_all.rows}) =")
-    print(textwrap.fill(", ".join(map(str, der.Z_all)), 100, subsequent_indent="  "))
-    print(f"Z_bar ({der.Z_bar.rows}, the unknowns left by the boundary conditions) =")
-    print(textwrap.fill(", ".join(map(str, der.Z_bar)), 100, subsequent_indent="  "))
-    size = der.U_bar.rows
-    pattern = der.sparsity()
-    nonzero = sum(row.count("X") for row in pattern)
+    print(textwrap.fill(" -> ".join(der.chain), 100, subsequent_indent="  "))
+    print(f"Z_all ({len(der.Z_all)}) =")
+    print(textwrap.fill(", ".join(der.Z_all), 100, subsequent_indent="  "))
+    print(f"Z_bar ({len(der.Z_bar)}, the unknowns left by the boundary conditions) =")
+    print(textwrap.fill(", ".join(der.Z_bar), 100, subsequent_indent="  "))
+    size = len(der.Z_bar)
+    nonzero = int(der.pattern.sum())
     print(f"U_bar: {size}x{size}, {nonzero} of {size * size} entries nonzero (X):")
-    for row in pattern:
+    if size > SHOW_PATTERN_MAX:
+        print(f"  (the pattern is drawn up to {SHOW_PATTERN_MAX}x{SHOW_PATTERN_MAX})")
+    for row in der.sparsity() if size <= SHOW_PATTERN_MAX else ():
         print("  " + row)
     if n > SHOW_FULL_MAX_ATTACHMENTS and not args.full:
         print(
