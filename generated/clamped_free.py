@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "068177614324a2638debf798d6d33a7b7c9f0ad1"
-NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
+SIGNATURE = "aaed1a615014ce2a94bc91d1df1752aa255ad253"
+NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6d70e49669fcbeb2ac4758003ceddb5b0335e00a"
-NUMERICS = "4feb77a5e9c23660b15e558f73d6e0c9ab9f8fe2"
+SIGNATURE = "6fd0e239f85940d61b09e317080e5abb377076dc"
+NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

@@ -32,8 +32,16 @@ from pathlib import Path
 
 import numpy as np
 
+from .buckling import compressed, probe_frequency
 from .kernels import Kernel, load_kernel, numerics
-from .scene import Scene, SceneError, load_scene, scene_from_dict, scene_to_dict
+from .limits import MAX_BAND_POINTS, check_bands_band, check_count
+from .scene import (
+    Scene,
+    SceneError,
+    load_scene,
+    scene_from_dict,
+    scene_to_dict,
+)
 from .topology import parameter_vector, topology_of
 
 __all__ = ["Bands", "Edge", "bands", "cell_of"]
@@ -87,7 +95,10 @@ class Bands:
     pi (none missed, multiplicities exact) and, between them, every band end at an
     interior k (a "coalescence": two pairs meet and turn complex), by ``_gaps``' argument
     (but for EDGE_SLIVER of a stretch beside each edge); False where that argument does
-    not settle a stretch (``notes`` says where; an edge found there is not certified)."""
+    not settle a stretch (``notes`` says where; an edge found there is not certified).
+    ``buckling``: a compressed cell whose periodic structure has no stable equilibrium
+    says so here in one line (:func:`periodic_buckling`; then no edge is searched, and
+    ``count_checked`` is False); None otherwise."""
 
     cell: Scene
     omega: np.ndarray
@@ -101,6 +112,7 @@ class Bands:
     damped: bool = False
     notes: list[str] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
+    buckling: str | None = None
 
     @property
     def length(self) -> float:
@@ -333,16 +345,21 @@ def bands(
     if not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0.0 or hi <= lo:
         raise SceneError(cell.source, "band", "must be finite with 0 <= lo < hi (rad/s)", [lo, hi])
     given = omegas is not None
+    check_bands_band(cell, (lo, hi), cell.source, "band")
     if omegas is None:
         if int(points) < 2:
             raise SceneError(cell.source, "points", "must be a whole number >= 2", points)
+        check_count(points, MAX_BAND_POINTS, "frequencies", cell.source, "points")
         omegas = np.linspace(lo, hi, int(points))
     omegas = np.asarray(omegas, dtype=np.float64)
     c = _Cell(cell)
     t1 = time.perf_counter()
     out = _dispersion(c, omegas, (lo, hi))
     out.timings = {"kernel": t1 - t0, "dispersion": time.perf_counter() - t1}
-    if edges and not c.damped:
+    out.buckling = periodic_buckling(c)
+    if out.buckling is not None:  # no edge of an unstable equilibrium
+        out.count_checked = False
+    elif edges and not c.damped:
         t3 = time.perf_counter()
         found, checked, notes = find_edges(c, lo, hi)
         found, gaps, more = _gaps(c, found, lo, hi)
@@ -376,6 +393,35 @@ def _waves(c: _Cell, omegas: np.ndarray) -> np.ndarray:
     for at in counted(spans(omegas.size), omegas.size, "dispersion"):
         out[at] = c.waves(omegas[at])
     return out
+
+
+#: Bloch phases k L = pi j / BUCKLING_PHASES (j = 1 .. BUCKLING_PHASES) at which a
+#: compressed cell is tested for buckling: a compression that destabilises only waves
+#: longer than 2 BUCKLING_PHASES cells (k L < pi / BUCKLING_PHASES) is not seen.
+BUCKLING_PHASES = 32
+
+
+def periodic_buckling(c: _Cell) -> str | None:
+    """Whether the infinite structure of compressed cells has no stable equilibrium, as one
+    line (None: stable, not compressed, or damped). As ``solve`` decides it
+    (:mod:`mstmm.buckling`): at a probe frequency far below every natural one, the cell
+    closed with a Bloch phase k L (:meth:`_Cell.phase_count`) has as many eigenvalues below
+    it as its stiffness has negative ones (no rigid motion for k L in (0, pi]); any is a
+    buckling mode exceeded. The phases tried are :data:`BUCKLING_PHASES`, longest waves
+    last."""
+    if c.damped or not compressed(c.p):
+        return None
+    probe = probe_frequency(c.kernel, c.p)
+    for j in range(BUCKLING_PHASES, 0, -1):
+        theta = math.pi * j / BUCKLING_PHASES
+        n = c.phase_count(probe, theta)
+        if n:
+            return (
+                f"buckled: the axial forces exceed the buckling load of the periodic structure"
+                f" (at k L = {theta:.4g}, {n} buckling mode(s) exceeded); it has no dispersion"
+                " about an unstable equilibrium"
+            )
+    return None
 
 
 def _dispersion(c: _Cell, omegas: np.ndarray, band: tuple[float, float]) -> Bands:

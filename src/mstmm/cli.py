@@ -27,7 +27,8 @@ def _load() -> None:
     """Import the modules that load numpy, scipy and numba (a second or more on a busy
     machine): called by :func:`main` once Ctrl-C and SIGTERM are handled, so that an
     interrupt during the imports prints one line, not a traceback."""
-    global FORMULATIONS, KernelError, CannotWrite, SceneError, check_band, load_scene
+    global FORMULATIONS, KernelError, CannotWrite, SceneError, check_band, load_scene, limits
+    from . import limits
     from .kernels import FORMULATIONS, KernelError
     from .output import CannotWrite
     from .scene import SceneError, check_band, load_scene
@@ -555,13 +556,7 @@ def _plot(args) -> int:
             file=sys.stderr,
         )
         return EXIT_FAILURE
-    if args.out.suffix[1:].lower() not in plot.formats():
-        raise SceneError(
-            COMMAND_LINE,
-            "--out",
-            f"unknown image format; use one of {sorted(plot.formats())}",
-            str(args.out),
-        )
+    _check_image_format(plot, args.out, "--out")
     target = _check_out_dir(args.out)  # a symbolic link: its target
     scene = _scene(args.scene)
     if args.frf:
@@ -594,6 +589,17 @@ def _plot(args) -> int:
     return 0
 
 
+def _check_image_format(plot, path: Path, option: str) -> None:
+    """An image file's suffix must name a format matplotlib writes, before any work."""
+    if path.suffix[1:].lower() not in plot.formats():
+        raise SceneError(
+            COMMAND_LINE,
+            option,
+            f"unknown image format; use one of {sorted(plot.formats())}",
+            str(path),
+        )
+
+
 def _bands(args) -> int:
     from . import output
     from .bands import bands, cell_of
@@ -608,6 +614,7 @@ def _bands(args) -> int:
             raise SceneError(
                 COMMAND_LINE, "--plot", 'needs matplotlib: pip install "mstmm[plot]"'
             ) from None
+        _check_image_format(plot, args.plot, "--plot")
     _out_format(args)
     cell = cell_of(_scene(args.scene))
     band = None
@@ -617,7 +624,11 @@ def _bands(args) -> int:
             band = tuple(v * 2.0 * math.pi for v in band)
         if band[1] <= band[0]:
             raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(args.band))
+        limits.check_bands_band(cell, band, COMMAND_LINE, "--band")
     result = bands(cell, band=band, points=args.points)
+    if result.buckling is not None:  # as solve: one line, no curves, exit 3
+        print(f"{cell.name}: {result.buckling}")
+        return EXIT_UNTRUSTED
     if args.format == "json":
         _emit(args, output.dumps(output.bands_dict(result))[0] + "\n")
     elif args.format == "csv":
@@ -765,6 +776,8 @@ def _derive(args) -> int:
 #: attachments: its size grows about 16-fold per two attachments (count_ops: 631 with
 #: one, 13355 with three, 219670 with five).
 SHOW_FULL_MAX_ATTACHMENTS = 1
+#: ``mstmm show`` draws U_bar's zero pattern up to this size (a line of 2 n characters).
+SHOW_PATTERN_MAX = 60
 
 
 def _show(args) -> int:
@@ -773,6 +786,8 @@ def _show(args) -> int:
     import sympy as sp
 
     from mstmm.derive import MAX_DETERMINANT_SIZE, component_matrices, symbolic
+
+    from .structure import structure_of
 
     scene = _scene(args.scene)
     render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
@@ -791,18 +806,19 @@ def _show(args) -> int:
             f" Z' = A Z, its transfer E{s}(l) = exp(A l) in place of U_B(l), A ="
         )
         print(render(general_field(scene, s)))
-    der = symbolic(scene, evaluate=False)  # sizes and zero pattern only: fast for any n
+    der = structure_of(scene)  # sizes and zero pattern only, no SymPy product: fast for any n
     print("chain (x = 0 to L):")
-    print(textwrap.fill(" -> ".join(der.chain()), 100, subsequent_indent="  "))
-    print(f"Z_all ({der.Z_all.rows}) =")
-    print(textwrap.fill(", ".join(map(str, der.Z_all)), 100, subsequent_indent="  "))
-    print(f"Z_bar ({der.Z_bar.rows}, the unknowns left by the boundary conditions) =")
-    print(textwrap.fill(", ".join(map(str, der.Z_bar)), 100, subsequent_indent="  "))
-    size = der.U_bar.rows
-    pattern = der.sparsity()
-    nonzero = sum(row.count("X") for row in pattern)
+    print(textwrap.fill(" -> ".join(der.chain), 100, subsequent_indent="  "))
+    print(f"Z_all ({len(der.Z_all)}) =")
+    print(textwrap.fill(", ".join(der.Z_all), 100, subsequent_indent="  "))
+    print(f"Z_bar ({len(der.Z_bar)}, the unknowns left by the boundary conditions) =")
+    print(textwrap.fill(", ".join(der.Z_bar), 100, subsequent_indent="  "))
+    size = len(der.Z_bar)
+    nonzero = int(der.pattern.sum())
     print(f"U_bar: {size}x{size}, {nonzero} of {size * size} entries nonzero (X):")
-    for row in pattern:
+    if size > SHOW_PATTERN_MAX:
+        print(f"  (the pattern is drawn up to {SHOW_PATTERN_MAX}x{SHOW_PATTERN_MAX})")
+    for row in der.sparsity() if size <= SHOW_PATTERN_MAX else ():
         print("  " + row)
     if n > SHOW_FULL_MAX_ATTACHMENTS and not args.full:
         print(
@@ -851,6 +867,7 @@ def _main(argv: list[str] | None) -> int:
     shown = warnings.showwarning
     warnings.showwarning = _one_line_warning
     try:
+        limits.check_command_line(args, COMMAND_LINE)
         commands = {
             "solve": _solve,
             "frf": _frf,

@@ -70,6 +70,7 @@ This module only reads; it writes nothing anywhere.
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import gc
 import itertools
 import math
@@ -1137,6 +1138,8 @@ def _no_coincidence(
 REPRESENTABLE_MIN = 1e-250
 REPRESENTABLE_MAX = 1e250
 _LOG_MIN, _LOG_MAX = math.log10(REPRESENTABLE_MIN), math.log10(REPRESENTABLE_MAX)
+#: The largest loss factor a beam or a segment may have (``PHYSICS_LIMITS``).
+LOSS_FACTOR_MAX = 10.0
 
 #: Products of the beam's parameters that the kernels and mode shapes form, as
 #: exponents of (length, EI, mass_per_length) (the first segment's EI and mass per
@@ -1339,6 +1342,80 @@ def check_representable(
         checks += _component_checks(P, scene, head, names)
     for name, factors in checks:
         _check_product(name, factors, source, point)
+    _check_physics(P, scene.beam, names, source, point)
+
+
+_WAVES = "beyond, the root search cannot resolve the beam's waves in a reasonable time"
+_DAMPING = (
+    "the most damped materials reach about 2; a loss factor of 1e300 ran for minutes and"
+    " found no root"
+)
+#: The beam physics the root search can carry, beyond what float64 can: each optional key
+#: of a beam or a segment (when not 0) as a dimensionless form, its exponents of (the
+#: total length, the segment's EI, its mass_per_length), and the least and most it may
+#: be. The cost of a search grows with the square root of each form (the pieces a walk
+#: cuts a segment into to resolve its shortest wave) or stalls outright beyond these
+#: (measured: minutes at 1e3 times the limit); every real beam lies far inside them.
+PHYSICS_LIMITS: dict[str, tuple[str, tuple[int, int, int], float, float, str]] = {
+    # a shear stiffness this soft (kappa G A over E I/L^2): waves 1e3 times slower
+    # than bending ones; stiffer is fine (Euler-Bernoulli is the limit)
+    "kappa_GA": ("kappa_GA length^2/EI", (2, -1, 0), 1e-6, math.inf, _WAVES),
+    # (radius of gyration / length)^2: 1 is already a block, not a beam
+    "rho_I": ("rho_I/(mass_per_length length^2)", (-2, 0, -1), 0.0, 1e6, _WAVES),
+    # (length / the bending boundary layer sqrt(EI/|P|))^2: 1e12 is a taut string of
+    # 1e6 boundary layers, or a compression 1e11 times the buckling load
+    "axial_force": ("|axial_force| length^2/EI", (2, -1, 0), 0.0, 1e12, _WAVES),
+    "foundation_k": ("foundation_k length^4/EI", (4, -1, 0), 0.0, 1e20, _WAVES),
+    "foundation_kG": ("foundation_kG length^2/EI", (2, -1, 0), 0.0, 1e12, _WAVES),
+    # hysteretic damping EI (1 + i eta): the most damped polymers reach eta ~ 2
+    "loss_factor": ("loss_factor", (0, 0, 0), 0.0, LOSS_FACTOR_MAX, _DAMPING),
+}
+
+
+def _physics_paths(beam: Beam, names: _Names, key: str) -> _Paths:
+    """The field path of ``key`` on each segment (``beam.<key>`` on a uniform beam)."""
+    if beam.segments:
+        return _Paths(len(beam.segments), lambda s: names.segment(s, key))
+    return _Paths(1, lambda s: f"beam.{key}")
+
+
+def _check_physics(P: np.ndarray, beam: Beam, names: _Names, source: str, point: str) -> None:
+    """Refuse an optional key of a beam or a segment whose dimensionless form lies beyond
+    :data:`PHYSICS_LIMITS` (0 means the key is off and passes), vectorised over rows."""
+    n = max(1, len(beam.segments))
+    rows = catalog.HEAD + catalog.SEGMENT_WIDTH * np.arange(n)
+    base = (np.log10(P[:, [0]]), np.log10(P[:, rows + 1]), np.log10(P[:, rows + 2]))
+    for key, (form, exponents, least, most, why) in PHYSICS_LIMITS.items():
+        column = rows + 1 + catalog.SEGMENT_KEYS.index(key)
+        values = np.abs(P[:, column])
+        with np.errstate(divide="ignore"):
+            own = np.log10(values)
+            log = own + sum(e * b for e, b in zip(exponents, base) if e)
+        floor = math.log10(least) if least > 0.0 else -math.inf
+        for bad, problem in (
+            ((own < _LOG_MIN) | (own > _LOG_MAX), _range_problem),
+            ((log < floor) | (log > math.log10(most)), None),
+        ):
+            bad &= values != 0.0
+            if not bad.any():
+                continue
+            row, s = (int(i) for i in np.argwhere(bad)[0])
+            where = f"at {point} {row}, " if point else ""
+            if problem is None:
+                side = f"at least {least:g}" if log[row, s] < floor else f"at most {most:g}"
+                text = f"{where}{form} is {10.0 ** log[row, s]:.3g}; it must be {side} ({why})"
+            else:
+                text = problem(where)
+            paths = _physics_paths(beam, names, key)
+            raise SceneError(source, paths[s], text, float(P[row, column[s]]))
+
+
+def _range_problem(where: str) -> str:
+    """What a value outside [REPRESENTABLE_MIN, REPRESENTABLE_MAX] is told."""
+    return (
+        f"{where}must lie in [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}]"
+        " (what float64 arithmetic can carry with room for the products formed)"
+    )
 
 
 def _check_product(name: str, factors: Sequence[_Factor], source: str, point: str) -> None:
@@ -1361,10 +1438,7 @@ def _check_product(name: str, factors: Sequence[_Factor], source: str, point: st
     where = f"at {point} {row}, " if point else ""
     value = at(np.broadcast_to(total, np.shape(total)))
     if len(factors) == 1 and factors[0].exponent == 1:
-        problem = (
-            f"{where}must lie in [{REPRESENTABLE_MIN:g}, {REPRESENTABLE_MAX:g}]"
-            " (what float64 arithmetic can carry with room for the products formed)"
-        )
+        problem = _range_problem(where)
     else:
         size_text = f"1e{value:+.0f}" if np.isfinite(value) else "0"
         problem = (
@@ -1388,12 +1462,19 @@ def _pieces(beam: Beam) -> list[tuple[float, float, float]]:
     return [(beam.length, beam.EI, beam.mass_per_length)]
 
 
-def check_band(scene: Scene, band: tuple[float, float], source: str, option: str) -> None:
+def check_band(
+    scene: Scene,
+    band: tuple[float, float],
+    source: str,
+    option: str,
+    most: int = MAX_BAND_MODES,
+) -> None:
     """Reject a band (rad/s) that the numerics cannot carry or search for ``scene``.
 
     ``omega^2``, ``mass_per_length omega^2`` and ``(lam L)^4`` of every segment at the
     top of the band must lie below :data:`REPRESENTABLE_MAX`, and the band may span at
-    most :data:`MAX_BAND_MODES` beam modes (``sum of lam l / pi`` over the segments).
+    most ``most`` (:data:`MAX_BAND_MODES`) beam modes (``sum of lam l / pi`` over the
+    segments).
     """
     lo, hi = band
     if hi <= 0.0:
@@ -1413,12 +1494,12 @@ def check_band(scene: Scene, band: tuple[float, float], source: str, option: str
             )
         scale = math.sqrt(math.sqrt(mu / ei)) * length
         span += scale * (math.sqrt(hi) - math.sqrt(lo)) / math.pi
-    if span > MAX_BAND_MODES:
+    if span > most:
         raise SceneError(
             source,
             option,
             f"the band spans about {span:.3g} beam modes (lam L / pi); at most"
-            f" {MAX_BAND_MODES} are searched: narrow it",
+            f" {most} are searched: narrow it",
             [lo, hi],
         )
 
@@ -1446,9 +1527,23 @@ def _reject_unknown(
             raise SceneError(
                 source,
                 _path(prefix, key),
-                "unknown key (allowed: " + ", ".join(allowed) + ")",
+                "unknown key"
+                + _did_you_mean(key, allowed)
+                + " (allowed: "
+                + ", ".join(allowed)
+                + ")",
                 table[key],
             )
+
+
+def _did_you_mean(key: Any, allowed: Sequence[str]) -> str:
+    """``; did you mean 'kappa_GA'?`` for the allowed key closest to a mistyped one (case
+    aside, :func:`difflib.get_close_matches`), or "" when none is close."""
+    if not isinstance(key, str):
+        return ""
+    lowered = {name.lower(): name for name in allowed}
+    close = difflib.get_close_matches(key.lower(), list(lowered), n=1)
+    return f"; did you mean {lowered[close[0]]!r}?" if close else ""
 
 
 def _table(value: Any, field_path: str, source: str) -> Mapping[str, Any]:

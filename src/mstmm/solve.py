@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from .kernels import Kernel
+from .limits import MAX_MODES, check_count
 from .scene import Scene, SceneError, check_band
 from .topology import topology_of
 from .undamped import Solution, solve_undamped
@@ -26,6 +27,7 @@ def checked_request(
         if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 1:
             raise SceneError(source, "modes", "must be a whole number >= 1", _plain(modes))
         modes = int(modes)
+        check_count(modes, MAX_MODES, "modes", source, "modes")
     if band is not None:
         try:
             lo, hi = (float(v) for v in band)

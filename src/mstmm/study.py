@@ -22,6 +22,7 @@ from mstmm import catalog
 
 from .events import read_events, sort_events
 from .kernels import Kernel, load_kernel
+from .limits import MAX_MODES, MAX_SWEEP_POINTS, check_count
 from .progress import Bar
 from .scene import CHECKS, Scene, SceneError, check_placement, check_representable
 from .topology import field_index, parameter_vector, topology_of
@@ -239,6 +240,9 @@ def sweep(
     The points run in chunks of a fraction of a second each: Ctrl-C stops the study
     between two of them (KeyboardInterrupt).
     """
+    check_count(modes, MAX_MODES, "modes", SOURCE, "modes")
+    for path, values in vary.items():
+        check_count(np.size(values), MAX_SWEEP_POINTS, "points", SOURCE, path)
     topology = topology_of(scene)
     P = parameter_matrix(scene, vary)
     if topology.damped or any(is_damping(scene, path) for path in vary):
@@ -433,6 +437,8 @@ def parse_range(text: str) -> np.ndarray:
             raise ValueError("lo and hi must be numbers and n an integer") from None
         if n < 1:
             raise ValueError(f"n = {n}: a range needs at least 1 point")
+        if n > MAX_SWEEP_POINTS:
+            raise ValueError(f"n = {n}: at most {MAX_SWEEP_POINTS:,} points (a limit of mstmm)")
         if not (math.isfinite(lo) and math.isfinite(hi)):
             raise ValueError("lo and hi must be finite")
         if kind.upper() == "LOG":

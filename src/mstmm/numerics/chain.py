@@ -86,12 +86,31 @@ def chain_own(st0, b4, st):
 
 
 @njit(cache=True)
-def chain_internal(st0, L, EI, mbar, out, n):
-    """Append the chain's own frequencies (beam point held; rad/s) to ``out[n:]``, by
-    bisection on its Sturm count (``chain_own``) below a Gershgorin bound; ``st0`` its
-    stages at b4 = 0. Returns the new ``n``."""
+def chain_own_many(st0, b4, counts):
+    """counts[i] <- ``chain_own(st0, b4[i], ...)`` for every shift b4[i] at once: the same
+    pivots in the same order (so the same counts, bit for bit), each stage's step done on
+    all the shifts together (numpy's loops in the plain-Python tier)."""
+    n = st0.shape[1]
+    j = n - 1
+    d = st0[2, j] - b4 * st0[4, j]
+    for i in range(n - 1, -1, -1):
+        if i < n - 1:
+            b = st0[1, i + 1]
+            d = (st0[2, i] - b4 * st0[4, i]) + st0[0, i + 1] - b * b / d
+        d = np.where(d == 0.0, -5e-324, d)
+        counts += (d < 0.0).astype(np.int64)
+    return counts
+
+
+#: Most bisection steps on one own frequency of a chain (the ulp of a normal double is
+#: reached in about 60; a subnormal one takes more).
+OWN_BISECTIONS = 200
+
+
+@njit(cache=True)
+def own_bound(st0):
+    """A bound above every own b4 of the chain (Gershgorin on M^-1 K, with a margin)."""
     stages = st0.shape[1]
-    st = np.empty_like(st0)
     top = 0.0
     for j in range(stages):
         row = abs(st0[2, j]) + abs(st0[1, j])
@@ -99,19 +118,38 @@ def chain_internal(st0, L, EI, mbar, out, n):
             row += abs(st0[0, j + 1]) + abs(st0[1, j + 1])
         if st0[4, j] > 0.0:
             top = max(top, row / st0[4, j])
-    top = 1.01 * top + 1e-300
-    for k in range(stages):
-        lo = 0.0
-        hi = top
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            if mid <= lo or mid >= hi:
-                break
-            if chain_own(st0, mid, st) > k:
-                hi = mid
+    return 1.01 * top + 1e-300
+
+
+@njit(cache=True)
+def chain_internal(st0, L, EI, mbar, out, n):
+    """Append the chain's own frequencies (beam point held; rad/s) to ``out[n:]``, by
+    bisection on its Sturm count below a Gershgorin bound, to the last bit; ``st0`` its
+    stages at b4 = 0. Returns the new ``n``.
+
+    Every frequency is bisected at once (``chain_own_many``: one sweep of the stages per
+    step for all of them), each exactly as alone: a chain of n stages costs
+    OWN_BISECTIONS sweeps of n x n, not n bisections of as many sweeps each."""
+    stages = st0.shape[1]
+    top = own_bound(st0)
+    lo = np.zeros(stages)
+    hi = np.full(stages, top)
+    active = np.arange(stages)  # the k still bisected
+    for _ in range(OWN_BISECTIONS):
+        mid = 0.5 * (lo[active] + hi[active])
+        going = (mid > lo[active]) & (mid < hi[active])
+        active = active[going]
+        if active.size == 0:
+            break
+        mid = mid[going]
+        counts = chain_own_many(st0, mid, np.zeros(active.size, dtype=np.int64))
+        for e in range(active.size):
+            if counts[e] > active[e]:
+                hi[active[e]] = mid[e]
             else:
-                lo = mid
-        out[n] = math.sqrt(0.5 * (lo + hi) * EI / mbar) / (L * L)
+                lo[active[e]] = mid[e]
+    for k in range(stages):
+        out[n] = math.sqrt(0.5 * (lo[k] + hi[k]) * EI / mbar) / (L * L)
         n += 1
     return n
 

@@ -157,12 +157,15 @@ def clamped_clamped_bound(EI, kGA, rhoI, mbar, tension, h):
         return top / (m1 + rhoI) if top > 0.0 else -math.inf
     k11 = kGA + tension
     k22 = kGA + EI * q
-    det = k11 * k22 - kGA * kGA
+    # k11 k22 - kGA^2 with the kGA^2 cancelled by hand: formed as the difference, a kGA
+    # 1e16 times EI q or more leaves 0 (no bound, and count_pieces doubled for ever)
+    det = kGA * (tension + EI * q) + tension * EI * q
     if k11 <= 0.0 or det <= 0.0:
         return -math.inf
     if rhoI <= 0.0:  # psi follows w' through the shear spring in series with bending
         return det / k22 / m1
-    # smallest root of m1 m2 l^2 - (k11 m2 + k22 m1) l + det = 0 (both roots positive)
+    # smallest root of m1 m2 l^2 - (k11 m2 + k22 m1) l + det = 0 (both roots positive);
+    # sqrt(b^2 - 4 m1 m2 det) as b sqrt(1 - r): b^2 overflows for a stiff enough kGA
     b = k11 * rhoI + k22 * m1
-    disc = b * b - 4.0 * m1 * rhoI * det
-    return 2.0 * det / (b + math.sqrt(max(disc, 0.0)))
+    r = 4.0 * m1 * rhoI * (det / b) / b
+    return 2.0 * det / (b + b * math.sqrt(max(1.0 - r, 0.0)))
