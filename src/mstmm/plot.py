@@ -48,6 +48,7 @@ from .kernels import load_kernel
 from .scene import Scene, SceneError
 from .solve import Solution, solve
 from .topology import parameter_vector, topology_of
+from .units import field_unit, frf_unit
 
 
 def _headless() -> bool:
@@ -539,25 +540,6 @@ def figure2(
     return _finish(fig, path)
 
 
-def _beam_units() -> dict[str, str]:
-    """The unit of each key of the beam and its segments: the kernel's three reference
-    quantities (``catalog.BEAM_PARAMETERS``: length, EI, mass per length), the loss
-    factor's none, and each physics key's as ``catalog.SEGMENT_PHYSICS`` declares it."""
-    reference = {"length": "m", "EI": "N m^2", "mass_per_length": "kg/m", "loss_factor": "-"}
-    return {**reference, **{key: unit for key, _check, unit in catalog.SEGMENT_PHYSICS}}
-
-
-def _field_unit(scene: Scene, path_name: str) -> str:
-    """The unit of a sweep field: the beam's (:func:`_beam_units`), or the key's as its
-    kind declares it (``catalog.Key.unit``)."""
-    name = re.sub(r"\[\d+\]$", "", path_name).rsplit(".", 1)[-1]
-    match = re.match(r"attachments\[(\d+)\]\.", path_name)
-    if match:
-        kind = scene.attachments[int(match.group(1))].kind
-        return next((k.unit for k in catalog.kind(kind).KEYS if k.name == name), "-")
-    return _beam_units().get(name, "-")
-
-
 def _own_frequencies(scene: Scene, i: int, path_name: str, values: np.ndarray):
     """The own frequencies (rad/s) of ``attachments[i]`` at each value of ``path_name``,
     one column each (NaN where it has fewer), or None when it has none (or the scene is
@@ -712,7 +694,7 @@ def veering(
     if buckled.any():
         _shade_buckled([ax], v, buckled, critical)
     _sweep_axes(ax, v, omega, log_ok=True)
-    ax.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
+    ax.set_xlabel(f"{path_name} [{field_unit(scene, path_name)}]")
     ax.set_ylabel(r"$\omega$ [rad/s]")
     ax.set_title(f"{scene.name}: natural frequencies against {path_name}", fontsize=10)
     sec = ax.secondary_yaxis("right", functions=(_to_hz, _to_rad))
@@ -735,7 +717,7 @@ def _damped_veering(
     _sweep_axes(ax_z, v, zeta, log_ok=False)
     ax_w.set_ylabel(r"damped frequency $\omega_d$ [rad/s]")
     ax_z.set_ylabel(r"damping ratio $\zeta = \sigma/|\omega|$ [-]")
-    ax_z.set_xlabel(f"{path_name} [{_field_unit(scene, path_name)}]")
+    ax_z.set_xlabel(f"{path_name} [{field_unit(scene, path_name)}]")
     ax_w.set_title(f"{scene.name}: damped modes against {path_name}", fontsize=10)
     sec = ax_w.secondary_yaxis("right", functions=(_to_hz, _to_rad))
     sec.set_ylabel("f [Hz]")
@@ -829,12 +811,12 @@ def frf_figure(
     damped = topology_of(scene).damped
     fig, ax_mag, ax_ph = _pair(ax, (8.0, 6.0), 2, sharex=True)
     f = _to_hz(omegas) if hz else np.asarray(omegas, dtype=float)
-    units = {_frf_unit(quantity, d.quantity, src.quantity) for d in dst}
+    units = {frf_unit(quantity, d.quantity.lower(), src.quantity.lower()) for d in dst}
     mags = []
     for j, d in enumerate(dst):
         name = f"{label}: {_frf_name(quantity, d)}" if label else _frf_name(quantity, d)
         if len(units) > 1:
-            name += f" [{_frf_unit(quantity, d.quantity, src.quantity)}]"
+            name += f" [{frf_unit(quantity, d.quantity.lower(), src.quantity.lower())}]"
         mags.append(np.abs(H[:, j]))
         ax_mag.semilogy(f, mags[-1], lw=1.2, label=name, gid="frf")
         phase = _frf_phase(H[:, j], omegas, marks, damped)
@@ -853,20 +835,6 @@ def frf_figure(
     ax_mag.set_title(f"{scene.name}: {quantity} to {src} (natural frequencies dotted)", fontsize=10)
     _legend(ax_mag)
     return _finish(fig, path)
-
-
-#: The unit of a response per unit load: (response, load) -> unit of the receptance; the
-#: mobility adds "/s", the accelerance "/s^2" to the response.
-_RESPONSE_UNITS = {"displacement": "m", "y": "m", "rotation": "rad", "theta": "rad"}
-_LOAD_UNITS = {"force": "N", "moment": "N m"}
-
-
-def _frf_unit(quantity: str, response: str, load: str) -> str:
-    """``m/N``, ``rad/(N m)``, ``m/s/N``, ``rad/s^2/(N m)``, ... of an frf ``quantity``."""
-    top = _RESPONSE_UNITS.get(response.lower(), "?")
-    top += {"receptance": "", "mobility": "/s", "accelerance": "/s^2"}[quantity]
-    bottom = _LOAD_UNITS.get(load.lower(), "?")
-    return f"{top}/({bottom})" if " " in bottom else f"{top}/{bottom}"
 
 
 #: The two Bloch pairs of a cell (``Bands.k``'s columns): the more attenuated first.
