@@ -17,6 +17,7 @@ import mstmm
 pytest.importorskip("matplotlib")
 
 from mstmm import plot  # noqa: E402
+from mstmm.units import field_unit  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -469,7 +470,7 @@ def test_every_sweep_field_has_its_unit():
             ],
         }
     )  # fmt: skip
-    units = {path: plot._field_unit(scene, path) for path in _paths(scene)}
+    units = {path: field_unit(scene, path) for path in _paths(scene)}
     assert [p for p, u in units.items() if u == "-"] == ["beam.loss_factor"]
     assert units["beam.axial_force"] == units["beam.kappa_GA"] == "N"
     assert units["beam.foundation_k"] == "N/m^2" and units["beam.rho_I"] == "kg m"
