@@ -843,8 +843,17 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     _warn(" ".join(str(message).split()))
 
 
+#: BLAS thread pools the command keeps to one thread unless the user sets them: mstmm's
+#: own linear algebra is on small matrices (the numerics are numba's), where OpenBLAS's
+#: extra threads only spin: 0.2 s of a second core on a first solve, taken from other
+#: work on a busy machine (benchmarks.busy), for no gain in time.
+SINGLE_THREADED_BLAS = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``mstmm`` command."""
+    for name in SINGLE_THREADED_BLAS:  # before numpy loads
+        os.environ.setdefault(name, "1")
     try:
         with sigterm_as_interrupt():
             _load()
