@@ -54,6 +54,8 @@ def fresh_process(monkeypatch):
     monkeypatch.setattr(interpret._Process, "compiled", False)
     monkeypatch.setattr(interpret._Process, "spent", 0.0)
     monkeypatch.setattr(interpret._Process, "budget", interpret.DEFAULT_BUDGET)
+    # the budget of a warm machine, whether or not this session compiled the kernel yet
+    monkeypatch.setattr(interpret, "COLD_BUDGET", interpret.DEFAULT_BUDGET)
     for kernel in kernels._LOADED.values():
         monkeypatch.setattr(kernel, "warmed", set())
 

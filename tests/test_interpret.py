@@ -136,3 +136,18 @@ def test_a_run_as_python_whose_estimate_proves_wrong_goes_on_compiled(
     # the whole search as Python takes minutes here: the run stopped at its allowance
     # (twice the budget), one piece of a segment past it
     assert interpret._Process.spent < 2.0 * 0.05 + 0.5
+
+
+def test_a_kernel_not_compiled_yet_gets_the_cold_budget(fresh_process, monkeypatch, data_dir):
+    """Where numba's cache lacks the kernel's characteristic function, compiling is the
+    other choice (seconds), not loading: work estimated past the budget but within
+    ``COLD_BUDGET`` runs as Python; the same work on a compiled kernel does not."""
+    monkeypatch.setattr(interpret, "COLD_BUDGET", 1.5)
+    scene = mstmm.load_scene(data_dir / "wu_chou_1998.toml")
+    kernel = mstmm.kernel_for(scene)
+    p = mstmm.parameter_vector(scene)
+    modes = int(1.0 / interpret.estimated_cost(1, kernel.attachments(p)))  # about 1 s
+    monkeypatch.setattr(kernel, "_was_cold", True)
+    assert kernel.interprets(p, modes)
+    monkeypatch.setattr(kernel, "_was_cold", False)
+    assert not kernel.interprets(p, modes)

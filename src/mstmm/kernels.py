@@ -222,6 +222,7 @@ class Kernel:
                     return interpret.timed_call(python)
             except interpret.Overrun:  # the estimate was wrong: compiled, from the start
                 interpret.exhaust()
+                interpret.mark_compiled()
         return compiled()
 
     def delta(
