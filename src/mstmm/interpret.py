@@ -152,11 +152,6 @@ def allowance(cold: bool = False) -> float:
     return 2.0 * max(limit - _Process.spent, 0.1 * limit)
 
 
-def exhaust() -> None:
-    """Spend the rest of the budget: after an :class:`Overrun`, this process runs compiled."""
-    _Process.spent = max(_Process.spent, _Process.budget, COLD_BUDGET)
-
-
 #: When a run as Python must stop (``deadline``; none outside one).
 _DEADLINE = [math.inf]
 #: Functions of the numerics that a run as Python calls once per piece of a segment: the

@@ -220,9 +220,8 @@ class Kernel:
             try:
                 with interpret.deadline(interpret.allowance(self._cold())):
                     return interpret.timed_call(python)
-            except interpret.Overrun:  # the estimate was wrong: compiled, from the start
-                interpret.exhaust()
-                interpret.mark_compiled()
+            except interpret.Overrun:  # the estimate was wrong: compiled, from the start,
+                interpret.mark_compiled()  # and so is the rest of this process's work
         return compiled()
 
     def delta(
