@@ -19,6 +19,7 @@ import numpy as np
 import sympy as sp
 
 from mstmm import catalog
+from mstmm.physics import segment as segment_terms
 
 from . import descriptor
 from . import symbols as S
@@ -48,23 +49,28 @@ def general_segments(scene) -> list[int]:
     return [s for s, seg in enumerate(segments, 1) if any(getattr(seg, k, 0.0) for k in keys)]
 
 
+#: The symbol of each role's sum in ``segments.general.field``.
+ROLE_SYMBOLS = {"shear": "kGA", "rotary": "rhoI", "tension": "t", "rotational": "r"}
+ROLE_SYMBOLS |= {"foundation": "k_w"}
+
+
 def general_field(scene, s: int) -> sp.Matrix:
-    """``A`` of segment s (from 1) with a symbol for each term it has (paper symbols
-    ``EI``, ``mbar``, ``omega`` for a uniform beam, indexed by the segment otherwise)."""
+    """``A`` of segment s (from 1) with a symbol for each term it has (its ``SYMBOL``; paper
+    symbols ``EI``, ``mbar``, ``omega`` for a uniform beam, indexed by the segment
+    otherwise), summed by role (``physics.segment.ROLES``)."""
     b = scene.beam
     segments = getattr(b, "segments", ()) or ()
     seg = segments[s - 1] if segments else b
     tag = f"_{s}" if segments else ""
-    names = {"kappa_GA": "kGA", "rho_I": "rhoI", "axial_force": "P"}
-    names |= {"foundation_k": "k_w", "foundation_kG": "k_G"}
     v = {
         "EI": sp.Symbol(f"EI{tag}", positive=True),
         "mbar": sp.Symbol(f"mbar{tag}", positive=True),
         "w2": S.omega**2,
     }
-    for key, name in names.items():
-        if getattr(seg, key, 0.0):
-            v[name] = sp.Symbol(f"{name}{tag}", real=True)
+    for term in segment_terms.terms():
+        if getattr(seg, term.name, 0.0):
+            name = ROLE_SYMBOLS[term.role]
+            v[name] = v.get(name, 0) + sp.Symbol(f"{term.symbol}{tag}", real=True)
     return general.field(v)
 
 

@@ -564,7 +564,7 @@ def _beam_functions() -> list[tuple[str, str, list, bool]]:
     U_nd = beam.transfer_matrix_nondimensional(S.beta, S.rho, S.K)
     K, F = special.KRYLOV, special.COMPOUND
     f = special.Reduced("f", beam.clamped_clamped_equation(special.x))
-    fields = "e, m, w2, kGA, rhoI, P, k_w, k_G, A"
+    fields = "e, m, w2, kGA, rhoI, t, r, k_w, A"
     zero, zero_c, one_c = lit("0.0"), lit("0.0j"), lit("1.0 + 0.0j")
     x, shift, E = sp.symbols("x shift E")
     Ks = [sp.Symbol(k.name) for k in K]
@@ -626,7 +626,7 @@ def numerics_source() -> str:
 def _general_field_lines(shear: bool) -> list:
     """``A`` of the general segment's differential equation (``general.field``), filled
     entry by entry from its dimensionless values."""
-    names = ("e", "m", "w2", "kGA", "rhoI", "P", "k_w", "k_G")
+    names = ("e", "m", "w2", "kGA", "rhoI", "t", "r", "k_w")
     v = dict(zip(names, sp.symbols(names)))
     values = {"EI": v["e"], "mbar": v["m"], **v, "kGA": v["kGA"] if shear else None}
     A = general.field(values)

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "aaed1a615014ce2a94bc91d1df1752aa255ad253"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "2a64c0e8fd4b5781b952c87abb2d647adc5834c5"
+NUMERICS = "9c16cffb4cd54c8efe8f1927f6d8dfe1e87e0fc4"
 KINDS = ()
 DAMPERS = {}
 

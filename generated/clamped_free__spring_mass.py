@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6fd0e239f85940d61b09e317080e5abb377076dc"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "88ba6e343bf27395b9e4ef6c2bbb40614db9e123"
+NUMERICS = "9c16cffb4cd54c8efe8f1927f6d8dfe1e87e0fc4"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

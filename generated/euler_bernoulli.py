@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "283946c4e5410968d5ba278b69ce8f25f3854adb"
+DIGEST = "7dcb21a2641d263c23d0dbd224b7cb38e6af6dfa"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815
@@ -345,7 +345,7 @@ def node_stiffness_step(Zc, kY, kT):
     Zc[5] = kT*v4 + kY*t0 + kY*v1 + v5
 
 
-def general_field_rigid(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
+def general_field_rigid(e, m, w2, kGA, rhoI, t, r, k_w, A):
     A[0, 0] = 0.0
     A[0, 1] = 1.0
     A[0, 2] = 0.0
@@ -355,7 +355,7 @@ def general_field_rigid(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
     A[1, 2] = 1.0/e
     A[1, 3] = 0.0
     A[2, 0] = 0.0
-    A[2, 1] = P + k_G - rhoI*w2
+    A[2, 1] = r - rhoI*w2 + t
     A[2, 2] = 0.0
     A[2, 3] = 1.0
     A[3, 0] = -k_w + m*w2
@@ -364,22 +364,21 @@ def general_field_rigid(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
     A[3, 3] = 0.0
 
 
-def general_field_shear(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
-    t0 = P + k_G
-    t1 = 1.0/(kGA + t0)
-    t2 = kGA*t1
+def general_field_shear(e, m, w2, kGA, rhoI, t, r, k_w, A):
+    t0 = 1.0/(kGA + t)
+    t1 = kGA*t0
     A[0, 0] = 0.0
-    A[0, 1] = t2
+    A[0, 1] = t1
     A[0, 2] = 0.0
-    A[0, 3] = -t1
+    A[0, 3] = -t0
     A[1, 0] = 0.0
     A[1, 1] = 0.0
     A[1, 2] = 1.0/e
     A[1, 3] = 0.0
     A[2, 0] = 0.0
-    A[2, 1] = -rhoI*w2 + t0*t2
+    A[2, 1] = r - rhoI*w2 + t*t1
     A[2, 2] = 0.0
-    A[2, 3] = t2
+    A[2, 3] = t1
     A[3, 0] = -k_w + m*w2
     A[3, 1] = 0.0
     A[3, 2] = 0.0

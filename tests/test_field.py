@@ -241,13 +241,80 @@ def test_declared_fields_are_the_equations_written_here():
     for _ in range(20):
         EI, kGA, rhoI, mbar, w2 = rng.uniform(0.5, 3.0, 5) * [1, 300, 1e-3, 1, 1e3]
         P, kw, kG = rng.uniform(-5.0, 50.0), rng.uniform(0, 100), rng.uniform(0, 10)
-        values = dict(EI=EI, kGA=kGA, rhoI=rhoI, mbar=mbar, P=P, k_w=kw, k_G=kG, w2=w2)
+        values = dict(EI=EI, kGA=kGA, rhoI=rhoI, mbar=mbar, t=P + kG, k_w=kw, w2=w2)
         got = np.array(general.field(values).evalf(), dtype=float)
         np.testing.assert_allclose(got, general_A(EI, kGA, rhoI, mbar, P, kw, kG, w2), rtol=1e-14)
         plain = dict(EI=EI, mbar=mbar, w2=w2)
         assert (general.field(plain) - euler_bernoulli.field(plain)).is_zero_matrix
     symbols = {name: sp.Symbol(name, positive=True) for name in ("EI", "mbar", "w2")}
     assert sp.simplify(general.field(symbols) - euler_bernoulli.field(symbols)) == sp.zeros(4, 4)
+
+
+def _euler_lagrange_field(terms, shear: bool):
+    """``A`` of ``Z' = A Z`` (Z = [w, psi, M, Q]) derived here by SymPy from the energies
+    per length the term files declare (their POTENTIAL and KINETIC quadratic forms, each
+    times a symbol), plus bending ``EI psi'^2`` and ``mbar w^2`` kinetic: with shear the
+    canonical (Hamiltonian) form of L(w, psi, w', psi'), M = dL/dpsi', Q = -dL/dw';
+    without, psi = w' and Ostrogradsky's form of L(w, w', w''), M = dL/dw'',
+    Q = M' - dL/dw' (the signs of paper Eq. (1))."""
+    import sympy as sp
+
+    w, w1, psi, psi1, w2, EI, mbar = sp.symbols("w w1 psi psi1 w2 EI mbar")
+    field = {"w": w, "w'": w1, "psi": psi, "psi'": psi1}
+    values = {t.name: sp.Symbol(t.name) for t in terms}
+    V = EI * psi1**2 / 2
+    T = mbar * w**2 / 2
+    for t in terms:
+        module = __import__(f"mstmm.physics.terms.{t.file.split('/')[-1][:-3]}", fromlist=["x"])
+        for (a, b), c in getattr(module, "POTENTIAL", {}).items():
+            V += values[t.name] * c * field[a] * field[b] * (1 if a == b else 2) / 2
+        for (a, b), c in getattr(module, "KINETIC", {}).items():
+            T += values[t.name] * c * field[a] * field[b] * (1 if a == b else 2) / 2
+    L = V - w2 * T  # the amplitude equations at omega^2 = w2
+    Y, th, M, Q = sp.symbols("Y th M Q")
+    if shear:
+        pw, pp = sp.diff(L, w1), sp.diff(L, psi1)
+        sol = sp.solve([sp.Eq(pw, -Q), sp.Eq(pp, M)], [w1, psi1], dict=True)[0]
+        dM = sp.diff(L, psi).subs(sol)
+        dQ = -sp.diff(L, w).subs(sol)
+        rows = [sol[w1], sol[psi1], dM, dQ]
+    else:
+        L = L.subs(psi, w1).subs(psi1, sp.Symbol("w2dd"))
+        w2dd = sp.Symbol("w2dd")
+        # M = dL/dw'', M' = Q + dL/dw', Q' = dL/dw (amplitudes: -omega^2 terms in L)
+        sol = sp.solve(sp.Eq(sp.diff(L, w2dd), M), w2dd, dict=True)[0]
+        rows = [w1, sol[w2dd], Q + sp.diff(L, w1), -sp.diff(L, w)]
+    sub = {w: Y, psi: th}
+    if not shear:
+        sub = {w: Y, w1: th}
+    rows = [sp.expand(sp.sympify(r).subs(sub)) for r in rows]
+    A = sp.Matrix([[sp.diff(r, z) for z in (Y, th, M, Q)] for r in rows])
+    return A, values, EI, mbar, w2
+
+
+@pytest.mark.parametrize("shear", [True, False])
+def test_the_field_is_the_euler_lagrange_equations_of_the_declared_terms(shear):
+    """``derive/segments/general.py`` writes A from the role sums; SymPy's Euler-Lagrange
+    equations of the summed energies the term files declare give the same A, term by
+    term (every file of ``mstmm/physics/terms/``, and a rotational foundation psi^2 that
+    no built-in term has, through its role)."""
+    import sympy as sp
+    from mstmm.derive.segments import general
+
+    from mstmm.physics import segment as segment_terms
+
+    terms = [t for t in segment_terms.terms() if shear or t.role != "shear"]
+    A, values, EI, mbar, w2 = _euler_lagrange_field(terms, shear)
+    sums: dict = {}
+    symbol = {"shear": "kGA", "rotary": "rhoI", "tension": "t", "rotational": "r"}
+    symbol["foundation"] = "k_w"
+    for t in terms:
+        sums[symbol[t.role]] = sums.get(symbol[t.role], 0) + values[t.name]
+    declared = general.field({"EI": EI, "mbar": mbar, "w2": w2, **sums})
+    assert sp.simplify(A - declared) == sp.zeros(4, 4)
+    r = sp.Symbol("r")
+    with_r = general.field({"EI": EI, "mbar": mbar, "w2": w2, **sums, "r": r})
+    assert sp.simplify(with_r - declared)[2, 1] == r  # psi^2 stiffness: M' gains r psi
 
 
 def test_a_field_with_the_other_zero_pattern_is_refused(monkeypatch):

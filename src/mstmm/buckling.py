@@ -21,11 +21,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .catalog import HEAD, SEGMENT_WIDTH
+from .catalog import HEAD, SEGMENT_COLUMNS, SEGMENT_WIDTH
 from .kernels import Kernel
+from .physics import segment as segment_terms
 
-#: Column of the axial force in a segment row (``catalog.SEGMENT_KEYS``).
-AXIAL = 6
+#: Column of the axial force (the compression the load factor scales) in a segment row.
+AXIAL = SEGMENT_COLUMNS[segment_terms.compression_key()]
 #: The test frequency, as a fraction of the beam's frequency scale sqrt(EI_0 / (mbar_0
 #: L^4)) and of the lowest own frequency of a component.
 PROBE = 1e-9
@@ -72,11 +73,17 @@ def shear_limit(p: np.ndarray) -> float:
     compressed segment has a shear stiffness. A Timoshenko column buckles below it
     (``P_E / (1 + P_E / kappa_GA) < kappa_GA``), so the search never needs to go past."""
     rows = np.asarray(p[HEAD : HEAD + SEGMENT_WIDTH * int(p[3])]).reshape(-1, SEGMENT_WIDTH)
-    kGA, P, kG = rows[:, 4], rows[:, AXIAL], rows[:, 8]
+    values = segment_terms.row_values(rows, SEGMENT_COLUMNS)
+    P = rows[:, AXIAL]
+    kGA = segment_terms.total(values, "shear")
     shear = (kGA > 0.0) & (P < 0.0)
     if not shear.any():
         return math.inf
-    return float(np.min((kGA[shear] + kG[shear]) / -P[shear])) * (1.0 - 1e-9)
+    rest = kGA  # g without the compression the load factor scales
+    for t in segment_terms.of_role("tension"):
+        if t.name != segment_terms.compression_key():
+            rest = rest + values[t.name]
+    return float(np.min(rest[shear] / -P[shear])) * (1.0 - 1e-9)
 
 
 def compressed(p: np.ndarray) -> bool:

@@ -29,6 +29,9 @@ from types import ModuleType
 
 import numpy as np
 
+from mstmm.physics import segment as segment_terms
+from mstmm.physics.scales import UNIT_SCALES
+
 #: State vector of planar bending, paper Eq. (1): displacement, rotation, moment, shear.
 STATE = ("Y", "theta", "M", "Q")
 
@@ -44,15 +47,12 @@ KNOWN_ZERO: dict[str, tuple[int, int]] = {
 #: and mass per length are the reference units of the kernel).
 BEAM_PARAMETERS = ("L", "EI", "mbar")
 
-#: A segment's physics beyond Euler-Bernoulli (issue 22; ``derive/segments/general.py``):
-#: scene key, check, unit. Each defaults to 0, which means the term is absent
-#: (``kappa_GA`` 0: no shear deformation). Tension is a positive ``axial_force``.
-SEGMENT_PHYSICS: tuple[tuple[str, str, str], ...] = (
-    ("kappa_GA", "nonnegative", "N"),
-    ("rho_I", "nonnegative", "kg m"),
-    ("axial_force", "finite", "N"),
-    ("foundation_k", "nonnegative", "N/m^2"),
-    ("foundation_kG", "nonnegative", "N"),
+#: A segment's physics beyond Euler-Bernoulli: its terms (``mstmm/physics/terms/``, one
+#: file each; ``mstmm.physics.segment``): scene key, check, unit, in column order. Each
+#: defaults to 0, which means the term is absent (``kappa_GA`` 0: no shear deformation).
+#: Tension is a positive ``axial_force``.
+SEGMENT_PHYSICS: tuple[tuple[str, str, str], ...] = tuple(
+    (t.name, t.check, t.unit) for t in segment_terms.terms()
 )
 #: The segment row's values, after x_end: the scene keys of a segment in their order.
 SEGMENT_KEYS: tuple[str, ...] = (
@@ -63,27 +63,18 @@ SEGMENT_KEYS: tuple[str, ...] = (
 )
 
 #: Layout of the head of the parameter vector (docs/components.md, section 4):
-#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G)
-#: * n_seg, (tag, x, offset) * n_ev, data...]`` (eta: the segment's loss factor, read by
-#: damped kernels only; the physics of ``SEGMENT_PHYSICS``, all 0 for Euler-Bernoulli).
+#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) * n_seg, (tag, x,
+#: offset) * n_ev, data...]`` (eta: the segment's loss factor, read by damped kernels
+#: only; the terms of ``SEGMENT_PHYSICS``, all 0 for Euler-Bernoulli: ``SEGMENT_COLUMNS``).
 HEAD = 5
 SEGMENT_WIDTH = 1 + len(SEGMENT_KEYS)
 EVENT_WIDTH = 3
-
-#: Exponents (L, EI_0, mbar_0) that make a value of each SI unit dimensionless:
-#: value * L^a EI_0^b mbar_0^c (the time unit is L^2 sqrt(mbar_0 / EI_0)).
-UNIT_SCALES: dict[str, tuple[Fraction, Fraction, Fraction]] = {
-    unit: tuple(Fraction(e) for e in exponents)  # type: ignore[misc]
-    for unit, exponents in {
-        "m": (-1, 0, 0),
-        "N/m": (3, -1, 0),
-        "kg": (-1, 0, -1),
-        "N m/rad": (1, -1, 0),
-        "kg m^2": (-3, 0, -1),
-        "N s/m": (1, Fraction(-1, 2), Fraction(-1, 2)),
-        "N m s/rad": (-1, Fraction(-1, 2), Fraction(-1, 2)),
-    }.items()
-}
+#: The column of each value in a segment row (the row of segment s starts at ``HEAD +
+#: SEGMENT_WIDTH * s``): its right end, then :data:`SEGMENT_KEYS`. The numerics read these
+#: names (``mstmm.numerics.layout``), never numeric offsets.
+SEGMENT_COLUMNS: dict[str, int] = {"x_end": 0, **{k: 1 + j for j, k in enumerate(SEGMENT_KEYS)}}
+#: The first column of the terms (``SEGMENT_PHYSICS``) in a segment row.
+TERMS_COLUMN = SEGMENT_COLUMNS[SEGMENT_PHYSICS[0][0]] if SEGMENT_PHYSICS else SEGMENT_WIDTH
 
 
 def unknown(kind: str) -> tuple[int, int]:

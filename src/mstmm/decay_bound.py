@@ -63,6 +63,7 @@ import math
 from dataclasses import dataclass
 
 from mstmm import catalog
+from mstmm.physics import segment as segment_terms
 
 
 @dataclass(frozen=True)
@@ -131,9 +132,10 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     ``k_R`` (with their loss factor) or to ``m``: the proof holds."""
     beam = scene.beam
     segs = beam.segments or (beam,)
-    if any(getattr(s, "axial_force", 0.0) < 0.0 for s in segs):
+    tension = segment_terms.of_role("tension")
+    if any(getattr(s, t.name, 0.0) < 0.0 for s in segs for t in tension):
         return None  # a compression: k_R may exceed EI ||u''||^2 and k_I its eta share
-    shear = any(getattr(s, "kappa_GA", 0.0) > 0.0 for s in segs)
+    shear = any(getattr(s, t.name, 0.0) > 0.0 for s in segs for t in segment_terms.of_role("shear"))
     EI = min(s.EI for s in segs)
     mbar = min(s.mass_per_length for s in segs)
     eta = max(float(getattr(s, "loss_factor", 0.0) or 0.0) for s in segs)

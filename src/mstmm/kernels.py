@@ -33,7 +33,7 @@ from typing import NamedTuple
 import numpy as np
 
 from mstmm.cachedir import cache_dir
-from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, event_rows
+from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
@@ -721,7 +721,7 @@ def _general_segments(p: np.ndarray) -> bool:
     makes the interpreted search dearer: ``interpret.GENERAL_SEGMENT_FACTOR``)."""
     n = int(p[3])
     rows = np.asarray(p[HEAD : HEAD + SEGMENT_WIDTH * n]).reshape(n, SEGMENT_WIDTH)
-    return bool(np.any(rows[:, 4:] != 0.0))
+    return bool(np.any(rows[:, TERMS_COLUMN:] != 0.0))
 
 
 def _params(p) -> np.ndarray:

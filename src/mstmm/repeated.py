@@ -24,6 +24,7 @@ import numpy as np
 from . import compiling
 from .catalog import KNOWN_ZERO, unknown
 from .kernels import Kernel, load_kernel, numerics
+from .physics import segment as segment_terms
 from .scan import BAND_EDGE, Root, Roots
 from .scene import Scene, scene_from_dict, scene_to_dict
 from .topology import parameter_vector, topology_of
@@ -146,13 +147,12 @@ def growth(cell: Scene, w: float) -> float:
     (rad/s): the sum over its segments of lam l, lam = sqrt(T / EI) + ((mbar w^2 + k_w) /
     EI)^(1/4) with T the tension-like terms (a tensile axial force, a Pasternak layer) and
     k_w a Winkler foundation; shear deformation, rotary inertia and compression only lower
-    it."""
+    it (``physics.segment.wavenumber_bound``, from the roles of its terms)."""
     b = cell.beam
     total = 0.0
     for s in b.segments or (b,):
-        T = max(s.axial_force, 0.0) + max(s.foundation_kG, 0.0)
-        k_w = abs(s.foundation_k)
-        lam = math.sqrt(T / s.EI) + ((s.mass_per_length * w * w + k_w) / s.EI) ** 0.25
+        values = {t.name: getattr(s, t.name, 0.0) for t in segment_terms.terms()}
+        lam = segment_terms.wavenumber_bound(values, s.EI, s.mass_per_length, w)
         total += lam * s.length
     return total
 

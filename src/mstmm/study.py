@@ -19,6 +19,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from mstmm import catalog
+from mstmm.physics import segment as segment_terms
 
 from .events import read_events, sort_events
 from .kernels import Kernel, load_kernel
@@ -174,25 +175,27 @@ def parameter_matrix(scene: Scene, vary: Mapping[str, np.ndarray]) -> np.ndarray
 
 
 def _check_shear_limit(scene: Scene, values: Mapping[str, np.ndarray], P: np.ndarray) -> None:
-    """Every Timoshenko segment short of its shear limit ``kappa_GA + axial_force +
-    foundation_kG > 0`` at every point (as the scene file requires of its own values)."""
+    """Every Timoshenko segment short of its shear limit at every point
+    (``physics.segment.shear_limit_broken``, as the scene file requires of its own
+    values)."""
     n_seg = int(P[0, 3])
     rows = P[:, catalog.HEAD : catalog.HEAD + catalog.SEGMENT_WIDTH * n_seg]
     rows = rows.reshape(len(P), n_seg, catalog.SEGMENT_WIDTH)
-    kGA, g = rows[:, :, 4], rows[:, :, 4] + rows[:, :, 6] + rows[:, :, 8]
-    bad = (kGA > 0.0) & (g <= 0.0)
+    bad = segment_terms.shear_limit_broken(segment_terms.row_values(rows, catalog.SEGMENT_COLUMNS))
     if not bad.any():
         return
     i, seg = (int(v) for v in np.argwhere(bad)[0])
     prefix = f"beam.segments[{seg}]" if scene.beam.segments else "beam"
-    names = [f"{prefix}.{key}" for key in ("axial_force", "kappa_GA", "foundation_kG")]
+    compression = segment_terms.compression_key()
+    keys = [compression] + [k for k in (t.name for t in segment_terms.terms()) if k != compression]
+    names = [f"{prefix}.{key}" for key in keys]
     path = next((name for name in names if name in values), names[0])
+    column = catalog.SEGMENT_COLUMNS[compression]
     raise SceneError(
         SOURCE,
         path,
-        f"at point {i}, a compression of kappa_GA + foundation_kG or more buckles the segment"
-        " in shear (kappa_GA + axial_force + foundation_kG must be > 0)",
-        float(values[path][i]) if path in values else float(rows[i, seg, 6]),
+        f"at point {i}, {segment_terms.shear_limit_message()}",
+        float(values[path][i]) if path in values else float(rows[i, seg, column]),
     )
 
 

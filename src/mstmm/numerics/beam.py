@@ -79,12 +79,14 @@ def clamped_clamped_count(x):
 
 
 @njit(cache=True)
-def general_field(e, m, w2, kGA, rhoI, P, k_w, k_G, A):
+def general_field(e, m, w2, kGA, rhoI, t, r, k_w, A):
     """A of Z' = A Z, Z = [Y, psi, M, Q], for a segment of ``derive/segments/general.py``
     in units L = EI_0 = mbar_0 = 1: e = EI / EI_0, m = mbar / mbar_0, w2 = (lam_0 L)^4 (the
-    squared frequency), kGA, rhoI, P, k_w, k_G dimensionless (kGA = 0: no shear
-    deformation). Real or complex (a loss factor in e, kGA, k_w, k_G), like its arguments."""
+    squared frequency), and the sums of its terms by role (``physics.segment.ROLES``):
+    the shear stiffness kGA (0: no shear deformation), the rotary inertia rhoI, the
+    tension t, the rotational foundation r and the Winkler foundation k_w, dimensionless.
+    Real or complex (a loss factor in the stiffnesses), like its arguments."""
     if kGA == 0.0:
-        general_field_rigid(e, m, w2, kGA, rhoI, P, k_w, k_G, A)
+        general_field_rigid(e, m, w2, kGA, rhoI, t, r, k_w, A)
     else:
-        general_field_shear(e, m, w2, kGA, rhoI, P, k_w, k_G, A)
+        general_field_shear(e, m, w2, kGA, rhoI, t, r, k_w, A)

@@ -33,6 +33,7 @@ from pathlib import Path
 from numba.core import caching, config
 
 from mstmm.cachedir import cache_dir
+from mstmm.physics import segment as segment_terms
 
 _HERE = Path(__file__).resolve().parent
 _DIGEST: list[str] = []
@@ -41,7 +42,9 @@ _DIGEST: list[str] = []
 def sources() -> list[Path]:
     """The files whose content the numerics' machine code depends on."""
     printed = importlib.util.find_spec("mstmm.generated.euler_bernoulli")
-    files = sorted(_HERE.glob("*.py")) + [_HERE.parent / "jit.py"]
+    root = _HERE.parent
+    files = sorted(_HERE.glob("*.py")) + [root / "jit.py", root / "catalog.py"]
+    files += sorted((root / "physics").glob("*.py")) + segment_terms.files()
     if printed is not None and printed.origin:
         files.append(Path(printed.origin))
     return files

@@ -30,7 +30,7 @@ from .beam import (
     node_stiffness_step,
 )
 from .count import field_count, neg2, pair_count, pair_stiffness
-from .layout import HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
+from .layout import COL_ETA, HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
 from .linalg import lu_logdet
 from .paper import apply_columns, segment_transfer
 from .search import rigid_dimension
@@ -154,7 +154,7 @@ def delta_chain(w, p):
         rho = (stop - pos) * inv_L
         if rho > 0.0:
             if general and is_general(p, s):  # exp(A h) of its field matrix
-                stiff = stiffness(p[HEAD + SEGMENT_WIDTH * s + 3])
+                stiff = stiffness(p[HEAD + SEGMENT_WIDTH * s + COL_ETA])
                 step, ready_f = segment_compound(vb, pb, s, b4, stiff, rho, Fb, ready_f, Ub, Eb, wb)
                 log += step
             else:

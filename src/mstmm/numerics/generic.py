@@ -19,7 +19,7 @@ import numpy as np
 from mstmm.jit import njit
 
 from .beam import beam_compound_step, beam_compound_step_c
-from .layout import HEAD, SEGMENT_WIDTH
+from .layout import COL_EI, COL_ETA, COL_MBAR, HEAD, SEGMENT_WIDTH
 
 __all__ = ["REAL", "COMPLEX"]
 
@@ -71,17 +71,17 @@ def segment_factors_real(p, seg, beta, EI, mbar):
     if seg == 0:  # the first segment's EI and mbar are EI_0 and mbar_0: e = 1 exactly
         return 1.0, 1.0, beta
     i = HEAD + SEGMENT_WIDTH * seg
-    e = p[i + 1] / EI
-    return e, 1.0 / e, beta * math.sqrt(math.sqrt(p[i + 2] / mbar / e))
+    e = p[i + COL_EI] / EI
+    return e, 1.0 / e, beta * math.sqrt(math.sqrt(p[i + COL_MBAR] / mbar / e))
 
 
 @njit(cache=True, inline="always")
 def segment_factors_complex(p, seg, beta, EI, mbar):
     """The same with the segment's loss factor: e = EI_s (1 + i eta_s) / EI_0."""
     i = HEAD + SEGMENT_WIDTH * seg
-    e = p[i + 1] / EI * (1.0 + 1j * p[i + 3])
+    e = p[i + COL_EI] / EI * (1.0 + 1j * p[i + COL_ETA])
     f = 1.0 / e
-    return e, f, beta * cmath.sqrt(cmath.sqrt(p[i + 2] / mbar * f))
+    return e, f, beta * cmath.sqrt(cmath.sqrt(p[i + COL_MBAR] / mbar * f))
 
 
 #: The real kernel's helpers, by the names the walks call them.

@@ -1,14 +1,36 @@
 """The parameter vector's layout and the numerical constants every kernel shares.
 
-``p = [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x,
-offset) per component sorted by x, data blocks]`` (``mstmm.catalog.layout``)."""
+``p = [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment, (tag, x,
+offset) per component sorted by x, data blocks]`` (``mstmm.catalog.layout``). A segment
+row's columns are named (``catalog.SEGMENT_COLUMNS``); its terms (``mstmm.physics.
+segment``) are read through the tables below: each term's role, whether the loss factor
+multiplies it, and the exponents of (L, EI_0, mbar_0) that make it dimensionless."""
+
+import numpy as np
 
 from mstmm import catalog
+from mstmm.physics import segment as terms
 
 #: Parameter layout: head, then segment rows, then event rows (tag, x, offset).
 HEAD = catalog.HEAD
 SEGMENT_WIDTH = catalog.SEGMENT_WIDTH
 EVENT_WIDTH = catalog.EVENT_WIDTH
+#: The named columns of a segment row.
+X_END = catalog.SEGMENT_COLUMNS["x_end"]
+COL_EI = catalog.SEGMENT_COLUMNS["EI"]
+COL_MBAR = catalog.SEGMENT_COLUMNS["mass_per_length"]
+COL_ETA = catalog.SEGMENT_COLUMNS["loss_factor"]
+TERMS = catalog.TERMS_COLUMN
+N_TERMS = len(terms.terms())
+#: Each term's role code (``physics.segment.ROLE_CODES``), loss flag and unit scale.
+TERM_ROLE = np.array([terms.ROLE_CODES[t.role] for t in terms.terms()] + [-1], dtype=np.int64)
+TERM_LOSS = np.array([t.loss for t in terms.terms()] + [False], dtype=np.bool_)
+TERM_SCALE = np.array([[float(e) for e in t.scale] for t in terms.terms()] + [[0.0] * 3])
+SHEAR = terms.ROLE_CODES["shear"]
+ROTARY = terms.ROLE_CODES["rotary"]
+TENSION = terms.ROLE_CODES["tension"]
+ROTATIONAL = terms.ROLE_CODES["rotational"]
+FOUNDATION = terms.ROLE_CODES["foundation"]
 #: Stiffness (units L = EI = 1) standing for a constrained degree of freedom in the count.
 PENALTY = 1e60
 #: A piece shorter than this (units of L) is merged into its node by the count: its

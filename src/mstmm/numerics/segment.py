@@ -7,7 +7,8 @@ paper's determinant, the mode shapes, the frequency response) asks here.
 
 Units are the kernel's, L = EI_0 = mbar_0 = 1; ``w2 = (lam_0 L)^4`` the squared frequency
 (complex in damped kernels), ``stiff = 1 + i eta`` the segment's loss factor on its stiffnesses
-(EI, kappa_GA, foundation_k, foundation_kG; not on the axial force, a load).
+(EI and every term declared with ``LOSS``: ``mstmm/physics/terms/``; not on the axial
+force, a load).
 """
 
 import cmath
@@ -32,8 +33,22 @@ from .field import (
     wavenumber,
 )
 from .layout import (
+    COL_EI,
+    COL_ETA,
+    COL_MBAR,
+    FOUNDATION,
     HEAD,
+    N_TERMS,
+    ROTARY,
+    ROTATIONAL,
     SEGMENT_WIDTH,
+    SHEAR,
+    TENSION,
+    TERM_LOSS,
+    TERM_ROLE,
+    TERM_SCALE,
+    TERMS,
+    X_END,
 )
 from .walk import (
     renormalise_lazy,
@@ -54,11 +69,14 @@ def balance(A):
 
 @njit(cache=True, inline="always")
 def is_general(p, seg):
-    """Whether segment seg has any term beyond Euler-Bernoulli (its row's kappa_GA, rho_I,
-    axial force, foundation_k, foundation_kG: ``catalog.SEGMENT_KEYS``)."""
-    i = HEAD + SEGMENT_WIDTH * seg
-    # one comparison, no branches (the walks' compile time): the sum is 0 only when all are
-    return abs(p[i + 4]) + abs(p[i + 5]) + abs(p[i + 6]) + abs(p[i + 7]) + abs(p[i + 8]) != 0.0
+    """Whether segment seg has any term beyond Euler-Bernoulli (a nonzero value in its
+    row's terms: ``catalog.SEGMENT_PHYSICS``)."""
+    i = HEAD + SEGMENT_WIDTH * seg + TERMS
+    # no branches in the sum (the walks' compile time): it is 0 only when all are
+    total = 0.0
+    for j in range(N_TERMS):
+        total += abs(p[i + j])
+    return total != 0.0
 
 
 @njit(cache=True)
@@ -71,31 +89,52 @@ def any_general(p):
 
 
 @njit(cache=True, inline="always")
-def segment_values(p, seg):
-    """The dimensionless (e, m, kGA, rhoI, P, k_w, k_G) of segment seg (units L = EI_0 =
-    mbar_0 = 1)."""
-    L = p[0]
-    EI = p[1]
-    mbar = p[2]
+def term_value(p, seg, j):
+    """Term j of segment seg, dimensionless (units L = EI_0 = mbar_0 = 1: its unit's
+    exponents, ``layout.TERM_SCALE``)."""
+    s = TERM_SCALE[j]
+    return p[HEAD + SEGMENT_WIDTH * seg + TERMS + j] * p[0] ** s[0] * p[1] ** s[1] * p[2] ** s[2]
+
+
+@njit(cache=True, inline="always")
+def segment_values(p, seg, stiff):
+    """The dimensionless ``(e, m, kGA, rhoI, t, r, k_w)`` of segment seg (units L = EI_0 =
+    mbar_0 = 1): EI and mbar over the first segment's, and each role's sum of its terms
+    (``physics.segment.ROLES``: shear, rotary inertia, tension, rotational and Winkler
+    foundation), a term with ``LOSS`` times ``stiff`` (1, or 1 + i eta; EI too)."""
     i = HEAD + SEGMENT_WIDTH * seg
-    L2 = L * L / EI
-    return (
-        p[i + 1] / EI,
-        p[i + 2] / mbar,
-        p[i + 4] * L2,
-        p[i + 5] / (mbar * L * L),
-        p[i + 6] * L2,
-        p[i + 7] * L2 * L * L,
-        p[i + 8] * L2,
-    )
+    zero = 0.0 * stiff
+    e = p[i + COL_EI] / p[1] * stiff
+    kGA = zero
+    rhoI = 0.0
+    t = zero
+    r = zero
+    k_w = zero
+    for j in range(N_TERMS):
+        v = term_value(p, seg, j)
+        if v == 0.0:
+            continue
+        f = v * stiff if TERM_LOSS[j] else v + zero
+        role = TERM_ROLE[j]
+        if role == SHEAR:
+            kGA += f
+        elif role == ROTARY:
+            rhoI += v
+        elif role == TENSION:
+            t += f
+        elif role == ROTATIONAL:
+            r += f
+        elif role == FOUNDATION:
+            k_w += f
+    return e, p[i + COL_MBAR] / p[2], kGA, rhoI, t, r, k_w
 
 
 @njit(cache=True)
 def segment_field(p, seg, w2, stiff, A):
     """A <- the field matrix of segment seg at the squared frequency w2 (real or complex
     like A), its stiffnesses times ``stiff`` (1, or 1 + i eta)."""
-    e, m, kGA, rhoI, P, k_w, k_G = segment_values(p, seg)
-    general_field(e * stiff, m, w2, kGA * stiff, rhoI, P, k_w * stiff, k_G * stiff, A)
+    e, m, kGA, rhoI, t, r, k_w = segment_values(p, seg, stiff)
+    general_field(e, m, w2, kGA, rhoI, t, r, k_w, A)
 
 
 @njit(cache=True, inline="always")
@@ -149,11 +188,13 @@ def count_pieces(p, seg, F, w2, rho):
     """Pieces of equal length for the count across rho of general segment seg (F from
     ``field_prepare``): k h <= FIELD_STEP, and each piece's proved clamped-clamped bound
     (``clamped_clamped_bound``) above w2, so that its J0 is 0."""
-    e, m, kGA, rhoI, P, k_w, k_G = segment_values(p, seg)
+    e, m, kGA, rhoI, t, r, k_w = segment_values(p, seg, 1.0)
     pieces = max(1, int(math.ceil(field_balance(F) * rho / FIELD_STEP)))
     shear = math.inf if kGA == 0.0 else kGA
+    # the rotational and Winkler foundations (nonnegative: physics.segment.ROLES) only
+    # raise the clamped-clamped frequencies: the bound without them holds
     for _ in range(200):
-        if clamped_clamped_bound(e, shear, rhoI, m, P + k_G, rho / pieces) > w2:
+        if clamped_clamped_bound(e, shear, rhoI, m, t, rho / pieces) > w2:
             break
         pieces *= 2
     return pieces
@@ -192,15 +233,15 @@ def segment_piece_c(p, seg, w1, beta, damped, rho, step, U, F):
     pieces of equal length keeping k h <= step; F is scratch for a general segment's
     powers of A. Returns the number of pieces and the k h of each (<= step)."""
     i = HEAD + SEGMENT_WIDTH * seg
-    stiff = 1.0 + 1j * (p[i + 3] if damped else 0.0)
+    stiff = 1.0 + 1j * (p[i + COL_ETA] if damped else 0.0)
     if is_general(p, seg):
         field_prepare(p, seg, w1 * w1, stiff, F)
         k = field_balance(F)
         pieces = max(1, int(math.ceil(k * rho / step)))
         field_exp(F, rho / pieces, U)
         return pieces, k * rho / pieces
-    e = p[i + 1] / p[1] * stiff
-    bs = beta * cmath.sqrt(cmath.sqrt(p[i + 2] / p[2] / e))
+    e = p[i + COL_EI] / p[1] * stiff
+    bs = beta * cmath.sqrt(cmath.sqrt(p[i + COL_MBAR] / p[2] / e))
     pieces = max(1, int(math.ceil(abs(bs) * rho / step)))
     piece_transfer_c(bs, e, rho / pieces, U)
     return pieces, abs(bs) * rho / pieces
@@ -276,24 +317,35 @@ def piece_matrix(p, seg, beta, h, U, F, ready):
 def segment_rotary(p, seg):
     """The segment's rotary inertia per length rhoI (units mbar_0 L^2): the mass a section's
     rotation psi carries in the modal mass (``mode_shapes``' gram)."""
-    return p[HEAD + SEGMENT_WIDTH * seg + 5] / (p[2] * p[0] * p[0])
+    return segment_values(p, seg, 1.0)[3]
+
+
+@njit(cache=True, inline="always")
+def _role_sum(p, seg, role):
+    """The dimensionless sum of segment seg's terms of one role."""
+    out = 0.0
+    for j in range(N_TERMS):
+        if TERM_ROLE[j] == role:
+            out += term_value(p, seg, j)
+    return out
 
 
 @njit(cache=True)
 def segment_constraints(p, knots, h, cx, ct, n):
     """Append to (cx, ct) the constraints the segments' own energy puts on the rigid
     motions (``rigid_dimension``: ct 1 for Y = 0, 2 for theta = 0 at cx; the h free hinges
-    at knots): a foundation (``foundation_k`` > 0) holds Y = 0 along its segment (at its
-    ends and at each hinge inside), and an axial force or a Pasternak layer stores
-    ``t b^2`` per length in a rigid rotation b, so that a piece between hinges where
-    the sum of ``t`` times length is not 0 holds theta = 0 (in compression the rotation is
-    not free either: its energy is negative, the count's buckling). Returns the new n."""
+    at knots), by the roles of their terms (``physics.segment.ROLES``): a Winkler
+    foundation holds Y = 0 along its segment (at its ends and at each hinge inside), and
+    a tension or a rotational foundation stores ``(t + r) b^2`` per length in a rigid
+    rotation b, so that a piece between hinges where the sum of ``t + r`` times length is
+    not 0 holds theta = 0 (in compression the rotation is not free either: its energy is
+    negative, the count's buckling). Returns the new n."""
     L = p[0]
     start = 0.0
     for seg in range(int(p[3])):
         i = HEAD + SEGMENT_WIDTH * seg
-        end = L if seg == int(p[3]) - 1 else p[i]
-        if p[i + 7] != 0.0 and end > start:
+        end = L if seg == int(p[3]) - 1 else p[i + X_END]
+        if _role_sum(p, seg, FOUNDATION) != 0.0 and end > start:
             cx[n] = start
             ct[n] = 1
             cx[n + 1] = end
@@ -312,10 +364,10 @@ def segment_constraints(p, knots, h, cx, ct, n):
         start = 0.0
         for seg in range(int(p[3])):
             i = HEAD + SEGMENT_WIDTH * seg
-            end = L if seg == int(p[3]) - 1 else p[i]
+            end = L if seg == int(p[3]) - 1 else p[i + X_END]
             overlap = min(end, b) - max(start, a)
             if overlap > 0.0:
-                work += (p[i + 6] + p[i + 8]) * overlap
+                work += (_role_sum(p, seg, TENSION) + _role_sum(p, seg, ROTATIONAL)) * overlap
             start = end
         if work != 0.0 and b > a:
             cx[n] = 0.5 * (a + b)

@@ -8,6 +8,7 @@ import numpy as np
 from mstmm.jit import njit
 
 from .layout import (
+    COL_MBAR,
     HEAD,
     SEGMENT_WIDTH,
 )
@@ -333,7 +334,7 @@ def mode_shapes(
                 kind[s] = 0
                 rho_s[s] = rho / pieces
                 seg_s[s] = sg
-                r_s[s] = p[HEAD + SEGMENT_WIDTH * sg + 2] / mbar
+                r_s[s] = p[HEAD + SEGMENT_WIDTH * sg + COL_MBAR] / mbar
                 rot_s[s] = segment_rotary(p, sg)
                 x_s[s + 1] = x_s[s] + rho / pieces
                 for r in range(2):

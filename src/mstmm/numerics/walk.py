@@ -10,9 +10,12 @@ from numba.extending import intrinsic, overload
 from mstmm.jit import njit
 
 from .layout import (
+    COL_EI,
+    COL_MBAR,
     EVENT_WIDTH,
     HEAD,
     SEGMENT_WIDTH,
+    X_END,
 )
 
 
@@ -81,8 +84,8 @@ def segment_scale(p, seg):
     """(e, a) of segment seg: its EI over the first's, and beta_s / beta =
     (mbar_s / mbar_0 / e)^(1/4) (docs/components.md, section 3)."""
     i = HEAD + SEGMENT_WIDTH * seg
-    e = p[i + 1] / p[1]
-    return e, math.sqrt(math.sqrt(p[i + 2] / p[2] / e))
+    e = p[i + COL_EI] / p[1]
+    return e, math.sqrt(math.sqrt(p[i + COL_MBAR] / p[2] / e))
 
 
 @njit(cache=True, inline="always")
@@ -91,7 +94,7 @@ def next_piece(p, seg, x):
     (seg itself once x is reached)."""
     n_seg = int(p[3])
     if seg < n_seg - 1:
-        x_end = p[HEAD + SEGMENT_WIDTH * seg]
+        x_end = p[HEAD + SEGMENT_WIDTH * seg + X_END]
         if x_end <= x:
             return x_end, seg + 1
     return x, seg
