@@ -1,20 +1,22 @@
 """The beam and its segments: the dataclasses :class:`Segment` and :class:`Beam`, reading
 ``[beam]`` and ``[[beam.segments]]`` (the keys of a uniform beam or a segment, its optional
-physics keys of ``catalog.SEGMENT_PHYSICS`` and the shear-buckling limit ``kappa_GA +
-axial_force + foundation_kG > 0``), their plain-data form, and the physics limits of those
-keys (:data:`PHYSICS_LIMITS`). Everything here that is particular to a segment's physics
-keys is in this module."""
+terms of ``catalog.SEGMENT_PHYSICS`` and the shear-buckling limit,
+``physics.segment.shear_limit_broken``), their plain-data form, and the physics limits of
+those keys (:data:`PHYSICS_LIMITS`). The terms are declared in ``mstmm/physics/terms/``
+(one file each): their keys become fields of both dataclasses, their limits entries of
+:data:`PHYSICS_LIMITS`; nothing here names one."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, make_dataclass
 from typing import Any
 
 import numpy as np
 
 from mstmm import catalog
+from mstmm.physics import segment as segment_terms
 
 from .errors import SceneError
 from .fields import _checked, _choice, _reject_unknown, _require, _table
@@ -32,50 +34,51 @@ _OPTIONAL_KEYS: dict[str, str] = {
 _BEAM_KEYS: tuple[str, ...] = (*_UNIFORM_KEYS, *_OPTIONAL_KEYS, "left", "right", "segments")
 
 
-@dataclass(frozen=True)
-class Segment:
-    """One piece of a stepped beam (SI): its length, bending stiffness, mass per length,
-    loss factor (hysteretic damping, ``EI -> EI (1 + i eta)``; 0: none), and its physics
-    beyond Euler-Bernoulli (``catalog.SEGMENT_PHYSICS``; 0: none): the Timoshenko shear
-    stiffness ``kappa_GA`` (N; 0: no shear deformation) and rotary inertia per length
-    ``rho_I`` (kg m), the ``axial_force`` (N, tension positive), a Winkler foundation
-    ``foundation_k`` (N/m^2) and a Pasternak shear layer ``foundation_kG`` (N)."""
+#: A field of each segment term (``mstmm/physics/terms/``), default 0 (the term absent).
+_TERM_FIELDS = [(t.name, float, field(default=0.0)) for t in segment_terms.terms()]
 
+
+@dataclass(frozen=True)
+class _SegmentValues:
     length: float
     EI: float
     mass_per_length: float
     loss_factor: float = 0.0
-    kappa_GA: float = 0.0
-    rho_I: float = 0.0
-    axial_force: float = 0.0
-    foundation_k: float = 0.0
-    foundation_kG: float = 0.0
+
+
+Segment = make_dataclass("Segment", _TERM_FIELDS, bases=(_SegmentValues,), frozen=True)
+Segment.__module__ = __name__  # pickled by name (Python 3.11 has no module= argument)
+Segment.__doc__ = """One piece of a stepped beam (SI): its length, bending stiffness, mass
+per length, loss factor (hysteretic damping, ``EI -> EI (1 + i eta)``; 0: none), and a
+field for each term beyond Euler-Bernoulli (``catalog.SEGMENT_PHYSICS``, the files of
+``mstmm/physics/terms/``; 0: none): the Timoshenko shear stiffness ``kappa_GA`` (N; 0: no
+shear deformation) and rotary inertia per length ``rho_I`` (kg m), the ``axial_force`` (N,
+tension positive), a Winkler foundation ``foundation_k`` (N/m^2), a Pasternak shear layer
+``foundation_kG`` (N), and any term a file adds."""
 
 
 @dataclass(frozen=True)
-class Beam:
-    """Euler-Bernoulli beam: SI values and the two boundary kinds.
-
-    ``length`` is the total length; ``EI`` and ``mass_per_length`` are those of a
-    uniform beam, or of the first segment of a stepped beam. ``segments`` lists a
-    stepped beam's pieces from the left end, and is empty for a uniform beam.
-    ``loss_factor`` is a uniform beam's hysteretic damping ``eta`` (``EI -> EI (1 + i
-    eta)``, a frequency-domain model; a stepped beam gives it per segment), and so are
-    the physics keys of a uniform beam (:class:`Segment`).
-    """
-
+class _BeamValues:
     length: float
     EI: float
     mass_per_length: float
     left: str
     right: str
-    segments: tuple[Segment, ...] = ()
+    segments: tuple = ()
     loss_factor: float = 0.0
-    kappa_GA: float = 0.0
-    rho_I: float = 0.0
-    axial_force: float = 0.0
-    foundation_k: float = 0.0
-    foundation_kG: float = 0.0
+
+
+Beam = make_dataclass("Beam", _TERM_FIELDS, bases=(_BeamValues,), frozen=True)
+Beam.__module__ = __name__
+Beam.__doc__ = """Euler-Bernoulli beam: SI values and the two boundary kinds.
+
+``length`` is the total length; ``EI`` and ``mass_per_length`` are those of a uniform
+beam, or of the first segment of a stepped beam. ``segments`` lists a stepped beam's
+pieces from the left end (:class:`Segment`), and is empty for a uniform beam.
+``loss_factor`` is a uniform beam's hysteretic damping ``eta`` (``EI -> EI (1 + i eta)``,
+a frequency-domain model; a stepped beam gives it per segment), and so are the terms of a
+uniform beam (:class:`Segment`).
+"""
 
 
 def _beam(value: Any, source: str) -> Beam:
@@ -114,21 +117,17 @@ def _beam(value: Any, source: str) -> Beam:
 
 def _optional(table: Mapping[str, Any], prefix: str, source: str) -> dict[str, float]:
     """The optional keys of a beam or a segment (default 0): its ``loss_factor`` (>= 0)
-    and its physics (``catalog.SEGMENT_PHYSICS``). A segment in compression beyond its
-    shear stiffness (``kappa_GA + axial_force + foundation_kG <= 0``) has no static
-    equilibrium (shear buckling) and is refused here."""
+    and its terms (``catalog.SEGMENT_PHYSICS``). A segment in compression beyond its
+    shear stiffness (``physics.segment.shear_limit_broken``) has no static equilibrium
+    (shear buckling) and is refused here."""
     values = {
         key: _checked(table[key], check, f"{prefix}.{key}", source) if key in table else 0.0
         for key, check in _OPTIONAL_KEYS.items()
     }
-    g = values["kappa_GA"] + values["axial_force"] + values["foundation_kG"]
-    if values["kappa_GA"] > 0.0 and g <= 0.0:
+    if segment_terms.shear_limit_broken(values):
+        key = segment_terms.compression_key()
         raise SceneError(
-            source,
-            f"{prefix}.axial_force",
-            "a compression of kappa_GA + foundation_kG or more buckles the segment in shear"
-            " (kappa_GA + axial_force + foundation_kG must be > 0)",
-            values["axial_force"],
+            source, f"{prefix}.{key}", segment_terms.shear_limit_message(), values[key]
         )
     return values
 
@@ -195,16 +194,11 @@ _DAMPING = (
 #: cuts a segment into to resolve its shortest wave) or stalls outright beyond these
 #: (measured: minutes at 1e3 times the limit); every real beam lies far inside them.
 PHYSICS_LIMITS: dict[str, tuple[str, tuple[int, int, int], float, float, str]] = {
-    # a shear stiffness this soft (kappa G A over E I/L^2): waves 1e3 times slower
-    # than bending ones; stiffer is fine (Euler-Bernoulli is the limit)
-    "kappa_GA": ("kappa_GA length^2/EI", (2, -1, 0), 1e-6, math.inf, _WAVES),
-    # (radius of gyration / length)^2: 1 is already a block, not a beam
-    "rho_I": ("rho_I/(mass_per_length length^2)", (-2, 0, -1), 0.0, 1e6, _WAVES),
-    # (length / the bending boundary layer sqrt(EI/|P|))^2: 1e12 is a taut string of
-    # 1e6 boundary layers, or a compression 1e11 times the buckling load
-    "axial_force": ("|axial_force| length^2/EI", (2, -1, 0), 0.0, 1e12, _WAVES),
-    "foundation_k": ("foundation_k length^4/EI", (4, -1, 0), 0.0, 1e20, _WAVES),
-    "foundation_kG": ("foundation_kG length^2/EI", (2, -1, 0), 0.0, 1e12, _WAVES),
+    # each term's LIMIT (its file says why its range is what it is); exponents: its unit's
+    **{
+        t.name: (t.limit[0], tuple(int(e) for e in t.scale), t.limit[1], t.limit[2], _WAVES)
+        for t in segment_terms.terms()
+    },
     # hysteretic damping EI (1 + i eta): the most damped polymers reach eta ~ 2; a pinned
     # beam matches sqrt(1 + i eta) (n pi / L)^2 to 1e-10 up to eta = 1e4 (tests of damped
     # certification), at 1e6 the count no longer certifies its roots
@@ -224,9 +218,10 @@ def _check_physics(P: np.ndarray, beam: Beam, names: _Names, source: str, point:
     :data:`PHYSICS_LIMITS` (0 means the key is off and passes), vectorised over rows."""
     n = max(1, len(beam.segments))
     rows = catalog.HEAD + catalog.SEGMENT_WIDTH * np.arange(n)
-    base = (np.log10(P[:, [0]]), np.log10(P[:, rows + 1]), np.log10(P[:, rows + 2]))
+    EI, mbar = catalog.SEGMENT_COLUMNS["EI"], catalog.SEGMENT_COLUMNS["mass_per_length"]
+    base = (np.log10(P[:, [0]]), np.log10(P[:, rows + EI]), np.log10(P[:, rows + mbar]))
     for key, (form, exponents, least, most, why) in PHYSICS_LIMITS.items():
-        column = rows + 1 + catalog.SEGMENT_KEYS.index(key)
+        column = rows + catalog.SEGMENT_COLUMNS[key]
         values = np.abs(P[:, column])
         with np.errstate(divide="ignore"):
             own = np.log10(values)
