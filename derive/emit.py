@@ -19,6 +19,7 @@ import os
 import tempfile
 import textwrap
 from pathlib import Path
+from pprint import pformat
 from string import Template
 
 import sympy as sp
@@ -507,8 +508,9 @@ def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
 
 def _parameter_doc(topology: Topology) -> str:
     parts = [
-        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment,"
-        " (tag, x, offset) per component sorted by x, data blocks]"
+        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment"
+        " (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks"
+        " (DATA_BLOCKS)]"
     ]
     for t, name in enumerate(topology.kinds):
         keys = ", ".join(
@@ -685,6 +687,8 @@ def kernel_source(topology: Topology) -> str:
         about=textwrap.fill(about, 90, break_on_hyphens=False),
         kinds=repr(kinds),
         dampers=repr(_dampers(kinds)),
+        segment_columns=pformat(catalog.segment_columns(), width=92),
+        data_blocks=pformat(catalog.data_blocks(kinds), width=92),
         parameter_doc=_parameter_doc(topology),
         regenerate=regenerate_command(topology),
         sympy_version=importlib.metadata.version("sympy"),

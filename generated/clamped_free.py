@@ -6,7 +6,7 @@ physics (paper Eqs. (2)-(3)), and the ends' constants; the last line compiles th
 the characteristic functions (``delta_stable`` (default) and ``delta_paper``, whose zeros
 are the natural frequencies, and ``count_below``, their number below omega).
 
-Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x, offset) per component sorted by x, data blocks]
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]
 Regenerate: python -m mstmm.derive --topology clamped_free --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
@@ -14,10 +14,23 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "2a64c0e8fd4b5781b952c87abb2d647adc5834c5"
-NUMERICS = "9c16cffb4cd54c8efe8f1927f6d8dfe1e87e0fc4"
+SIGNATURE = "07ddd7fb2d55f19025fbad9c910519f3a887bab7"
+NUMERICS = "85fa36c239cba017f5f0dbf83238f8be7b6cbb02"
 KINDS = ()
 DAMPERS = {}
+#: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
+#: (name, SI unit, exponents of L, EI_0, mbar_0 that make it dimensionless) and each
+#: kind's data block after x (key, SI unit, shape).
+SEGMENT_COLUMNS = (('x_end', 'm', (-1, 0, 0)),
+ ('EI', 'N m^2', (0, -1, 0)),
+ ('mass_per_length', 'kg/m', (0, 0, -1)),
+ ('loss_factor', '1', (0, 0, 0)),
+ ('kappa_GA', 'N', (2, -1, 0)),
+ ('rho_I', 'kg m', (-2, 0, -1)),
+ ('axial_force', 'N', (2, -1, 0)),
+ ('foundation_k', 'N/m^2', (4, -1, 0)),
+ ('foundation_kG', 'N', (2, -1, 0)))
+DATA_BLOCKS = {}
 
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)

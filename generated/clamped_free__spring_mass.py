@@ -7,7 +7,7 @@ the last line compiles them with the characteristic functions (``delta_stable`` 
 and ``delta_paper``, whose zeros are the natural frequencies, and ``count_below``, their
 number below omega).
 
-Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta) per segment, (tag, x, offset) per component sorted by x, data blocks]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
 Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
@@ -15,10 +15,23 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "88ba6e343bf27395b9e4ef6c2bbb40614db9e123"
-NUMERICS = "9c16cffb4cd54c8efe8f1927f6d8dfe1e87e0fc4"
+SIGNATURE = "a9fd5a17499d25368a3ae7a331bfa361204d125f"
+NUMERICS = "85fa36c239cba017f5f0dbf83238f8be7b6cbb02"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
+#: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
+#: (name, SI unit, exponents of L, EI_0, mbar_0 that make it dimensionless) and each
+#: kind's data block after x (key, SI unit, shape).
+SEGMENT_COLUMNS = (('x_end', 'm', (-1, 0, 0)),
+ ('EI', 'N m^2', (0, -1, 0)),
+ ('mass_per_length', 'kg/m', (0, 0, -1)),
+ ('loss_factor', '1', (0, 0, 0)),
+ ('kappa_GA', 'N', (2, -1, 0)),
+ ('rho_I', 'kg m', (-2, 0, -1)),
+ ('axial_force', 'N', (2, -1, 0)),
+ ('foundation_k', 'N/m^2', (4, -1, 0)),
+ ('foundation_kG', 'N', (2, -1, 0)))
+DATA_BLOCKS = {'spring_mass': (('k', 'N/m', 'scalar'), ('m', 'kg', 'scalar'), ('c', 'N s/m', 'scalar'))}
 
 LEFT_UNKNOWN = (2, 3)
 RIGHT_UNKNOWN = (0, 1)

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "7dcb21a2641d263c23d0dbd224b7cb38e6af6dfa"
+DIGEST = "495156db78a740beba70ccf876b794fdaa31b33c"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

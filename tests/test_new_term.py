@@ -41,6 +41,7 @@ mpmath.mp.dps = 30
 SCRIPT = textwrap.dedent(
     """
     import json, sys
+    import numpy as np
     import mstmm
     from mstmm import catalog
 
@@ -80,7 +81,7 @@ SCRIPT = textwrap.dedent(
         free_checked=free.count_checked,
     ), sys.stdout)
     """
-).replace("import mstmm\n", "import mstmm\n    import numpy as np\n", 1)
+)
 
 
 @pytest.fixture(scope="module")

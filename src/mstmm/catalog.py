@@ -397,6 +397,26 @@ def layout(
     return p, fields
 
 
+def segment_columns() -> tuple:
+    """A segment row's columns as the kernel reads them (printed into it as
+    ``SEGMENT_COLUMNS``; ``kernels.load_kernel`` refuses a kernel whose columns differ): ``(name, SI
+    unit, exponents of (L, EI_0, mbar_0) that make it dimensionless)`` in order, the terms'
+    (``physics.segment``) after ``x_end``, ``EI``, ``mass_per_length``, ``loss_factor``."""
+    head = (("x_end", "m", (-1, 0, 0)), ("EI", "N m^2", (0, -1, 0)))
+    head += (("mass_per_length", "kg/m", (0, 0, -1)), ("loss_factor", "1", (0, 0, 0)))
+    terms = tuple(
+        (t.name, t.unit, tuple(int(e) if e.denominator == 1 else str(e) for e in t.scale))
+        for t in segment_terms.terms()
+    )
+    return head + terms
+
+
+def data_blocks(kinds: tuple[str, ...]) -> dict:
+    """Each kind's data block as the kernel reads it (printed into it as ``DATA_BLOCKS``):
+    ``(key, SI unit, shape)`` after x, in declared order (``catalog.pack``)."""
+    return {k: tuple((key.name, key.unit, key.shape) for key in kind(k).KEYS[1:]) for k in kinds}
+
+
 def damping_columns(p: np.ndarray, kinds: Sequence[str]) -> np.ndarray:
     """Indices of every damping value in a parameter vector: each segment's loss factor
     and each component's damping keys (``Key.damping``, list entries included); ``kinds``

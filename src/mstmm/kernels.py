@@ -32,6 +32,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mstmm import catalog
 from mstmm.cachedir import cache_dir
 from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows
 from mstmm.sign import signature
@@ -91,7 +92,18 @@ def _bundled(topology: Topology, sig: str) -> ModuleType | None:
         if exc.name != name:  # numba (or numpy) missing: not a kernel that is absent
             raise
         return None
-    return module if getattr(module, "SIGNATURE", None) == sig else None
+    if getattr(module, "SIGNATURE", None) != sig or not reads_this_layout(module, topology):
+        return None
+    return module
+
+
+def reads_this_layout(module: ModuleType, topology: Topology) -> bool:
+    """Whether a kernel was printed for the parameter layout ``catalog.layout`` writes
+    today (its ``SEGMENT_COLUMNS`` and ``DATA_BLOCKS``, the contract printed into it):
+    the signature covers what the layout comes from; this reads the contract itself."""
+    columns = getattr(module, "SEGMENT_COLUMNS", None)
+    blocks = getattr(module, "DATA_BLOCKS", None)
+    return columns == catalog.segment_columns() and blocks == catalog.data_blocks(topology.kinds)
 
 
 _NUMERICS: list[ModuleType] = []
@@ -149,9 +161,13 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
             raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
         derived = time.perf_counter() - t0
     module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
-    if module_name in sys.modules:
-        return sys.modules[module_name], str(path), derived
-    return _load_file(path, module_name), str(path), derived
+    module = sys.modules.get(module_name) or _load_file(path, module_name)
+    if not reads_this_layout(module, topology):
+        raise KernelError(
+            f"kernel {path} reads another parameter layout than this mstmm writes"
+            " (SEGMENT_COLUMNS, DATA_BLOCKS): delete it and it is derived again"
+        )
+    return module, str(path), derived
 
 
 @dataclass

@@ -1,7 +1,8 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
 ``SIGNATURE = sha1(topology key | derive/ sources and the catalog | the files of the
-topology's kinds | the shared numerics' sources | SymPy version | KERNEL_FORMAT)``. Each
+topology's kinds | the shared numerics' sources and the physics they read (the segment
+terms) | SymPy version | KERNEL_FORMAT)``. Each
 kernel's digest covers only what it is printed from: adding or editing a kind changes the
 signature of the topologies that hold it and of no other, and leaves the shared beam
 functions (``generated/euler_bernoulli.py``, whose ``DIGEST`` is :func:`derive_digest`)
@@ -55,14 +56,16 @@ def derive_digest() -> str:
 
 
 def numerics_digest() -> str:
-    """sha1 of the sources of the shared numerics (``mstmm.numerics``), found without
-    importing them."""
-    spec = importlib.util.find_spec("mstmm.numerics")
+    """sha1 of the sources of the shared numerics (``mstmm.numerics``) and of the physics
+    they read (``mstmm.physics`` and its segment terms: the numerics compile the terms'
+    tables in, and a kernel inlines them), found without importing them."""
     h = hashlib.sha1()
-    for folder in spec.submodule_search_locations or ():
-        for path in sorted(Path(folder).glob("*.py")):
-            h.update(path.name.encode())
-            h.update(path.read_bytes())
+    for package in ("mstmm.numerics", "mstmm.physics", "mstmm.physics.terms"):
+        spec = importlib.util.find_spec(package)
+        for folder in spec.submodule_search_locations or ():
+            for path in sorted(Path(folder).glob("*.py")):
+                h.update(path.name.encode())
+                h.update(path.read_bytes())
     return h.hexdigest()
 
 
