@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "a9fd5a17499d25368a3ae7a331bfa361204d125f"
+SIGNATURE = "0c3658ef426c28f3ccfc3d78029475b35fc2e49a"
 NUMERICS = "85fa36c239cba017f5f0dbf83238f8be7b6cbb02"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

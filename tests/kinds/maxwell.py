@@ -20,7 +20,8 @@ def energy(v: dict):
     """The spring ``k (u - Y)^2 / 2`` and the dashpot ``c u'^2 / 2`` to the ground, over
     ``[Y, theta, u]``; no mass at u."""
     import sympy as sp
-    from mstmm.derive.descriptor import Energy
+
+    from mstmm.physics import Energy
 
     spring = sp.Matrix([[1, 0, -1], [0, 0, 0], [-1, 0, 1]])
     return Energy(K=v["k"] * spring, C=sp.diag(0, 0, v.get("c", 0)), M=sp.zeros(3, 3), moves=("Y",))

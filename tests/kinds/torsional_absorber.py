@@ -32,7 +32,8 @@ def energy(v: dict):
     """The spring ``k (theta_a - theta)^2 / 2``, the dashpot ``c (theta_a' - theta')^2 / 2``
     and the inertia ``J theta_a'^2 / 2``; a rigid rotation of the beam carries theta_a."""
     import sympy as sp
-    from mstmm.derive.descriptor import Energy
+
+    from mstmm.physics import Energy
 
     spring = sp.Matrix([[0, 0, 0], [0, 1, -1], [0, -1, 1]])
     return Energy(

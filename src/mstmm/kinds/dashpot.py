@@ -25,6 +25,6 @@ def energy(v: dict):
     """Dissipation ``gamma Y'^2 / 2``: ``Q+ = Q - i w1 gamma Y``."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     return Energy(K=sp.zeros(2, 2), C=sp.diag(v.get("c", 0), 0), M=sp.zeros(2, 2))

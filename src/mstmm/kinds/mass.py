@@ -32,6 +32,6 @@ def energy(v: dict):
     ``M+ = M - j b4 theta`` (paper Eq. (1), lumped mass)."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     return Energy(K=sp.zeros(2, 2), C=sp.zeros(2, 2), M=sp.diag(v["m"], v["J"]))

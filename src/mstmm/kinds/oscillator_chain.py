@@ -43,7 +43,7 @@ def stage(v: dict):
     ``m u_j'^2 / 2``; a rigid translation carries the mass."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     spring = sp.Matrix([[1, 0, -1], [0, 0, 0], [-1, 0, 1]])
     return Energy(

@@ -22,6 +22,6 @@ def energy(v: dict):
     """Potential energy ``kappa theta^2 / 2``: ``M+ = M + kappa theta``."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     return Energy(K=sp.diag(0, v["k"]), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

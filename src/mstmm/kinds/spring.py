@@ -23,6 +23,6 @@ def energy(v: dict):
     """Potential energy ``kappa Y^2 / 2``: ``Q+ = Q - kappa Y``."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     return Energy(K=sp.diag(v["k"], 0), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

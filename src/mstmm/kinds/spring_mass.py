@@ -42,7 +42,7 @@ def energy(v: dict):
     ``(1 + i w1 gamma/kappa)(Y - Y_m) + mu b4/kappa Y_m = 0``, free of poles."""
     import sympy as sp
 
-    from mstmm.derive.descriptor import Energy
+    from mstmm.physics import Energy
 
     spring = sp.Matrix([[1, 0, -1], [0, 0, 0], [-1, 0, 1]])
     return Energy(
