@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "aaed1a615014ce2a94bc91d1df1752aa255ad253"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "e6f5fdddaf7dace091f89ca7336a226aee8d2e63"
+NUMERICS = "9b4f04c7c4ca208e8511a3e5ba80aa73ca086a30"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6fd0e239f85940d61b09e317080e5abb377076dc"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "b7eb1ae6ecf19ca58d2acdfc9dd1987f58b5912d"
+NUMERICS = "9b4f04c7c4ca208e8511a3e5ba80aa73ca086a30"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "283946c4e5410968d5ba278b69ce8f25f3854adb"
+DIGEST = "c84db7c9a8eba62eb01df3357ec9e5a7d5b90b49"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

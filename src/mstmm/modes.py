@@ -252,11 +252,6 @@ def beside(count, omega: np.ndarray) -> tuple[float, float]:
     return below, above
 
 
-def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = SAMPLES) -> ModeShape:
-    """The mode shape of a simple natural frequency ``omega`` (rad/s)."""
-    return mode_shapes(kernel, p, np.array([float(omega)]), n_points)[0]
-
-
 def _eigenspace(kernel, p, omegas, xs):
     """The kernel's ``m`` null directions for a cluster of ``m`` roots, taken where the end
     matrix is most singular on ``m`` directions: at the cluster's centre or at one of its
