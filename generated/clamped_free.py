@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "e6f5fdddaf7dace091f89ca7336a226aee8d2e63"
-NUMERICS = "9b4f04c7c4ca208e8511a3e5ba80aa73ca086a30"
+SIGNATURE = "edc0ab1b746839ad2058ca27804366780e4d3f3c"
+NUMERICS = "8e8cf9cbf0718336adaa33756ee4ef37634464c3"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "b7eb1ae6ecf19ca58d2acdfc9dd1987f58b5912d"
-NUMERICS = "9b4f04c7c4ca208e8511a3e5ba80aa73ca086a30"
+SIGNATURE = "79b95f081ac51840e5ebf18d74b0776d91707abc"
+NUMERICS = "8e8cf9cbf0718336adaa33756ee4ef37634464c3"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 
