@@ -37,6 +37,7 @@ from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, event_rows
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
+from .loader import KernelError, load_file
 from .topology import Topology
 
 #: Characteristic functions every kernel carries (``evaluate_<name>``, ``refine_<name>``).
@@ -46,10 +47,6 @@ FORMULATIONS = ("stable", "paper")
 BLOCK_MODES = 256
 #: Components from which ``Kernel.lowest`` refines its roots in parallel (``_defers``).
 DEFER_EVENTS = 200
-
-
-class KernelError(RuntimeError):
-    """A kernel could not be generated, written or loaded."""
 
 
 class Found(NamedTuple):
@@ -66,21 +63,6 @@ class Found(NamedTuple):
     certified: bool
     #: Where the count stopped certifying (rad/s; 0 when ``certified``).
     failed_at: float
-
-
-def _load_file(path: Path, module_name: str) -> ModuleType:
-    spec = importlib.util.spec_from_file_location(module_name, path)
-    if spec is None or spec.loader is None:
-        raise KernelError(f"cannot load kernel {path}")
-    module = importlib.util.module_from_spec(spec)
-    # numba caches a module under its name: register it before executing it
-    sys.modules[module_name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[module_name]
-        raise
-    return module
 
 
 def _bundled(topology: Topology, sig: str) -> ModuleType | None:
@@ -151,7 +133,7 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
     module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
     if module_name in sys.modules:
         return sys.modules[module_name], str(path), derived
-    return _load_file(path, module_name), str(path), derived
+    return load_file(path, module_name), str(path), derived
 
 
 @dataclass
