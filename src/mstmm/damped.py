@@ -52,6 +52,7 @@ from . import contour, subdivision
 from .decay_bound import sigma_max
 from .frames import Tabulated
 from .kernels import Kernel
+from .modes import Shape
 from .secant import NEWTON_TOL, newton, newton_many
 from .undamped import solve_undamped
 
@@ -618,15 +619,7 @@ class DampedSolution(Tabulated):
             "timings": dict(self.timings),
             "warnings": list(self.warnings),
         }
-        if self.buckling is not None:
-            out["buckling"] = {
-                "buckled": self.buckling.buckled,
-                "load_factor": float(self.buckling.load_factor),
-                "unstable_modes": self.buckling.unstable_modes,
-            }
-        if shapes and self.shapes is not None:
-            out["mode_shapes"] = [s.to_dict() for s in self.shapes]
-        return out
+        return self.buckling_and_shapes(out, shapes)
 
 
 def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True, kernel=None):
@@ -743,22 +736,13 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
 
 
 @dataclass(frozen=True)
-class DampedModeShape:
+class DampedModeShape(Shape):
     """A complex mode shape at a damped natural frequency ``omega`` (rad/s): the states
-    along the beam and the displacement of every hanging mass, complex amplitudes of
-    ``exp(i omega t)`` (the physical motion is their real part), scaled so that the
-    largest |Y| over the beam and the masses is 1 and real positive."""
+    along the beam and the displacement of every hanging mass (:class:`mstmm.modes.Shape`),
+    complex amplitudes of ``exp(i omega t)`` (the physical motion is their real part),
+    scaled so that the largest |Y| over the beam and the masses is 1 and real positive."""
 
     omega: complex
-    x: np.ndarray
-    Y: np.ndarray
-    theta: np.ndarray
-    M: np.ndarray
-    Q: np.ndarray
-    mass_x: np.ndarray
-    mass_Y: np.ndarray
-    #: The end matrix's singular value for this shape over its largest (0: exactly null).
-    singular_ratio: float
     multiplicity: int = 1
 
     def to_dict(self) -> dict:
