@@ -9,8 +9,17 @@ the first-run measurements turn the helpers on in their subprocesses.
 """
 
 import os
+import sys
+from pathlib import Path
 
 os.environ.setdefault("MSTMM_COMPILE_HELPERS", "0")
+
+#: tests/, on the path: the references the benchmarks check against and compete with
+#: (``reference_model``, ``reference_fem``: the finite-element model) live there, and
+#: import no mstmm.
+TESTS = Path(__file__).resolve().parent.parent / "tests"
+if str(TESTS) not in sys.path:
+    sys.path.insert(0, str(TESTS))
 
 from mstmm import interpret  # noqa: E402
 

@@ -660,7 +660,7 @@ def segment_rows(figs: dict) -> list[tuple[str, str, str, str, str]]:
         e = g["fem"]
         rows.append(
             (
-                "against the finite-element model with these terms (benchmarks/fem.py)",
+                "against the finite-element model with these terms (tests/reference_fem.py)",
                 "converging to mstmm",
                 f"{e['error']:.1e} after Richardson ({e['elements']} elements)",
                 _status(e["error"] <= 1e-8),

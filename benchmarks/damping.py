@@ -4,7 +4,7 @@
   zeta = 0.05) and a loss factor of 0.01 on the beam, its lowest 10 complex natural
   frequencies: ``mstmm.solve`` warm (median of repeats) and its largest relative error
   against the independent mpmath reference (``tests/reference_model.py``:
-  ``damped_frequencies``), against the damped finite-element model (``benchmarks/fem.py``:
+  ``damped_frequencies``), against the damped finite-element model (``tests/reference_fem.py``:
   eigenvalues of the first-order form by ``scipy.linalg.eig``, then Richardson
   extrapolation from a mesh and its bisection) on meshes of 8 to 256 elements: the time
   each mesh takes and its error. "At equal accuracy" compares mstmm with the cheapest FE
@@ -30,12 +30,13 @@ import numpy as np
 import mstmm
 from mstmm.response import frf
 
-from . import fem, figures
+from . import figures
 
 ROOT = Path(__file__).resolve().parent.parent
 if str(ROOT / "tests") not in sys.path:
     sys.path.insert(0, str(ROOT / "tests"))
 
+import reference_fem as fem  # noqa: E402
 import reference_model as rm  # noqa: E402
 
 ZETA = 0.05

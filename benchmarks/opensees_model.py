@@ -2,7 +2,7 @@
 
 Model (2-D, 3 DOFs per node: ``ux``, ``uy``, ``rz``):
 
-* the beam is cut at the nodes of :func:`benchmarks.fem.mesh` (uniform, with a
+* the beam is cut at the nodes of ``mesh`` of tests/reference_fem.py (uniform, with a
   node at every attachment) into ``elasticBeamColumn`` elements with
   ``E = EI``, ``Iz = 1``, ``A = 1``, distributed mass ``-mass mbar`` and the
   consistent mass matrix (``-cMass``); ``ux`` is fixed at every node (no axial
@@ -123,7 +123,7 @@ def load() -> Any:
 
 def build(ops: Any, scene: Any, n_elements: int) -> int:
     """Build the model of ``scene`` on the mesh of ``n_elements`` elements; returns the DOFs."""
-    from .fem import mesh
+    from reference_fem import mesh
 
     beam = scene.beam
     nodes = mesh(scene, n_elements)

@@ -215,10 +215,10 @@ def fem(elements: int = 64) -> dict:
     finite-element model (Timoshenko elements, geometric and foundation stiffness) after
     Richardson extrapolation: the lowest 8."""
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    import reference_fem as fe
+
     import mstmm
     from mstmm.scene import scene_to_dict
-
-    from . import fem as fe
 
     path = figures.ROOT / "examples" / "deep_beam_tmd.toml"
     data = scene_to_dict(mstmm.load_scene(path))

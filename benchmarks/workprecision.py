@@ -14,7 +14,7 @@ Competitors, all on this machine in one run:
   process with the kernel cached (numba's on-disk cache warm), and the first
   ever run of a topology that is not bundled (the example with a pinned left
   end) in an empty ``MSTMM_CACHE``: SymPy derivation, numba compilation, solve;
-* the finite-element model ``benchmarks/fem.py`` (cubic Hermite elements,
+* the finite-element model ``tests/reference_fem.py`` (cubic Hermite elements,
   consistent mass) on meshes of 4 .. 1024 elements: ``dense`` (LAPACK on the
   shift-inverted problem), ``sparse`` (ARPACK shift-invert), the same with
   Richardson extrapolation (coarse mesh n and its bisection 2n, so n <= 512),
@@ -44,11 +44,11 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
+import reference_fem as fem  # tests/reference_fem.py
 from mpmath import mp, mpf
 
 import mstmm
 
-from . import fem
 from .machine import new_topology_env
 from .table1 import QUOTED
 

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "07ddd7fb2d55f19025fbad9c910519f3a887bab7"
-NUMERICS = "85fa36c239cba017f5f0dbf83238f8be7b6cbb02"
+SIGNATURE = "43589860aaf757e02a8ffa3e10c49a6fe3ca49aa"
+NUMERICS = "52296c9ee6e607d4966272835d9fccce358f762b"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

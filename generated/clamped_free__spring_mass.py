@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "0c3658ef426c28f3ccfc3d78029475b35fc2e49a"
-NUMERICS = "85fa36c239cba017f5f0dbf83238f8be7b6cbb02"
+SIGNATURE = "898915f8b00e5d3ffb762175212e62964ae038d9"
+NUMERICS = "52296c9ee6e607d4966272835d9fccce358f762b"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "495156db78a740beba70ccf876b794fdaa31b33c"
+DIGEST = "a0adb3515838843a585fc3524b17a2f14fd43aef"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

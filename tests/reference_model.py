@@ -177,12 +177,9 @@ oscillator_chain); ``loss_factor`` and :data:`GENERAL_KEYS` (optional, beam or s
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
-from pathlib import Path
 
 import mpmath
 from mpmath import mp, mpc, mpf
@@ -2480,22 +2477,12 @@ def _order_key(w):
     return (2, w.real, w.imag)
 
 
-_FEM = None
-
-
 def _fem():
-    """``benchmarks/fem.py`` loaded from its file (the ``benchmarks`` package imports mstmm,
-    which this module must not): only its roots' seeds are used."""
-    global _FEM
-    if _FEM is None:
-        path = Path(__file__).resolve().parents[1] / "benchmarks" / "fem.py"
-        name = "_reference_model_fem"
-        spec = importlib.util.spec_from_file_location(name, path)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        spec.loader.exec_module(module)
-        _FEM = module
-    return _FEM
+    """The finite-element model (``tests/reference_fem.py``, imported when first needed):
+    only its roots' seeds are used."""
+    import reference_fem
+
+    return reference_fem
 
 
 def _cnum(value):
@@ -2585,7 +2572,7 @@ def damped_frequencies(scene, n_modes: int, dps: int = 30, n_elements: int | Non
     sigma).  With all c = 0 and eta = 0 the roots are those of :func:`frequencies` (real,
     sigma exactly 0).
 
-    What is guaranteed.  Seeds are the finite-element roots of ``benchmarks/fem.py``
+    What is guaranteed.  Seeds are the finite-element roots of ``tests/reference_fem.py``
     (``n_elements``, default ``4 n + 16``, at least 24; only a starting point).  Each is
     polished by the secant method on F (deflated by the roots already found; on the real
     axis for an undamped scene and on the imaginary axis for an overdamped seed, where F

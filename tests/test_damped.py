@@ -36,7 +36,7 @@ from hypothesis import strategies as st
 from test_fem_damped import SCENES
 
 import mstmm
-from mstmm import damped
+from mstmm import contour, damped
 
 MODES = 20
 RTOL = 1e-10
@@ -204,7 +204,7 @@ def mstmm_count(sc, box) -> int:
     scene = mstmm.scene_from_dict(sc)
     kernel = mstmm.kernel_for(scene)
     f = damped._Function(kernel, mstmm.parameter_vector(scene))
-    return damped.winding(f, box)
+    return contour.winding(f, box)
 
 
 def test_undamped_limit_is_the_undamped_solve():

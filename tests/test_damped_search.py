@@ -1,6 +1,6 @@
 """The damped search's fast path (issue 20 item 11) finds what the slow one found.
 
-* **The leap** (:func:`mstmm.damped.newton_many` from every undamped root at once): on a
+* **The leap** (:func:`mstmm.secant.newton_many` from every undamped root at once): on a
   pinned-pinned beam with a loss factor the roots are ``sqrt(1 + i eta) (n pi / L)^2
   sqrt(EI / mbar)`` exactly.
 * **A root reached twice** (two close undamped roots whose paths arrive at one damped
@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import mstmm
-from mstmm import damped
+from mstmm import damped, secant
 from mstmm.decay_bound import sigma_max
 from mstmm.scene import scene_from_dict
 
@@ -64,7 +64,7 @@ def test_the_leap_lands_on_the_closed_form(eta):
     n = np.arange(1, 9)
     w0 = (n * math.pi / 2.0) ** 2 * math.sqrt(3.0 / 1.5)
     exact = np.sqrt(1.0 + 1j * eta) * w0
-    w, ok = damped.newton_many(problem.f, w0 * (1.0 + 0.3j * eta), scale=unit)
+    w, ok = secant.newton_many(problem.f, w0 * (1.0 + 0.3j * eta), scale=unit)
     assert ok.all()
     assert np.max(np.abs(w - exact) / np.abs(exact)) < 1e-13
 

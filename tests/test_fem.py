@@ -1,4 +1,4 @@
-"""Checks of the finite-element model (benchmarks/fem.py) against the exact references,
+"""Checks of the finite-element model (tests/reference_fem.py) against the exact references,
 closed forms for bare beams, and its own properties (solvers agree, inertia counts,
 convergence rate, mesh, stiffness factor)."""
 
@@ -14,12 +14,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import reference_model as ref  # noqa: E402
-
-from benchmarks.fem import (  # noqa: E402
+from reference_fem import (  # noqa: E402
     _matrices,
     _model,
     _nodes,

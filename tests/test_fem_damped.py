@@ -1,4 +1,4 @@
-"""Checks of the damped finite-element model (benchmarks/fem.py: damped_spectrum,
+"""Checks of the damped finite-element model (tests/reference_fem.py: damped_spectrum,
 damped_frequencies, damped_richardson, damped_assemble, frf) against the mpmath reference
 (tests/reference_model.py) and closed forms.  Not tests of mstmm.
 
@@ -34,10 +34,8 @@ import pytest  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import reference_fem as fem  # noqa: E402
 import reference_model as ref  # noqa: E402
-
-# benchmarks/fem.py from its file: the benchmarks package imports mstmm, these tests don't
-fem = ref._fem()
 
 
 def beam(left, right, attachments=(), length=1.0, ei=1.0, mbar=1.0, **extra):

@@ -1,4 +1,4 @@
-"""Checks of the finite-element model (benchmarks/fem.py) with the optional segment terms
+"""Checks of the finite-element model (tests/reference_fem.py) with the optional segment terms
 ``kappa_GA``, ``rho_I``, ``axial_force``, ``foundation_k``, ``foundation_kG``, against
 closed forms only (not against mstmm).  Closed forms used:
 
@@ -36,9 +36,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 import scipy.optimize  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from benchmarks import fem  # noqa: E402
+import reference_fem as fem  # noqa: E402
 
 L, EI, MBAR = 2.0, 3.0, 1.5
 P_E = np.pi**2 * EI / L**2  # Euler buckling load of the pinned-pinned beam

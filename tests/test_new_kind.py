@@ -27,8 +27,8 @@ import scipy.linalg
 
 import mstmm
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from benchmarks import fem  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import reference_fem as fem  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 KIND_FILE = HERE / "kinds" / "torsional_absorber.py"
@@ -113,7 +113,7 @@ def got(tmp_path_factory) -> dict:
 
 def fe_matrices(n: int, c: float = 0.0):
     """K, C, M of the clamped-free beam in n Hermite elements (the project's FE model,
-    ``benchmarks/fem.py``), the absorber's rotation added as the last degree of freedom;
+    ``tests/reference_fem.py``), the absorber's rotation added as the last degree of freedom;
     dofs (w, w') of nodes 1..n."""
     beam = {"length": L, "EI": EI, "mass_per_length": MBAR, "left": "clamped", "right": "free"}
     K0, M0 = (X.toarray() for X in fem.assemble({"beam": beam, "attachments": []}, n))

@@ -1,5 +1,5 @@
 """N identical cells (``repeat = N``) solved by the count and the characteristic function in
-O(log N) (``mstmm.repeated``, ``mstmm.numerics.repeated``), through ``mstmm.solve``'s
+O(log N) (``mstmm.repeated``, ``mstmm.numerics.doubling``), through ``mstmm.solve``'s
 default path (mode shapes on): the natural frequencies against the mpmath reference model
 (tests/reference_model.py: its own assembly of the expanded scene, its own count), the
 count at frequencies between them, the clusters of identical resonators against the

@@ -574,6 +574,7 @@ def test_first_error_in_file_order_names_the_file_index(tmp_path):
 def _toy_energy(v):
     """Its physics: a spring to the ground (a kind declares its energy or descriptor)."""
     import sympy as sp
+
     from mstmm.physics import Energy
 
     return Energy(K=sp.diag(v["stiffness"], 0), C=sp.zeros(2, 2), M=sp.zeros(2, 2))

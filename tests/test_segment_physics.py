@@ -311,14 +311,14 @@ def test_bad_segment_values_are_one_line_errors():
 )
 def test_damped_roots_with_a_dashpot_against_the_finite_element_model(extra, proved):
     """A grounded dashpot on a beam with segment terms: the damped roots against the
-    damped finite-element model (benchmarks/fem.py, Richardson). The decay bound's proof
+    damped finite-element model (tests/reference_fem.py, Richardson). The decay bound's proof
     holds for a tension, a foundation and a rotary inertia (count checked), not for a
     point damper on a Timoshenko segment: then the result says which roots it did not
     count instead of claiming a certificate."""
     import os
 
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    from benchmarks import fem
+    import reference_fem as fem
 
     scene = _scene(extra, attachments=[dict(type="dashpot", x=0.7, c=0.5)])
     sol = mstmm.solve(scene, modes=6)

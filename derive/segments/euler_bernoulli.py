@@ -75,48 +75,6 @@ def transfer_matrix_nondimensional(beta: sp.Expr, rho: sp.Expr, K) -> sp.Matrix:
     return transfer_matrix_reduced(beta, rho, sp.Integer(1), K)
 
 
-#: Nodal forces ``[F, M_theta]`` (work-conjugate to ``[Y, theta]``) -> internal ``[M, Q]``
-#: at the left and at the right end of a segment. These are the only signs for which
-#: the dynamic stiffness built from Eq. (1) is symmetric with the classical static limit
-#: ``EI/l^3 [[12, 6l, -12, 6l], ...]`` (checked in tests/test_symbolic.py).
-PI_LEFT = sp.Matrix([[0, -1], [1, 0]])
-PI_RIGHT = sp.Matrix([[0, 1], [-1, 0]])
-
-
-def blocks(U: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
-    """``A, B, C, D`` of ``[d; f]_O = [[A, B], [C, D]] [d; f]_I`` with ``d = [Y, theta]``."""
-    return U[:2, :2], U[:2, 2:], U[2:, :2], U[2:, 2:]
-
-
-def dynamic_stiffness(U: sp.Matrix) -> sp.Matrix:
-    """Segment dynamic stiffness ``[P_a; P_b] = K [d_a; d_b]`` from its transfer matrix."""
-    A, B, C, D = blocks(U)
-    k_ab = (B * PI_LEFT).inv()
-    k_aa = -k_ab * A
-    k_ba = PI_RIGHT.inv() * (C + D * PI_LEFT * k_aa)
-    k_bb = PI_RIGHT.inv() * D * PI_LEFT * k_ab
-    return sp.Matrix(sp.BlockMatrix([[k_aa, k_ab], [k_ba, k_bb]]))
-
-
-def riccati_step(U: sp.Matrix, S: sp.Matrix) -> tuple[sp.Matrix, sp.Expr, sp.Expr, sp.Expr]:
-    """Carry the condensed stiffness ``S`` of everything left of a node across one segment.
-
-    With ``f_a = -PI_LEFT S d_a`` at the node, ``d_b = X d_a`` where
-    ``X = A - B PI_LEFT S``, and the condensed stiffness at the far node is
-    ``S_b = PI_RIGHT^-1 (C - D PI_LEFT S) X^-1`` (a Riccati transfer step, exact
-    for any segment length: no ``EI/l^3`` appears). Eliminating the near node's
-    degrees of freedom in the dynamic stiffness matrix has the pivot block
-    ``S + k_aa = -(B PI_LEFT)^-1 X``: its inertia follows from the signs of
-    ``det X``, ``det(B PI_LEFT)`` and ``m00 = -(adj(B PI_LEFT) X)[0, 0]``.
-    Returns ``(S_b numerator over det X, det X, det(B PI_LEFT), m00)``.
-    """
-    A, B, C, D = blocks(U)
-    BP = B * PI_LEFT
-    X = A - BP * S
-    S_num = PI_RIGHT.inv() * (C - D * PI_LEFT * S) * X.adjugate()
-    return S_num, X.det(), BP.det(), -(BP.adjugate() * X)[0, 0]
-
-
 def clamped_clamped_equation(x: sp.Expr) -> sp.Expr:
     """``1 - cos x cosh x``: zero at the natural frequencies of a segment clamped at both ends."""
     return 1 - sp.cos(x) * sp.cosh(x)

@@ -61,6 +61,8 @@ try:
 except ImportError:  # not POSIX: no locks, each process starts its own helpers
     fcntl = None
 
+from . import loader
+
 #: The drivers a default solve calls (``entry_<name>``), each compiled by a helper of
 #: its own when numba's cache does not hold it.
 BACKGROUND = ("lowest", "mode_shapes")
@@ -512,15 +514,9 @@ def compile_kernel(path: str, name: str) -> None:
     """Compile the functions of :data:`KERNEL_BACKGROUND` of the kernel module ``name`` (at
     ``path``) for the signatures the shared drivers call them with, each under its lock,
     skipping those another process compiles or has compiled."""
-    import importlib
-
-    from mstmm import kernels
     from mstmm.numerics import entries
 
-    if name.startswith("mstmm.generated."):
-        module = importlib.import_module(name)
-    else:
-        module = kernels._load_file(Path(path), name)
+    module = loader.load(path, name)
     for function in _kernel_functions(module):
         dispatcher = getattr(module, function)
         fd, busy = _claim(_kernel_lock(module, function))

@@ -19,16 +19,17 @@ The search (:func:`damped_roots`):
    vector scaled by ``t``): every simple undamped root at once to a small ``t``, then
    extrapolated linearly to ``t = 1`` and polished there (:func:`_leap`); where the
    polish is not trusted, or two roots arrive at one, followed by Newton's method in
-   steps that halve when Newton does not settle (:func:`_continue`).
+   steps that halve when Newton does not settle (:func:`_continue`; Newton's method is
+   the secant method on log f, :mod:`mstmm.secant`).
 3. **Count** the zeros in the rectangle ``[-eps, W] x [-delta, S]`` of the ``w`` plane
    (``w_d`` up to the band's top ``W``, ``sigma`` up to ``S``, the origin inside) by the
-   winding number, sampled adaptively until no step of the phase exceeds ``pi/4``; the
-   zero at ``w = 0`` has the known order ``2 n_rigid - r`` (``r`` the rigid motions the
-   grounded dashpots restrain).
+   winding number, sampled adaptively until no step of the phase exceeds ``pi/4``
+   (:mod:`mstmm.contour`); the zero at ``w = 0`` has the known order ``2 n_rigid - r``
+   (``r`` the rigid motions the grounded dashpots restrain).
 4. **Search what the count says is left**: rectangles whose count exceeds the roots
    known in them are split and searched (Newton from their centres) until every count is
    matched; a rectangle that still holds ``m`` zeros when it is as small as round-off
-   allows is a root of multiplicity ``m``.
+   allows is a root of multiplicity ``m`` (:mod:`mstmm.subdivision`).
 
 The result says whether the count confirmed every root (``count_checked``); roots with
 ``sigma > S`` are not counted (``S`` is reported: a multiple of the largest decay rate
@@ -47,23 +48,14 @@ import numpy as np
 
 from mstmm import catalog
 
+from . import contour, subdivision
 from .decay_bound import sigma_max
 from .frames import Tabulated
 from .kernels import Kernel
+from .modes import Shape
+from .secant import NEWTON_TOL, newton, newton_many
 from .undamped import solve_undamped
 
-#: Largest phase step (radians) between neighbouring samples of the contour.
-PHASE_STEP = math.pi / 4
-#: Largest departure of log f at a step's midpoint from the mean of its ends (a zero
-#: near the contour bends log f sharply; far from every zero it is smooth, however fast
-#: |f| grows along a tall edge).
-BEND = 0.5
-#: Samples of the contour are refined down to this relative length at most.
-FINEST = 1e-13
-#: A winding number this far from an integer is not trusted (the sampling is refined).
-WINDING_SLACK = 0.05
-#: Newton stops at a step this small relative to |w| (or to the frequency unit near 0).
-NEWTON_TOL = 4e-16
 #: With a loss factor, a root at w_d < -AXIS_TOL |w| lies left of the imaginary axis beyond
 #: its accuracy (Newton's 4e-16, the cluster discs' 1e-7 |w| at worst): the loss factor's
 #: model holds for w_d > 0 only, and such a root is left out and said (the slow root of
@@ -119,10 +111,6 @@ class DampedRoots:
     rectangle: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
 
 
-class OnContour(Exception):
-    """A zero lies on (or within round-off of) the contour."""
-
-
 class _Function:
     """log f(w) of the damped kernel at one parameter vector: ``log|f| + i arg f`` with the
     phase taken from f's value (mod 2 pi), so any branch of the kernel's scaling is fine."""
@@ -161,250 +149,6 @@ class _Function:
         if not (cmath.isfinite(m) and cmath.isfinite(g)):
             return complex(math.nan, math.nan)  # beyond what the scaling holds: no value
         return complex(math.log(abs(m)) + g.real, cmath.phase(m) + g.imag)
-
-
-def _wrap(a):
-    """Angles wrapped into (-pi, pi]."""
-    return np.angle(np.exp(1j * np.asarray(a)))
-
-
-def _growth(s: np.ndarray, c: float) -> np.ndarray:
-    """The basis of the smooth growth of log|f| up a tall edge, at heights ``s`` above its
-    bottom (``c``: the box's width): a beam's exponents grow as sqrt(w), its scalings as
-    powers of w."""
-    s = np.asarray(s, dtype=float)
-    return np.stack([np.ones_like(s), np.sqrt(s + c), np.log(s + c), s / c], axis=-1)
-
-
-def edge_winding(
-    f: _Function,
-    a: complex,
-    b: complex,
-    n0: int = 32,
-    nodes: np.ndarray | None = None,
-    tall: float = 0.0,
-) -> float:
-    """The change of arg f along the segment from a to b (radians), sampled adaptively
-    until no step of the phase exceeds PHASE_STEP and log f at the midpoint of every step
-    is within BEND of the mean of its ends (a zero near the segment, at a distance below a
-    third of the step or so, bends it further; the rise of |f| along a tall edge far from
-    every zero does not, and costs no samples);
-    ``nodes`` (fractions of the segment) are sampled from the start: one between any two
-    roots near the segment, so that no two of them share a step (their phase swings would
-    add to 2 pi and wrap to nothing). ``tall`` (a vertical edge of a box this wide, far
-    taller): the smooth growth of log|f| with the height (fitted by least squares on the
-    samples well above the bottom, :func:`_growth`) is taken out of log|f| before the
-    bends are measured, so that it costs no samples; the phase is untouched (the count
-    is the same sum of phase steps, only where to sample changes). Raises
-    :class:`OnContour` when a zero sits on the segment."""
-    t = np.linspace(0.0, 1.0, n0 + 1)
-    if nodes is not None and len(nodes):
-        t = np.unique(np.concatenate([t, np.clip(nodes, 0.0, 1.0)]))
-    g = f(a + (b - a) * t)
-    checked = np.zeros(t.size - 1, dtype=bool)
-    bottom = min(a.imag, b.imag)
-
-    def height(u):
-        return np.abs((a + (b - a) * u).imag - bottom)
-
-    coef = None
-    if tall > 0.0:
-        far = (height(t) >= 4.0 * tall) & np.isfinite(g.real)
-        if np.count_nonzero(far) >= 8:
-            coef = np.linalg.lstsq(_growth(height(t[far]), tall), g.real[far], rcond=None)[0]
-
-    def log_abs(u, gu):
-        """log|f| at the fractions u (values gu) less the fitted growth."""
-        return gu.real if coef is None else gu.real - _growth(height(u), tall) @ coef
-
-    while True:
-        if not np.all(np.isfinite(g)):
-            near = a + (b - a) * t[~np.isfinite(g)][0]
-            what = "f has no value (overflow)" if np.isnan(g).any() else "f = 0"
-            raise OnContour(f"{what} on the contour near {near}")
-        dphi = _wrap(np.diff(g.imag))
-        bad = np.abs(dphi) > PHASE_STEP
-        if t.size > 2:
-            # log|f| over a step against what its neighbours' slopes predict: a zero close
-            # to the segment (a double one turns the phase by a whole turn, which wraps
-            # to nothing) breaks the trend
-            dlog = np.diff(log_abs(t, g))
-            h = np.diff(t)
-            slope = dlog / h
-            trend = np.empty_like(slope)
-            trend[1:-1] = 0.5 * (slope[:-2] + slope[2:])
-            trend[0], trend[-1] = slope[1], slope[-2]
-            bad |= np.abs(dlog - h * trend) > 2.0 * BEND
-        if not bad.any():
-            # each step once more through its midpoint: a step whose phase turned by a
-            # whole turn more than it shows (a zero close by) splits in two there
-            todo = np.flatnonzero(~checked)
-            if todo.size == 0:
-                return float(np.sum(dphi))
-            mid = 0.5 * (t[todo] + t[todo + 1])
-            gm = f(a + (b - a) * mid)
-            h1 = _wrap(gm.imag - g.imag[todo])
-            h2 = _wrap(g.imag[todo + 1] - gm.imag)
-            # a half that turns too far, or halves that do not add up to the step: a
-            # zero close by (its swing may have wrapped by a whole turn)
-            hidden = np.abs(h1 + h2 - dphi[todo]) > 1.0
-            hidden |= (np.abs(h1) > PHASE_STEP) | (np.abs(h2) > PHASE_STEP)
-            lg = log_abs(t, g)
-            hidden |= np.abs(log_abs(mid, gm) - 0.5 * (lg[todo] + lg[todo + 1])) > BEND
-            hidden |= np.abs(0.5 * (h1 - h2)) > BEND
-            hidden |= ~np.isfinite(gm)
-            checked[todo] = True
-            if not hidden.any():
-                return float(np.sum(dphi))
-            bad = np.zeros(t.size - 1, dtype=bool)
-            bad[todo[hidden]] = True
-        idx = np.flatnonzero(bad)
-        width = t[idx + 1] - t[idx]
-        if np.any(width * abs(b - a) < FINEST * max(abs(a), abs(b))):
-            near = a + (b - a) * t[idx[0]]
-            raise OnContour(f"a zero within round-off of the contour near {near}")
-        mid = 0.5 * (t[idx] + t[idx + 1])
-        gm = f(a + (b - a) * mid)
-        t = np.insert(t, idx + 1, mid)
-        g = np.insert(g, idx + 1, gm)
-        checked = np.insert(checked, idx + 1, False)
-        # both halves of every split step are checked again: the left half of the k-th
-        # split step now sits at idx[k] + k (each insertion before it shifted it by one)
-        checked[idx + np.arange(idx.size)] = False
-
-
-def winding(
-    f: _Function,
-    box: tuple[float, float, float, float],
-    n0: int = 32,
-    bottom: np.ndarray | None = None,
-) -> int:
-    """Number of zeros of f in the rectangle ``box = (x0, x1, y0, y1)`` of the w plane
-    (w_d from x0 to x1, sigma from y0 to y1), with multiplicity, by the argument principle;
-    ``bottom``: w_d values sampled from the start along the bottom edge (between the roots
-    near the real axis). Raises :class:`OnContour` when a zero lies on its boundary."""
-    x0, x1, y0, y1 = box
-    corners = [complex(x0, y0), complex(x1, y0), complex(x1, y1), complex(x0, y1)]
-    # a tall box: its sides sampled at heights growing geometrically from the bottom,
-    # where the zeros are (f changes on the scale of the distance to them)
-    rise = np.zeros(0)
-    if y1 - y0 > 8.0 * (x1 - x0):
-        rise = (x1 - x0) * 2.0 ** np.arange(int(math.log2((y1 - y0) / (x1 - x0))) + 1) / (y1 - y0)
-    total = 0.0
-    for i in range(4):
-        nodes = None
-        if i == 0 and bottom is not None:
-            nodes = (np.asarray(bottom, dtype=float) - x0) / (x1 - x0)
-        elif i in (1, 3):
-            nodes = rise if i == 1 else 1.0 - rise
-        tall = x1 - x0 if i in (1, 3) and rise.size else 0.0
-        total += edge_winding(f, corners[i], corners[(i + 1) % 4], n0, nodes, tall)
-    n = total / (2.0 * math.pi)
-    if abs(n - round(n)) > WINDING_SLACK:
-        raise OnContour(f"winding number {n:.3f} is not an integer")
-    return int(round(n))
-
-
-def newton(
-    f: _Function,
-    w: complex,
-    multiplicity: int = 1,
-    scale: float = 1.0,
-    maxiter: int = 80,
-    tol: float = NEWTON_TOL,
-) -> tuple[complex, bool]:
-    """The secant method on ``f^(1/m)`` from w (and a point 1e-7 beside it): each step
-    ``w2 = w1 - (w1 - w0) / (1 - (f0 / f1)^(1/m))`` with ``f0 / f1 = exp(log f0 - log f1)``,
-    so the scale of f never matters; superlinear for a simple root and needs no
-    derivative (a difference across the root of the singular log f would be garbage).
-    Converged when the step falls below ``tol`` relative (``NEWTON_TOL``: to round-off),
-    or stops shrinking below 1e-11 relative (round-off of f). Returns (root, converged)."""
-    mag = max(abs(w), 1e-3 * scale)
-    w0 = w + 1e-7 * mag
-    g0 = f.one(w0)
-    w1, g1 = complex(w), f.one(w)
-    prev = math.inf
-    for _ in range(maxiter):
-        if math.isnan(g1.real) or math.isnan(g0.real):
-            return w1, False  # f has no value there (overflow): no root found
-        if not math.isfinite(g1.real):
-            return w1, True  # f = 0 exactly
-        if not math.isfinite(g0.real):
-            return w0, True
-        dg = complex(g0.real - g1.real, float(_wrap(g0.imag - g1.imag))) / multiplicity
-        if dg.real > 700.0:
-            return w1, False
-        denom = 1.0 - cmath.exp(dg)
-        if denom == 0:
-            return w1, False
-        step = -(w1 - w0) / denom
-        if not cmath.isfinite(step):
-            return w1, False
-        mag = max(abs(w1), 1e-3 * scale)
-        size = abs(step)
-        if size <= tol * mag:
-            return w1 + step, True
-        if size <= 1e-11 * mag and size >= 0.5 * prev:
-            return w1, True
-        w0, g0 = w1, g1
-        w1 = w1 + step
-        g1 = f.one(w1)
-        prev = size
-    return w1, prev <= 1e-10 * max(abs(w1), 1e-3 * scale)
-
-
-def newton_many(
-    f: _Function, ws: np.ndarray, scale: float = 1.0, maxiter: int = 80, tol: float = NEWTON_TOL
-) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`newton` (multiplicity 1) from every start in ``ws`` at once: each step
-    evaluates f at all the starts still moving in one call (on every core for a large
-    scene). Returns (roots, converged), arrays."""
-    w1 = np.array(ws, dtype=np.complex128).ravel()
-    n = w1.size
-    w0 = w1 + 1e-7 * np.maximum(np.abs(w1), 1e-3 * scale)
-    g = f(np.concatenate([w0, w1])) if n else np.zeros(0, dtype=np.complex128)
-    g0, g1 = g[:n], g[n:]
-    out = w1.copy()
-    ok = np.zeros(n, dtype=bool)
-    done = np.zeros(n, dtype=bool)
-    prev = np.full(n, math.inf)
-    for _ in range(maxiter):
-        void = ~done & (np.isnan(g1.real) | np.isnan(g0.real))  # no value: no root found
-        out[void] = w1[void]
-        done |= void
-        exact1 = ~done & (g1.real == -math.inf)  # f = 0 exactly
-        exact0 = ~done & ~exact1 & (g0.real == -math.inf)
-        out[exact1], out[exact0] = w1[exact1], w0[exact0]
-        ok |= exact1 | exact0
-        done |= exact1 | exact0
-        live = np.flatnonzero(~done)
-        if live.size == 0:
-            break
-        dg = g0[live].real - g1[live].real + 1j * _wrap(g0[live].imag - g1[live].imag)
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            denom = 1.0 - np.exp(np.minimum(dg.real, 700.0) + 1j * dg.imag)
-            step = -(w1[live] - w0[live]) / denom
-        mag = np.maximum(np.abs(w1[live]), 1e-3 * scale)
-        size = np.abs(step)
-        bad = (dg.real > 700.0) | (denom == 0) | ~np.isfinite(step)
-        conv = ~bad & (size <= tol * mag)
-        stall = ~bad & ~conv & (size <= 1e-11 * mag) & (size >= 0.5 * prev[live])
-        out[live[bad]] = w1[live[bad]]
-        out[live[conv]] = w1[live[conv]] + step[conv]
-        out[live[stall]] = w1[live[stall]]
-        ok[live[conv | stall]] = True
-        done[live[bad | conv | stall]] = True
-        go = ~(bad | conv | stall)
-        move = live[go]
-        w0[move], g0[move] = w1[move], g1[move]
-        w1[move] = w1[move] + step[go]
-        prev[move] = size[go]
-        if move.size:
-            g1[move] = f(w1[move])
-    left = ~done
-    out[left] = w1[left]
-    ok[left] = prev[left] <= 1e-10 * np.maximum(np.abs(w1[left]), 1e-3 * scale)
-    return out, ok
 
 
 def damping_scaled(p: np.ndarray, columns: np.ndarray, t: float) -> np.ndarray:
@@ -453,7 +197,7 @@ class _Problem:
         """Add a root unless it is one already known, or the zero at the origin (whose
         order is known). A root close to a known one, to its own mirror image (viscous:
         near the imaginary axis), said to be multiple or of unknown multiplicity (0) is
-        resolved first by :func:`_cluster`: the zeros in a disc around it, each to full
+        resolved first by :func:`mstmm.contour.cluster`: the zeros in a disc around it, each to full
         accuracy (a defective multiple root, critical damping, as one root of its
         multiplicity; its count is the multiplicity of a root of unknown multiplicity).
         Returns whether anything new was added."""
@@ -468,9 +212,9 @@ class _Problem:
             return True
         centre = complex(0.0, w.imag) if mirrored else w
         spread = max([abs(r.omega - centre) for r in near] + [abs(w - centre)])
-        found = _cluster(self, centre, max(4.0 * spread, 1e-7 * tiny))
+        found = contour.cluster(self.f, centre, max(4.0 * spread, 1e-7 * tiny), self.unit)
         if found is None and multiplicity == 0:  # unknown: a small square's count says
-            multiplicity = _multiplicity(self, w)
+            multiplicity = contour.multiplicity(self.f, w, self.unit)
             if multiplicity == 0:
                 return False
         if found is None:  # the disc could not be resolved: keep what Newton gave
@@ -501,98 +245,6 @@ class _Problem:
         if self.viscous and w.real < 0:
             return complex(-w.real, w.imag)
         return w
-
-
-#: Samples of a circle for the moments of a cluster (doubled until the phase is resolved).
-CLUSTER_SAMPLES = 64
-
-
-def _circle(f: _Function, centre: complex, r: float) -> tuple[np.ndarray, int] | None:
-    """log f at equispaced points of the circle |w - centre| = r (their phase unwrapped)
-    and the winding number; None when no sampling up to 4096 points resolves the phase
-    (a zero on or next to the circle)."""
-    n = CLUSTER_SAMPLES
-    while n <= 4096:
-        theta = 2.0 * np.pi * np.arange(n) / n
-        g = f(centre + r * np.exp(1j * theta))
-        if not np.all(np.isfinite(g)):
-            return None
-        steps = _wrap(np.diff(np.append(g.imag, g.imag[0])))
-        if np.max(np.abs(steps)) < 0.5 * np.pi:
-            turns = float(np.sum(steps)) / (2.0 * np.pi)
-            if abs(turns - round(turns)) < WINDING_SLACK:
-                phase = g.imag[0] + np.concatenate([[0.0], np.cumsum(steps[:-1])])
-                return g.real + 1j * phase, int(round(turns))
-        n *= 2
-    return None
-
-
-def _power_sums(g: np.ndarray, m: int, r: float) -> np.ndarray:
-    """``s_j = sum (z_i - centre)^j``, j = 1..m, over the m zeros inside the circle whose
-    log f samples are ``g``: with ``h = log f - m log(w - centre)`` (periodic on the
-    circle), ``s_j = -j r^j mean(e^(i j theta) h)`` (integration by parts of
-    ``(1 / 2 pi i) \u222e (w - centre)^j f'/f dw``; the trapezoidal rule is spectrally
-    accurate for a periodic analytic integrand: Delves & Lyness 1967)."""
-    n = g.size
-    theta = 2.0 * np.pi * np.arange(n) / n
-    h = g - m * (np.log(r) + 1j * theta)
-    return np.array([-j * r**j * np.mean(np.exp(1j * j * theta) * h) for j in range(1, m + 1)])
-
-
-def _zeros_from_sums(s: np.ndarray) -> np.ndarray:
-    """The m numbers whose power sums are ``s`` (Newton's identities, then the roots of
-    their monic polynomial)."""
-    m = s.size
-    e = [1.0 + 0j]
-    for k in range(1, m + 1):
-        e.append(sum((-1) ** (i - 1) * e[k - i] * s[i - 1] for i in range(1, k + 1)) / k)
-    coeffs = [(-1) ** k * e[k] for k in range(m + 1)]
-    return np.roots(coeffs) if m > 1 else np.array([s[0]])
-
-
-def _cluster(problem: _Problem, centre: complex, r0: float) -> list[tuple[complex, int]] | None:
-    """The zeros of f in a disc around ``centre`` (radius ``r0`` at least), each with its
-    multiplicity. The disc grows (x4) while it holds the same number m of zeros, up to a
-    hundredth of |centre|, since the moments of the cluster are the better conditioned
-    the wider the circle; their power sums (:func:`_power_sums`) at the widest and at a
-    quarter of it give the zeros, and zeros whose spread is within what the two circles
-    disagree on form one multiple root at their mean (the mean of a cluster is well
-    conditioned where its members are not: a defective double root, critical damping, is
-    found to full accuracy). None when the disc cannot be resolved."""
-    f = problem.f
-    scale = max(abs(centre), 1e-3 * problem.unit)
-    first = _circle(f, centre, r0)
-    if first is None or first[1] <= 0:
-        return None
-    m = first[1]
-    if m == 1:  # one simple zero: its place from the first circle (no conditioning to gain)
-        return [(complex(centre + _power_sums(first[0], 1, r0)[0]), 1)]
-    if m > 8:
-        return None
-    radii, rings = [r0], [first[0]]
-    r = r0
-    while 4.0 * r <= 1e-2 * scale:
-        ring = _circle(f, centre, 4.0 * r)
-        if ring is None or ring[1] != m:
-            break
-        r *= 4.0
-        radii.append(r)
-        rings.append(ring[0])
-    wide = centre + _zeros_from_sums(_power_sums(rings[-1], m, radii[-1]))
-    if m == 1:
-        return [(complex(wide[0]), 1)]
-    mean = complex(np.mean(wide))
-    if len(rings) > 1:
-        narrow = centre + _zeros_from_sums(_power_sums(rings[-2], m, radii[-2]))
-        disagree = abs(complex(np.mean(narrow)) - mean) + max(
-            float(np.max(np.abs(np.sort_complex(narrow) - np.sort_complex(wide)))), 0.0
-        )
-    else:
-        disagree = 1e-8 * scale
-    spread = float(np.max(np.abs(wide - mean)))
-    if spread <= 10.0 * disagree + 1e-12 * scale:
-        return [(mean, m)]
-    return [(complex(z), 1) for z in wide]
 
 
 #: The tallest rectangle counted, in beam modes: its height is at most the frequency of
@@ -665,9 +317,9 @@ def _leap(problem: _Problem, w0s: np.ndarray, pick) -> tuple[np.ndarray, np.ndar
     """The roots w0s of the undamped structure carried to full damping in one leap: each
     root at the small damping scale ``LEAP_T`` (Newton from w0: it moves a fraction of
     what it moves in all), extrapolated linearly to t = 1 and polished there; all at once
-    (:func:`newton_many`). A first-order prediction of each path; refused (not ok) where
-    the polish moves the root more than half as far as the prediction did (the path
-    bends, or Newton went to a neighbour): the continuation in steps then follows it.
+    (:func:`mstmm.secant.newton_many`). A first-order prediction of each path; refused (not
+    ok) where the polish moves the root more than half as far as the prediction did (the
+    path bends, or Newton went to a neighbour): the continuation in steps then follows it.
     Returns (roots, ok)."""
     w0s = np.asarray(w0s, dtype=np.complex128)
     small = _Function(problem.kernel, pick(LEAP_T))
@@ -765,76 +417,6 @@ def _axis_roots(problem: _Problem, sigma_lo: float, sigma_hi: float) -> None:
         problem.add(complex(0.0, 0.5 * (a + b)), 1, "search")
 
 
-def _multiplicity(problem: _Problem, w: complex) -> int:
-    """The zeros of f in a small square around w (its multiplicity when w is a root; 0 when
-    it is not one after all)."""
-    h = 1e-7 * max(abs(w), 1e-3 * problem.unit)
-    for _ in range(4):
-        try:
-            return winding(problem.f, (w.real - h, w.real + h, w.imag - h, w.imag + h), n0=8)
-        except OnContour:
-            h *= 3.1
-    return 0
-
-
-def _fill(problem: _Problem, box, count: int, depth: int = 0) -> None:
-    """Find the roots the count says are in ``box`` but not yet known: the secant method
-    from a few points of the box (on f, then on f^(1/m) for m the zeros left: a multiple
-    root), each root's multiplicity from a small count around it; else split the box in
-    four and search each quarter whose count exceeds its known roots. A box as small as
-    round-off allows with m zeros left is a root of multiplicity m (``how = "count"``)."""
-    f = problem.f
-    left = count - problem.known(box)
-    if left <= 0:
-        return
-    x0, x1, y0, y1 = box
-    centre = complex(0.5 * (x0 + x1), 0.5 * (y0 + y1))
-    size = max(x1 - x0, y1 - y0)
-    if size <= 1e-12 * max(abs(centre), problem.unit * 1e-6) or depth > 60:
-        problem.add(centre, left, "count", converged=depth <= 60)
-        return
-    if left == 1 or depth > 4:
-        dx, dy = 0.25 * (x1 - x0), 0.25 * (y1 - y0)
-        starts = (centre, centre - dx - dy, centre + dx + dy, centre - dx + dy)
-        for start in starts:
-            for m in dict.fromkeys((1, left)):
-                w, ok = newton(f, start, multiplicity=m, scale=problem.unit)
-                if ok and problem.inside(w, box):
-                    problem.add(w, 0, "search")  # its multiplicity from a circle round it
-            if problem.known(box) >= count:
-                return
-    # split in four (lines a little off the middle: not through a symmetric root)
-    xm = x0 + 0.5123 * (x1 - x0)
-    ym = y0 + 0.4877 * (y1 - y0)
-    for q in ((x0, xm, y0, ym), (xm, x1, y0, ym), (x0, xm, ym, y1), (xm, x1, ym, y1)):
-        n = _count(problem, q)
-        if n is not None:
-            _fill(problem, q, n, depth + 1)
-
-
-def _count(problem: _Problem, box) -> int | None:
-    """``winding`` on ``box``, its edges nudged when a zero sits on one; the bottom edge
-    sampled between every two undamped roots and every two roots found."""
-    x0, x1, y0, y1 = box
-    known = np.sort(
-        np.concatenate([problem.nodes, [r.omega.real for r in problem.roots if r.omega != 0]])
-    )
-    between = 0.5 * (known[1:] + known[:-1]) if known.size > 1 else known
-    bottom = np.concatenate([known, between])
-    for k in range(6):
-        try:
-            return winding(problem.f, (x0, x1, y0, y1), bottom=bottom)
-        except OnContour:
-            d = 1e-3 * (k + 1) * max(x1 - x0, y1 - y0)
-            x0, x1, y0, y1 = x0 - 0.7 * d, x1 + 0.3 * d, y0 - 0.5 * d, y1 + 0.9 * d
-    problem.notes.append(
-        "the argument principle could not be evaluated on the rectangle w_d in"
-        f" [{float(box[0]):.6g}, {float(box[1]):.6g}], sigma in [{float(box[2]):.6g},"
-        f" {float(box[3]):.6g}] rad/s"
-    )
-    return None
-
-
 def damped_roots(
     scene,
     kernel: Kernel,
@@ -892,12 +474,12 @@ def damped_roots(
     if unproved:
         problem.notes.append(unproved)
     box = (-eps, w_top, -delta, sigma_top)
-    count = _count(problem, box)
+    count = subdivision.count_box(problem, box)
     checked = count is not None and proved
     if count is not None:
         if viscous and problem.known(box) < count:
             _axis_roots(problem, 1e-9 * scale, sigma_top)
-        _fill(problem, box, count)
+        subdivision.fill(problem, box, count)
         found = problem.known(box)
         if found != count:
             checked = False
@@ -1037,15 +619,7 @@ class DampedSolution(Tabulated):
             "timings": dict(self.timings),
             "warnings": list(self.warnings),
         }
-        if self.buckling is not None:
-            out["buckling"] = {
-                "buckled": self.buckling.buckled,
-                "load_factor": float(self.buckling.load_factor),
-                "unstable_modes": self.buckling.unstable_modes,
-            }
-        if shapes and self.shapes is not None:
-            out["mode_shapes"] = [s.to_dict() for s in self.shapes]
-        return out
+        return self.buckling_and_shapes(out, shapes)
 
 
 def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True, kernel=None):
@@ -1162,22 +736,13 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
 
 
 @dataclass(frozen=True)
-class DampedModeShape:
+class DampedModeShape(Shape):
     """A complex mode shape at a damped natural frequency ``omega`` (rad/s): the states
-    along the beam and the displacement of every hanging mass, complex amplitudes of
-    ``exp(i omega t)`` (the physical motion is their real part), scaled so that the
-    largest |Y| over the beam and the masses is 1 and real positive."""
+    along the beam and the displacement of every hanging mass (:class:`mstmm.modes.Shape`),
+    complex amplitudes of ``exp(i omega t)`` (the physical motion is their real part),
+    scaled so that the largest |Y| over the beam and the masses is 1 and real positive."""
 
     omega: complex
-    x: np.ndarray
-    Y: np.ndarray
-    theta: np.ndarray
-    M: np.ndarray
-    Q: np.ndarray
-    mass_x: np.ndarray
-    mass_Y: np.ndarray
-    #: The end matrix's singular value for this shape over its largest (0: exactly null).
-    singular_ratio: float
     multiplicity: int = 1
 
     def to_dict(self) -> dict:

@@ -1,8 +1,9 @@
 """A solution at a glance: its short ``repr`` and its tables as pandas DataFrames.
 
 :class:`mstmm.solve.Solution` and :class:`mstmm.damped.DampedSolution` call these for
-``repr(sol)`` and ``sol.to_dataframe()``. pandas is optional: only ``to_dataframe``
-needs it, and says how to install it when it is missing.
+``repr(sol)`` and ``sol.to_dataframe()`` (and share the end of ``to_dict``: the buckling
+state and the mode shapes). pandas is optional: only ``to_dataframe`` needs it, and says
+how to install it when it is missing.
 """
 
 from __future__ import annotations
@@ -137,8 +138,9 @@ def to_dataframe(sol, shapes: bool = False):
 
 
 class Tabulated:
-    """What a solution class gets from this module: a one-line ``repr`` and
-    ``to_dataframe`` (its dataclass is declared with ``repr=False`` to keep this one)."""
+    """What a solution class gets from this module: a one-line ``repr``, ``to_dataframe``
+    (its dataclass is declared with ``repr=False`` to keep this one) and the parts of
+    ``to_dict`` an undamped and a damped solution share."""
 
     def __repr__(self) -> str:
         """One line: the scene, the frequencies (the first few), what to trust."""
@@ -149,3 +151,17 @@ class Tabulated:
         the mode shapes in long form; ``attrs["units"]`` the columns' units
         (:func:`to_dataframe`)."""
         return to_dataframe(self, shapes=shapes)
+
+    def buckling_and_shapes(self, out: dict, shapes: bool) -> dict:
+        """``out`` (a ``to_dict`` so far) with ``buckling`` (a scene with a segment in
+        compression: buckled, load factor, unstable modes) and, with ``shapes``, each mode
+        shape's own ``to_dict`` under ``mode_shapes``."""
+        if self.buckling is not None:
+            out["buckling"] = {
+                "buckled": self.buckling.buckled,
+                "load_factor": float(self.buckling.load_factor),
+                "unstable_modes": self.buckling.unstable_modes,
+            }
+        if shapes and self.shapes is not None:
+            out["mode_shapes"] = [s.to_dict() for s in self.shapes]
+        return out

@@ -38,6 +38,7 @@ from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
+from .loader import KernelError, load_file
 from .topology import Topology
 
 #: Characteristic functions every kernel carries (``evaluate_<name>``, ``refine_<name>``).
@@ -47,10 +48,6 @@ FORMULATIONS = ("stable", "paper")
 BLOCK_MODES = 256
 #: Components from which ``Kernel.lowest`` refines its roots in parallel (``_defers``).
 DEFER_EVENTS = 200
-
-
-class KernelError(RuntimeError):
-    """A kernel could not be generated, written or loaded."""
 
 
 class Found(NamedTuple):
@@ -67,21 +64,6 @@ class Found(NamedTuple):
     certified: bool
     #: Where the count stopped certifying (rad/s; 0 when ``certified``).
     failed_at: float
-
-
-def _load_file(path: Path, module_name: str) -> ModuleType:
-    spec = importlib.util.spec_from_file_location(module_name, path)
-    if spec is None or spec.loader is None:
-        raise KernelError(f"cannot load kernel {path}")
-    module = importlib.util.module_from_spec(spec)
-    # numba caches a module under its name: register it before executing it
-    sys.modules[module_name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[module_name]
-        raise
-    return module
 
 
 def _bundled(topology: Topology, sig: str) -> ModuleType | None:
@@ -161,7 +143,7 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
             raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
         derived = time.perf_counter() - t0
     module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
-    module = sys.modules.get(module_name) or _load_file(path, module_name)
+    module = sys.modules.get(module_name) or load_file(path, module_name)
     if not reads_this_layout(module, topology):
         raise KernelError(
             f"kernel {path} reads another parameter layout than this mstmm writes"

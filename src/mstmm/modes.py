@@ -65,15 +65,14 @@ BESIDE = tuple(10.0 ** (k / 2.0) for k in range(-24, -15))
 
 
 @dataclass(frozen=True)
-class ModeShape:
-    """One mode shape: the beam's state along x and the displacement of each carried mass.
+class Shape:
+    """What a mode shape of an undamped (:class:`ModeShape`) and of a damped scene
+    (:class:`mstmm.damped.DampedModeShape`: complex amplitudes) both are: the beam's state
+    ``Y``, ``theta``, ``M``, ``Q`` (m, rad, N m, N) sampled at ``x`` (right limits at an
+    attachment: after its shear jump) and the displacement ``mass_Y`` of each carried mass
+    (at ``mass_x``), at the natural frequency ``omega`` (rad/s)."""
 
-    ``Y``, ``theta``, ``M``, ``Q`` (m, rad, N m, N) are sampled at ``x`` (right limits at an
-    attachment: after its shear jump); the scaling is ``max |Y| = 1`` over the beam and the
-    masses unless the shape came from :meth:`mass_normalised`.
-    """
-
-    omega: float
+    omega: float | complex
     x: np.ndarray
     Y: np.ndarray
     theta: np.ndarray
@@ -83,6 +82,18 @@ class ModeShape:
     mass_Y: np.ndarray
     #: Singular value of this shape over the largest of the end matrix (0 for a clean root).
     singular_ratio: float
+
+
+@dataclass(frozen=True)
+class ModeShape(Shape):
+    """One mode shape: the beam's state along x and the displacement of each carried mass
+    (:class:`Shape`), with its modal mass, participation and effective mass.
+
+    The scaling is ``max |Y| = 1`` over the beam and the masses unless the shape came from
+    :meth:`mass_normalised`.
+    """
+
+    omega: float
     #: ``int mbar Y^2 dx + sum m Y_m^2`` (kg m^2 for Y in m), for this scaling.
     modal_mass: float
     #: Base-translation participation factor ``(int mbar Y dx + sum m Y_m) / modal_mass``.
@@ -115,6 +126,26 @@ class ModeShape:
     def mass_normalised(self) -> ModeShape:
         """The shape scaled to unit modal mass."""
         return self.scaled(1.0 / math.sqrt(self.modal_mass))
+
+    def to_dict(self) -> dict:
+        """JSON form: ``omega`` (rad/s), ``hz``, the samples and the masses as lists, the
+        numbers as Python floats (:meth:`mstmm.solve.Solution.to_dict`)."""
+        return {
+            "omega": float(self.omega),
+            "hz": float(self.omega) / (2.0 * math.pi),
+            "x": self.x.tolist(),
+            "Y": self.Y.tolist(),
+            "theta": self.theta.tolist(),
+            "M": self.M.tolist(),
+            "Q": self.Q.tolist(),
+            "mass_x": self.mass_x.tolist(),
+            "mass_Y": self.mass_Y.tolist(),
+            "singular_ratio": float(self.singular_ratio),
+            "modal_mass": float(self.modal_mass),
+            "participation": float(self.participation),
+            "effective_mass": float(self.effective_mass),
+            "multiplicity": int(self.multiplicity),
+        }
 
 
 def clusters(omega: np.ndarray) -> list[tuple[int, int]]:
@@ -250,11 +281,6 @@ def beside(count, omega: np.ndarray) -> tuple[float, float]:
     if more.size:
         above = hi * (1.0 + t[more[0] - 1])
     return below, above
-
-
-def mode_shape(kernel: Kernel, p: np.ndarray, omega: float, n_points: int = SAMPLES) -> ModeShape:
-    """The mode shape of a simple natural frequency ``omega`` (rad/s)."""
-    return mode_shapes(kernel, p, np.array([float(omega)]), n_points)[0]
 
 
 def _eigenspace(kernel, p, omegas, xs):

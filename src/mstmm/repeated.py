@@ -1,5 +1,5 @@
 """The natural frequencies of N identical cells end to end (``repeat = N``) with a count and
-a characteristic function that cost O(log N) each (``mstmm.numerics.repeated``: the cell's
+a characteristic function that cost O(log N) each (``mstmm.numerics.doubling``: the cell's
 transfer squared, its dynamic stiffness doubled), so that a cluster of N roots costs
 O(N log N) instead of N walks over N components.
 
@@ -71,7 +71,7 @@ class Chain:
 
     def at(self, omegas: np.ndarray) -> np.ndarray:
         """(J, mantissa, log, ok) at each omega (rad/s): the count of the whole structure
-        below it and its characteristic function (``numerics.repeated.structure_at``)."""
+        below it and its characteristic function (``numerics.doubling.structure_at``)."""
         ws = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.zeros((ws.size, 4))
         self.n.entry_repeated_at(self.fa, ws, self.p, self.n_cells, self.ends, self.free, out)
@@ -83,7 +83,7 @@ class Chain:
         """The natural frequencies in (lo, hi], or (hi = 0) the lowest ``want`` of them
         counted with the ``rigid`` zero ones, at most ``most`` distinct values: (omega,
         multiplicity, not converged, certified); None where the search cannot start
-        (``numerics.repeated.repeated_search``). Its driver compiles in a helper process
+        (``numerics.doubling.repeated_search``). Its driver compiles in a helper process
         on a machine's first run (``mstmm.compiling``)."""
         out = np.zeros(most)
         mult = np.zeros(most, dtype=np.int64)

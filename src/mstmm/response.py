@@ -34,6 +34,7 @@ import numpy as np
 from mstmm import catalog
 
 from .kernels import Kernel, load_kernel
+from .plain import plain
 from .scene import Scene, SceneError, check_band
 from .topology import parameter_vector, topology_of
 
@@ -167,19 +168,14 @@ def checked_omega(scene: Scene, omega, source: str = "<frf>", field: str = "omeg
     bad = ~np.isfinite(ws)
     if bad.any():
         k = int(np.argmax(bad))
-        raise SceneError(source, field, f"must be finite (rad/s); index {k} is", _plain(ws[k]))
+        raise SceneError(source, field, f"must be finite (rad/s); index {k} is", plain(ws[k]))
     if np.isrealobj(ws) and (ws < 0).any():
         k = int(np.argmax(ws < 0))
-        raise SceneError(source, field, f"must be >= 0 rad/s; index {k} is", _plain(ws[k]))
+        raise SceneError(source, field, f"must be >= 0 rad/s; index {k} is", plain(ws[k]))
     if ws.size:
         size = np.abs(ws)
         check_band(scene, (float(size.min()), float(size.max())), source, field)
     return ws
-
-
-def _plain(value) -> float | complex:
-    """A numpy scalar as a Python number (its message prints 1.5, not np.float64(1.5))."""
-    return value.item() if isinstance(value, np.generic) else value
 
 
 def frf(

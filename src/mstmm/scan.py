@@ -76,14 +76,8 @@ class Roots:
     notes: list[str]
 
 
-def beta_of(omega, p):
-    """``beta = lam L = L (mbar omega^2 / EI)^(1/4)``."""
-    L, EI, mbar = p[0], p[1], p[2]
-    return L * np.sqrt(np.sqrt(mbar * np.square(omega) / EI))
-
-
 def omega_of(beta, p):
-    """Inverse of :func:`beta_of`."""
+    """``omega`` of ``beta = lam L = L (mbar omega^2 / EI)^(1/4)``."""
     L, EI, mbar = p[0], p[1], p[2]
     return np.square(np.asarray(beta) / L) * math.sqrt(EI / mbar)
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from .kernels import Kernel
 from .limits import MAX_MODES, check_count
+from .plain import plain
 from .scene import Scene, SceneError, check_band
 from .topology import topology_of
 from .undamped import Solution, solve_undamped
@@ -25,7 +26,7 @@ def checked_request(
         raise ValueError("give modes= or band=, not both")
     if modes is not None:
         if isinstance(modes, bool) or not isinstance(modes, (int, np.integer)) or modes < 1:
-            raise SceneError(source, "modes", "must be a whole number >= 1", _plain(modes))
+            raise SceneError(source, "modes", "must be a whole number >= 1", plain(modes))
         modes = int(modes)
         check_count(modes, MAX_MODES, "modes", source, "modes")
     if band is not None:
@@ -40,10 +41,6 @@ def checked_request(
         band = (lo, hi)
         check_band(scene, band, source, "band")
     return modes, band
-
-
-def _plain(value):
-    return value.item() if isinstance(value, np.generic) else value
 
 
 #: A part of a damped root at most this many ulp of |omega| is round-off: returned as 0.

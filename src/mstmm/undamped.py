@@ -77,33 +77,7 @@ class Solution(Tabulated):
             "kernel_mode": self.kernel_mode,
             "timings": {k: float(v) for k, v in self.timings.items()},
         }
-        if self.buckling is not None:
-            out["buckling"] = {
-                "buckled": self.buckling.buckled,
-                "load_factor": float(self.buckling.load_factor),
-                "unstable_modes": self.buckling.unstable_modes,
-            }
-        if shapes and self.shapes is not None:
-            out["mode_shapes"] = [
-                {
-                    "omega": float(s.omega),
-                    "hz": float(s.omega) / (2.0 * math.pi),
-                    "x": s.x.tolist(),
-                    "Y": s.Y.tolist(),
-                    "theta": s.theta.tolist(),
-                    "M": s.M.tolist(),
-                    "Q": s.Q.tolist(),
-                    "mass_x": s.mass_x.tolist(),
-                    "mass_Y": s.mass_Y.tolist(),
-                    "singular_ratio": float(s.singular_ratio),
-                    "modal_mass": float(s.modal_mass),
-                    "participation": float(s.participation),
-                    "effective_mass": float(s.effective_mass),
-                    "multiplicity": int(s.multiplicity),
-                }
-                for s in self.shapes
-            ]
-        return out
+        return self.buckling_and_shapes(out, shapes)
 
 
 def _in_band(kernel: Kernel, p: np.ndarray, band: tuple[float, float]) -> int:

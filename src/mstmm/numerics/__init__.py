@@ -12,7 +12,7 @@ equation), ``segment`` (a piece's transfer, whichever the segment's kind), ``pap
 (the paper's determinant), ``characteristic`` (a topology's characteristic functions,
 bound to the functions its kernel prints), ``search`` (the certified scan), ``shapes``
 (mode shapes), ``frf`` (frequency response), ``bloch`` (a periodic cell's Bloch
-conditions), ``repeated`` (N identical cells by doubling), ``entries`` (the drivers
+conditions), ``doubling`` (N identical cells by doubling), ``entries`` (the drivers
 called from Python).
 """
 
@@ -22,13 +22,13 @@ from .bloch import *  # noqa: F403
 from .chain import *  # noqa: F403
 from .characteristic import *  # noqa: F403
 from .count import *  # noqa: F403
+from .doubling import *  # noqa: F403
 from .entries import *  # noqa: F403
 from .field import *  # noqa: F403
 from .frf import *  # noqa: F403
 from .layout import *  # noqa: F403
 from .linalg import *  # noqa: F403
 from .paper import *  # noqa: F403
-from .repeated import *  # noqa: F403
 from .search import *  # noqa: F403
 from .segment import *  # noqa: F403
 from .shapes import *  # noqa: F403

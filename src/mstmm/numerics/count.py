@@ -40,7 +40,9 @@ def pair_count(Zc, U, beta, rho):
     The subspace of states [Y, theta, M, Q] that everything left of the node admits is
     held by the 2x2 minors Zc of a basis Z = [Xd; Xf] (Pluecker coordinates, index as
     ``PAIRS`` of the second compound), carried by the same compound step as the stable
-    chain. Its condensed stiffness S = PI_RIGHT^-1 Xf Xd^-1 is never formed: after a
+    chain (PI_LEFT = [[0, -1], [1, 0]] and PI_RIGHT = [[0, 1], [-1, 0]] take the nodal
+    forces [F, M_theta] to the internal [M, Q] at a segment's left and right end). Its
+    condensed stiffness S = PI_RIGHT^-1 Xf Xd^-1 is never formed: after a
     short segment from a pinned end S is huge and near-singular (det Xd ~ rho^3), and
     neither a Riccati step on S nor an orthonormalised basis Z keeps a digit of det Xd,
     while Zc(0,1) = det Xd is a coordinate here. The pivot block M = S + k_aa =

@@ -21,14 +21,14 @@ from .bloch import (
     closed_stiffness,
     pencil_det,
 )
-from .frf import (
-    frf_march,
-)
-from .repeated import (
+from .doubling import (
     levels_of,
     repeated_search,
     repeated_work,
     structure_at,
+)
+from .frf import (
+    frf_march,
 )
 from .search import (
     PENDING_WIDTH,
@@ -343,7 +343,7 @@ def entry_subspace(fa, damped, w, p):
 
 @njit(cache=True)
 def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
-    """``repeated.structure_at`` of n_cells cells at every real ws[k]: out[k] = (J,
+    """``doubling.structure_at`` of n_cells cells at every real ws[k]: out[k] = (J,
     mantissa, log, ok) (``fa``: the kernel of the cell clamped at both ends)."""
     event = as_event(fa[FA_EVENT], fa[FA_EVENT + 1])
     count = as_count(fa[FA_COUNT], fa[FA_COUNT + 1])
@@ -360,7 +360,7 @@ def entry_repeated_at(fa, ws, p, n_cells, ends, free, out):
 
 @njit(cache=True)
 def entry_repeated_search(fa, p, n_cells, ends, free, rigid, want, lo, hi, scale, out, mult, flags):
-    """``repeated.repeated_search`` with the cell kernel's functions."""
+    """``doubling.repeated_search`` with the cell kernel's functions."""
     return repeated_search(
         as_event(fa[FA_EVENT], fa[FA_EVENT + 1]),
         as_count(fa[FA_COUNT], fa[FA_COUNT + 1]),

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
-import numpy as np
+from mstmm.plain import plain as _plain
 
 _REPR_MAX = 80
 
@@ -23,18 +23,6 @@ _NO_VALUE: Any = _NoValue()
 
 def _one_line(text: str) -> str:
     return " ".join(part for part in str(text).splitlines() if part) or "?"
-
-
-def _plain(value: Any) -> Any:
-    """``value`` with numpy scalars and arrays turned into Python numbers and lists, so that
-    a message shows ``1e+200``, not ``np.float64(1e+200)``."""
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (list, tuple)):
-        return type(value)(_plain(v) for v in value)
-    return value
 
 
 def _short_repr(value: Any) -> str:

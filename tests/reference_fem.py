@@ -1,6 +1,8 @@
 """Independent finite-element model of a beam carrying spring-mass attachments.
 
-A check on, and a benchmark competitor for, the transfer-matrix solver: the
+A check on, and a benchmark competitor for, the transfer-matrix solver (the tests and the
+benchmarks import this one module as ``reference_fem``, with tests/ on ``sys.path``; it
+imports numpy and scipy, never mstmm): the
 uniform or stepped Euler-Bernoulli beam is cut into cubic Hermite elements
 (nodal DOFs ``Y`` and ``theta``, consistent mass matrix, the properties of the
 segment each element lies in; a segment with a shear stiffness ``kappa_GA > 0``
