@@ -214,3 +214,32 @@ def test_the_term_holds_the_rigid_rotation_not_the_translation(got):
     assert got["free_checked"]
     assert got["free"][0] == 0.0
     assert got["free"][1] > 1.0
+
+
+@pytest.mark.parametrize(
+    "declared, why",
+    [
+        (dict(POTENTIAL={("w", "psi"): 1}), "none of what a segment's field carries"),
+        (dict(KINETIC={("w'", "w'"): 1}), "none of what a segment's field carries"),
+        (dict(POTENTIAL={("w", "w"): 1, ("psi", "psi"): 1}), "none of what"),
+        (dict(POTENTIAL={("w", "w"): 1}, CHECK="finite"), "must be nonnegative"),
+        (dict(POTENTIAL={("w", "v"): 1}), "is not a pair of"),
+    ],
+)
+def test_a_term_the_field_cannot_carry_is_refused_naming_its_file(declared, why):
+    """Refuse, never half-carry: an energy that is none of the roles (a coupling, a
+    kinetic w'^2, two roles in one file), a foundation that may be negative (the count's
+    bound drops it only because it is not), a field that does not exist."""
+    import types
+
+    from mstmm.physics import segment as segment_terms
+
+    module = types.ModuleType("bad_term")
+    module.__file__ = "/somewhere/terms/bad_term.py"
+    module.NAME, module.UNIT, module.CHECK = "bad", "N", "nonnegative"
+    for key, value in declared.items():
+        setattr(module, key, value)
+    with pytest.raises(segment_terms.TermRefused, match=why) as err:
+        segment_terms.role(module)
+    message = str(err.value)
+    assert message.startswith("/somewhere/terms/bad_term.py: ") and "\n" not in message
