@@ -30,8 +30,14 @@ def test_the_stamp_covers_every_module_and_the_printed_beam_functions():
     assert {p.name for p in folder.glob("*.py")} <= names
     assert "euler_bernoulli.py" in names
     assert cache.digest() == _sources_digest(cache.sources())
-    # the kernels' signature covers the numerics' own sources
-    assert numerics_digest() == _sources_digest(sorted(folder.glob("*.py")))
+    # the kernels' signature covers the numerics' own sources and the physics they compile
+    # in (the segment terms' tables)
+    physics = folder.parent / "physics"
+    assert {p.name for p in physics.glob("*.py")} <= names
+    assert {p.name for p in (physics / "terms").glob("*.py")} - {"__init__.py"} <= names
+    files = [*sorted(folder.glob("*.py")), *sorted(physics.glob("*.py"))]
+    files += sorted((physics / "terms").glob("*.py"))
+    assert numerics_digest() == _sources_digest(files)
 
 
 def test_numerics_functions_are_cached_with_the_package_stamp():
