@@ -145,7 +145,8 @@ def test_kernel_carries_only_what_the_scene_needs():
 def test_stages_run_in_one_direction():
     """derive prints, signs and writes kernels; the runtime finds and loads them. Both stand
     on the SymPy-free ground floor (``mstmm.catalog``, ``mstmm.sign``, the kinds'
-    declarations in ``mstmm.kinds``, the physics declarations in ``mstmm.physics``): no module of mstmm.derive imports any other part of
+    declarations in ``mstmm.kinds``, the physics declarations in ``mstmm.physics``): no
+    module of mstmm.derive imports any other part of
     the runtime, and the ground floor imports nothing of mstmm.derive at import time
     (a kind's energy imports SymPy and derive's descriptor inside its function)."""
     import ast
