@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "aaed1a615014ce2a94bc91d1df1752aa255ad253"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "098a08a490e69efadd068a155458ca36e3ac07cf"
+NUMERICS = "642e01055a886f68563aae4981d0ffd144f43c2d"
 KINDS = ()
 DAMPERS = {}
 

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "6fd0e239f85940d61b09e317080e5abb377076dc"
-NUMERICS = "95f4c87222749dc343c6b7b8eac04dab48a5e4d1"
+SIGNATURE = "5f3052bf8d04ed62d6fc0399ea4e4833fe143578"
+NUMERICS = "642e01055a886f68563aae4981d0ffd144f43c2d"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 
@@ -115,6 +115,8 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
         qmass[2, 0] = t0
+        qmass[3, 0] = 0.0
+        qmass[4, 0] = 0.0
         return (1, 1)
     return (0, 0)
 
@@ -172,6 +174,8 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
         qmass[2, 0] = t0
+        qmass[3, 0] = 0.0
+        qmass[4, 0] = 0.0
         return (1, 1)
     return (0, 0)
 

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "283946c4e5410968d5ba278b69ce8f25f3854adb"
+DIGEST = "d9a79d8e67676961db32eef041c313b7a6a29cda"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815
