@@ -59,6 +59,16 @@ class Descriptor:
     #: motion (not given), ``1/kappa`` for a spring-mass's row divided by its coupling.
     #: The frequency response puts a force on a hanging mass through it.
     qforce: tuple | None = None
+    #: The mass each q shares with the beam's own ``(Y, theta)``: ``(M_Yq, M_thetaq)`` of
+    #: the kind's energy (an inerter between the beam and the q), 0 when not given. The
+    #: modal mass adds ``2 (M_Yq Y + M_thetaq theta) q``.
+    qcouple: tuple | None = None
+    #: The mass matrix on the beam's own ``[Y, theta]`` (rows 0-1, 2 x 2) and the
+    #: participation row the couplings add (row 2: the sum of ``M_(q, [Y, theta])`` over
+    #: the q's a rigid translation carries), so that a base translation's participation is
+    #: ``R^T M u``: 3 x 2. Not given: :func:`point_inertia` of ``A`` (a kind in descriptor
+    #: form) and a zero row.
+    inertia: sp.Matrix | None = None
 
     @property
     def n_q(self) -> int:
@@ -79,6 +89,12 @@ class Descriptor:
             object.__setattr__(self, "qforce", (1,) * self.B.cols)
         if len(self.qforce) != self.B.cols:
             raise ValueError("descriptor: qforce has n_q entries")
+        if self.qcouple is None:
+            object.__setattr__(self, "qcouple", ((0, 0),) * self.B.cols)
+        if len(self.qcouple) != self.B.cols or any(len(c) != 2 for c in self.qcouple):
+            raise ValueError("descriptor: qcouple has n_q pairs (M_Yq, M_thetaq)")
+        if self.inertia is not None and self.inertia.shape != (3, 2):
+            raise ValueError("descriptor: inertia is 3 x 2 (M on [Y, theta], participation)")
 
 
 #: What carries an unknown q of a kind's energy: a rigid translation of the beam
@@ -110,9 +126,57 @@ class Energy:
                 raise ValueError(f"energy: {name} must be symmetric")
         if any(m not in MOVES for m in self.moves):
             raise ValueError(f"energy: each q moves with one of {MOVES}")
-        Mq = self.M[2:, 2:]
-        if any(Mq[i, j] != 0 for i in range(n - 2) for j in range(n - 2) if i != j):
-            raise ValueError("energy: the mass of the unknowns must be diagonal")
+        for i in range(2, n):
+            for j in range(2, n):
+                if i != j and sp.expand(self.M[i, j]) != 0:
+                    raise ValueError(
+                        f"energy: M[{i}, {j}] = {self.M[i, j]} couples the unknowns q{i - 2}"
+                        f" and q{j - 2} (the modal mass carries the mass of each unknown and"
+                        " its coupling to the beam's Y and theta, not a mass between two"
+                        " unknowns)"
+                    )
+
+
+def kind_source(module) -> str:
+    """How a refusal names a kind: its name and its file."""
+    where = getattr(module, "__file__", None) or module.__name__
+    return f"kind {getattr(module, 'KIND', module.__name__)!r} ({where})"
+
+
+def refusal(module, reason) -> ValueError:
+    """The one-line ValueError that refuses a kind's declaration, naming its file."""
+    return ValueError(f"{kind_source(module)}: {reason}")
+
+
+def positive(expr) -> bool:
+    """Whether ``expr`` is free of the frequency and positive for every positive value of
+    its symbols (the scene keys, the units): a constant sign the derivation can rely on."""
+    expr = sp.sympify(expr).doit()
+    if expr.has(b4, w1):
+        return False
+    taken = expr.subs({s: sp.Dummy(positive=True) for s in expr.free_symbols})
+    return sp.simplify(taken).is_positive is True
+
+
+def _check_carried(e: Energy, qpart: tuple) -> None:
+    """What the run time reads of each unknown's ``qpart`` (a hanging mass where it is
+    positive: ``mass_Y``, ``displacement:mass=J``, a force on it reaching the beam's
+    shear; a rotary inertia where it is 0 with a mass) must be what the energy says of
+    it: an unknown a translation carries has a positive share, or no mass at all (a
+    massless node); one a rotation carries has none."""
+    for j, moves in enumerate(e.moves):
+        share = qpart[j]
+        if moves == "Y" and not positive(share):
+            if share != 0 or any(sp.expand(v) != 0 for v in e.M[2 + j, :]):
+                raise ValueError(
+                    f"energy: q{j} moves with Y but the mass a rigid translation carries"
+                    f" with it, (R^T M)_q{j} = {share}, is not positive"
+                )
+        if moves == "theta" and share != 0:
+            raise ValueError(
+                f"energy: q{j} moves with theta but a rigid translation carries mass with"
+                f" it, (R^T M)_q{j} = {share}"
+            )
 
 
 def _rigid(e: Energy, dof: str) -> sp.Matrix:
@@ -159,8 +223,15 @@ def from_energy(e: Energy) -> Descriptor:
         qforce.append(-1 / scale)  # row = (D_q u) / scale = -(-1/scale) D_q u
     qmass = tuple(e.M[2 + j, 2 + j] for j in range(n_q))
     qpart = tuple(sp.expand((_rigid(e, "Y").T * e.M)[2 + j]) for j in range(n_q))
+    _check_carried(e, qpart)
+    qcouple = tuple((sp.expand(e.M[0, 2 + j]), sp.expand(e.M[1, 2 + j])) for j in range(n_q))
+    carried = sp.zeros(1, 2)
+    for j in range(n_q):
+        if e.moves[j] == "Y":
+            carried += e.M[2 + j, :2]
+    inertia = e.M[:2, :2].col_join(carried).applyfunc(sp.expand)
     A, B = A.applyfunc(sp.expand), B.applyfunc(sp.expand)
-    return Descriptor(Cz, Cq, A, B, qmass, qpart, tuple(qforce))
+    return Descriptor(Cz, Cq, A, B, qmass, qpart, tuple(qforce), qcouple, inertia)
 
 
 def _statically_condensed(e: Energy, X: sp.Matrix) -> sp.Matrix:
@@ -235,9 +306,24 @@ def damper_class(e: Energy) -> str:
     qs = [i for i in touched if i >= 2]
     if not qs:
         return "grounded"
-    if all(e.moves[i - 2] == "Y" and e.M[i, i] != 0 for i in qs):
+    if all(e.moves[i - 2] == "Y" and positive(_own_mass(e, i)) for i in qs):
         return "carried"
     return "unproved"
+
+
+def _own_mass(e: Energy, i: int) -> sp.Expr:
+    """The least kinetic energy (times 2) of the component's coordinates with ``u_i = 1``:
+    the Schur complement of ``M_ii`` over the coordinates with a mass (0 when that block is
+    singular). The proof's ``m >= m_a |q|^2`` needs it positive: ``M_qq`` for a hanging
+    mass, ``m``, not ``m + b``, for the inerter absorber (``M_qq - b^2 / b``)."""
+    n = e.M.rows
+    rest = [r for r in range(n) if r != i and any(sp.expand(e.M[r, c]) != 0 for c in range(n))]
+    if not rest:
+        return e.M[i, i]
+    R, m = e.M.extract(rest, rest), e.M.extract(rest, [i])
+    if sp.simplify(R.det()) == 0:
+        return sp.Integer(0)
+    return sp.simplify(e.M[i, i] - (m.T * R.inv() * m)[0, 0])
 
 
 def damper_of(module, values: dict) -> str:
@@ -274,7 +360,10 @@ def _from_declared_energy(module, values: dict, derive):
     if declare is None:
         return None
     with sp.evaluate(True):
-        return derive(declare(values))
+        try:
+            return derive(declare(values))
+        except ValueError as err:
+            raise refusal(module, err) from None
 
 
 def damps_of(module, values: dict) -> tuple:
@@ -304,12 +393,15 @@ def of(module, values: dict) -> Descriptor:
     derived from its declared energy (:func:`from_energy`; a kind of stages from the
     energy of its stages in series, :func:`chain_energy`; evaluated even inside the
     unevaluated derivation of ``show``: its matrices are small)."""
-    if hasattr(module, "energy"):
-        with sp.evaluate(True):
-            return from_energy(module.energy(values))
-    if hasattr(module, "stage"):
-        with sp.evaluate(True):
-            return from_energy(chain_energy(module, values))
+    try:
+        if hasattr(module, "energy"):
+            with sp.evaluate(True):
+                return from_energy(module.energy(values))
+        if hasattr(module, "stage"):
+            with sp.evaluate(True):
+                return from_energy(chain_energy(module, values))
+    except ValueError as err:
+        raise refusal(module, err) from None
     if hasattr(module, "CONSTRAINS"):
         return constraint(tuple(module.CONSTRAINS))
     if hasattr(module, "RELEASES"):
@@ -430,6 +522,16 @@ def node_stiffness(d: Descriptor) -> tuple[sp.Expr, sp.Expr]:
     if d.n_q or any(e != 0 for e in N):
         raise ValueError("not a node stiffness: A - I has entries besides (Q, Y), (M, theta)")
     return sp.expand(k_y), sp.expand(k_t)
+
+
+def inertia_rows(d: Descriptor) -> sp.Matrix:
+    """The 3 x 2 ``Descriptor.inertia`` of any descriptor: the mass matrix on the beam's own
+    ``[Y, theta]`` and the participation row of the couplings (a kind declared by its
+    energy: from its ``M``); a kind in descriptor form: :func:`point_inertia` of its ``A``
+    and no couplings."""
+    if d.inertia is not None:
+        return d.inertia
+    return point_inertia(d).col_join(sp.zeros(1, 2))
 
 
 def point_inertia(d: Descriptor) -> sp.Matrix:

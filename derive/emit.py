@@ -150,7 +150,7 @@ def _value_lines(module, damped: bool = False) -> tuple[list, dict]:
     for k, key in enumerate(module.KEYS[1:]):
         if (key.shape == "list") != staged:
             if staged:
-                raise ValueError(f"{module.KIND}: a kind of stages has only list keys")
+                raise descriptor.refusal(module, "a kind of stages has only list keys")
             break
         if key.damping and not damped:
             continue
@@ -251,7 +251,7 @@ def _count_lines(module, d: descriptor.Descriptor) -> list:
     if rule == "split":
         # a hinge: the rotation left of it is eliminated first, pivot S_theta + kappa
         if d.Cz != descriptor.unit(2).T or d.B != descriptor.unit(1):
-            raise ValueError(f"{module.KIND}: COUNT 'split' needs Cz = e_M and B = e_theta")
+            raise descriptor.refusal(module, "COUNT 'split' needs Cz = e_M and B = e_theta")
         pivot = [Assignment(pivot_, (Zc[1] - d.Cq[0, 0] * Zc[0]) * Zc[0])]
         return values + pivot + step + [_negative(pivot_)]
     if d.n_q == 0:
@@ -259,21 +259,59 @@ def _count_lines(module, d: descriptor.Descriptor) -> list:
         return values + step
     if _staged(module):  # the negative pivots of its nodes' dynamic stiffness
         return _tip_lines() + step + [AddAugmentedAssignment(count_, own_)]
-    coupled = [j for j in range(4) if d.Cz[0, j] != 0] if d.n_q == 1 else []
-    if len(coupled) != 1 or coupled[0] > 1 or not (d.Cz[0, coupled[0]] > 0):
-        raise ValueError(
-            f"{module.KIND}: a stiffness kind with unknowns needs n_q = 1 and Cz = c e_Y or"
-            " c e_theta (its row the unknown's equation of motion divided by its coupling"
-            " to the beam, c > 0)"
-        )
+    _check_pivot(module, d)
     # the unknown's own dynamic stiffness (k - m w^2 for a spring-mass)
     return values + [Assignment(pivot_, -d.Cq[0, 0])] + step + [_negative(pivot_)]
+
+
+def _check_pivot(module, d: descriptor.Descriptor) -> None:
+    """A stiffness kind with unknowns is counted by the pivot ``-Cq``: one unknown, its
+    row coupled to the beam's Y or theta alone, and ``-Cq`` of the sign of the unknown's
+    own dynamic stiffness ``D_qq``. A kind declared by its energy has its row divided by
+    its first stiffness coupling ``K_qb`` (``descriptor.from_energy``: ``qforce`` is
+    minus its inverse), so that coupling must be a negative constant (``-k`` for a
+    spring; an inerter beside the spring makes the row's ``Cz = 1 - b b4 / k``, which
+    is not constant and need not be); a kind in descriptor form says it by a constant
+    ``Cz > 0``. Anything else is refused, naming the kind's file and the term."""
+    coupled = [j for j in range(4) if d.Cz[0, j] != 0] if d.n_q == 1 else []
+    if len(coupled) != 1 or coupled[0] > 1:
+        raise descriptor.refusal(
+            module,
+            f"a stiffness kind with unknowns needs n_q = 1 (it has {d.n_q}) and its row"
+            f" coupled to Y or theta alone (Cz = {list(d.Cz)})",
+        )
+    if hasattr(module, "energy"):
+        if not descriptor.positive(d.qforce[0]):
+            raise descriptor.refusal(
+                module,
+                f"the count's pivot -Cq has the sign of the unknown's own dynamic stiffness"
+                f" only when its row is divided by a negative constant: its row is divided by"
+                f" {-1 / d.qforce[0]} (its first stiffness coupling to the beam,"
+                f" K_q{'Y' if coupled[0] == 0 else 'theta'}, or 1 where K has none), which"
+                f" is not (a spring gives -k)",
+            )
+        return
+    c = sp.sympify(d.Cz[0, coupled[0]])
+    if not (c.is_number and bool(c > 0)):
+        raise descriptor.refusal(
+            module,
+            f"a kind in descriptor form with one unknown needs Cz = c e_Y or c e_theta with"
+            f" a constant c > 0 (its row the unknown's equation of motion divided by its"
+            f" coupling to the beam); Cz[0, {coupled[0]}] = {c}",
+        )
+
+
+#: The rows of a descriptor's ``qmass`` (``mstmm.numerics.characteristic.QMASS_ROWS``):
+#: the mass of each q, its share in a rigid translation, the factor of a force on it, and
+#: the mass it shares with the beam's Y and theta (always written: the arrays are reused
+#: from one component to the next).
+QMASS_ROWS = 5
 
 
 def _fill_lines(d: descriptor.Descriptor) -> list:
     """Fill Cz, Cq, A, B, qmass from a descriptor; return (constraints, unknowns)."""
     A, Cz, Cq = array("A", 4, 4), array("Cz", 4, 4), array("Cq", 4, 4)
-    B, qmass = array("B", 4, 4), array("qmass", 3, 4)
+    B, qmass = array("B", 4, 4), array("qmass", QMASS_ROWS, 4)
     targets = [A[r, c] for r in range(4) for c in range(4)]
     exprs = list(d.A)
     for r in range(d.Cz.rows):
@@ -281,8 +319,8 @@ def _fill_lines(d: descriptor.Descriptor) -> list:
         exprs += list(d.Cz[r, :]) + list(d.Cq[r, :])
     for j in range(d.n_q):
         targets += [B[r, j] for r in range(4)]
-        targets += [qmass[0, j], qmass[1, j], qmass[2, j]]
-        exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j], d.qforce[j]]
+        targets += [qmass[r, j] for r in range(QMASS_ROWS)]
+        exprs += list(d.B[:, j]) + [d.qmass[j], d.qpart[j], d.qforce[j], *d.qcouple[j]]
     lines = assignment_nodes(targets, [sp.sympify(e) for e in exprs])
     return lines + [Return(sp.Tuple(lit(d.Cz.rows), lit(d.n_q)))]
 
@@ -337,13 +375,16 @@ def _nq_lines(module, d: descriptor.Descriptor) -> list:
 
 
 def _inertia_lines(module, d: descriptor.Descriptor) -> list:
-    """Fill Mp (2 x 2) with the mass matrix the component holds on [Y, theta]
-    (``descriptor.point_inertia``); return 1, or 0 where it holds none."""
-    M = descriptor.point_inertia(d)
-    if M == sp.zeros(2, 2) or _staged(module):
+    """Fill Mp (3 x 2) with the mass matrix the component holds on [Y, theta] and the
+    participation row of its couplings (``descriptor.inertia_rows``); return 1, or 0
+    where it holds none."""
+    if _staged(module):
         return [Return(lit(0))]
-    Mp = array("Mp", 2, 2)
-    lines = assignment_nodes([Mp[r, c] for r in range(2) for c in range(2)], list(M))
+    M = descriptor.inertia_rows(d)
+    if M == sp.zeros(3, 2):
+        return [Return(lit(0))]
+    Mp = array("Mp", 3, 2)
+    lines = assignment_nodes([Mp[r, c] for r in range(3) for c in range(2)], list(M))
     return _value_lines(module)[0] + lines + [Return(lit(1))]
 
 
@@ -356,7 +397,7 @@ def _rigid_lines(module, d: descriptor.Descriptor) -> list:
     if not rigid:
         return [Return(lit(0))]
     if len(rigid) != 1 or rigid[0] not in RIGID_FLAGS:
-        raise ValueError(f"{module.KIND}: RIGID must be one of {tuple(RIGID_FLAGS)} or empty")
+        raise descriptor.refusal(module, f"RIGID must be one of {tuple(RIGID_FLAGS)} or empty")
     if rigid[0] == "kink_if_free":  # the spring across the released rotation
         key = getattr(module, "RELEASES", ("theta", module.KEYS[1].name))[1]
         at = [k.name for k in module.KEYS[1:]].index(key)
@@ -372,7 +413,7 @@ def _damps_lines(module, d: descriptor.Descriptor) -> list:
     if not damps:
         return [Return(lit(0))]
     if damps not in (("Y",), ("theta",)):
-        raise ValueError(f"{module.KIND}: its damping holds ('Y',), ('theta',) or nothing")
+        raise descriptor.refusal(module, "its damping holds ('Y',), ('theta',) or nothing")
     return [Return(lit(RIGID_FLAGS[damps[0]]))]
 
 

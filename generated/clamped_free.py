@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "43589860aaf757e02a8ffa3e10c49a6fe3ca49aa"
-NUMERICS = "52296c9ee6e607d4966272835d9fccce358f762b"
+SIGNATURE = "598208c3dc46e15e1df71bc9f625c3033ae04235"
+NUMERICS = "f7cd6ccf63f71e6fba88caaed4573795cf2364a8"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

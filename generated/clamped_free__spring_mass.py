@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "898915f8b00e5d3ffb762175212e62964ae038d9"
-NUMERICS = "52296c9ee6e607d4966272835d9fccce358f762b"
+SIGNATURE = "ca135e167a1cec58af68916eec78cf94f1745859"
+NUMERICS = "f7cd6ccf63f71e6fba88caaed4573795cf2364a8"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
@@ -128,6 +128,8 @@ def event_descriptor(tag, p, o, b4, L, EI, mbar, Cz, Cq, A, B, qmass):
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
         qmass[2, 0] = t0
+        qmass[3, 0] = 0.0
+        qmass[4, 0] = 0.0
         return (1, 1)
     return (0, 0)
 
@@ -185,6 +187,8 @@ def event_descriptor_c(tag, p, o, w1, L, EI, mbar, Cz, Cq, A, B, qmass):
         qmass[0, 0] = val_m
         qmass[1, 0] = val_m
         qmass[2, 0] = t0
+        qmass[3, 0] = 0.0
+        qmass[4, 0] = 0.0
         return (1, 1)
     return (0, 0)
 

@@ -13,10 +13,6 @@ topologies only, so the committed kernels of the bundled scenes stay in use.
 from __future__ import annotations
 
 import functools
-import json
-import os
-import shutil
-import subprocess
 import sys
 import textwrap
 from pathlib import Path
@@ -25,10 +21,9 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-import mstmm
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reference_fem as fem  # noqa: E402
+from package_copy import run_with_kind  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 KIND_FILE = HERE / "kinds" / "torsional_absorber.py"
@@ -36,20 +31,6 @@ KIND_FILE = HERE / "kinds" / "torsional_absorber.py"
 L, EI, MBAR = 2.0, 1.0e4, 10.0  # a 20 kg cantilever, first mode about 27.8 rad/s
 XA, KA, JA, CA = 1.25, 3000.0, 0.5, 4.0  # the absorber: sqrt(k/J) = 77.5 rad/s
 MODES = 6
-
-
-def package_copy(root: Path) -> Path:
-    """The installed package laid out as one folder (``mstmm/``, its ``derive`` and
-    ``generated`` subpackages) with numba's caches beside the files, as pip installs it."""
-    src = Path(mstmm.__file__).resolve().parent
-    from mstmm import derive, generated
-
-    dest = root / "mstmm"
-    ignore = shutil.ignore_patterns("derive", "generated")
-    shutil.copytree(src, dest, ignore=ignore)
-    shutil.copytree(Path(derive.__file__).resolve().parent, dest / "derive")
-    shutil.copytree(Path(generated.__file__).resolve().parent, dest / "generated")
-    return root
 
 
 SCRIPT = textwrap.dedent(
@@ -98,17 +79,8 @@ SCRIPT = textwrap.dedent(
 
 @pytest.fixture(scope="module")
 def got(tmp_path_factory) -> dict:
-    root = package_copy(tmp_path_factory.mktemp("pkg"))
-    shutil.copy(KIND_FILE, root / "mstmm" / "kinds" / KIND_FILE.name)
-    env = dict(os.environ, PYTHONPATH=str(root), MSTMM_CACHE=str(root / "cache"))
     script = SCRIPT.format(args=(L, XA, KA, JA, CA, MODES), EI=EI, MBAR=MBAR)
-    run = subprocess.run(
-        [sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=600
-    )
-    assert run.returncode == 0, run.stderr
-    out = json.loads(run.stdout)
-    assert out["package"].startswith(str(root))  # the copy ran, not the installed package
-    return out
+    return run_with_kind(tmp_path_factory.mktemp("pkg"), KIND_FILE, script, timeout=600)
 
 
 def fe_matrices(n: int, c: float = 0.0):

@@ -15,19 +15,14 @@ tests/test_new_kind.py runs a new point kind.
 from __future__ import annotations
 
 import functools
-import json
 import math
-import os
-import shutil
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
-from test_new_kind import package_copy
+from package_copy import run_with_file
 
 HERE = Path(__file__).resolve().parent
 TERM_FILE = HERE / "terms" / "rotational_winkler.py"
@@ -86,17 +81,8 @@ SCRIPT = textwrap.dedent(
 
 @pytest.fixture(scope="module")
 def got(tmp_path_factory) -> dict:
-    root = package_copy(tmp_path_factory.mktemp("pkg"))
-    shutil.copy(TERM_FILE, root / "mstmm" / "physics" / "terms" / TERM_FILE.name)
-    env = dict(os.environ, PYTHONPATH=str(root), MSTMM_CACHE=str(root / "cache"))
     script = SCRIPT.format(args=(L, EI, MBAR, KGA, RHOI, KR, ETA, MODES))
-    run = subprocess.run(
-        [sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=900
-    )
-    assert run.returncode == 0, run.stderr
-    out = json.loads(run.stdout)
-    assert out["package"].startswith(str(root))  # the copy ran, not the installed package
-    return out
+    return run_with_file(tmp_path_factory.mktemp("pkg"), TERM_FILE, "physics/terms", script)
 
 
 # -- the independent model -------------------------------------------------------------------

@@ -685,7 +685,10 @@ class Kernel:
         total, most = (int(v) for v in self._compiled("shape_sizes")(p))
         nb = max(1, most)
         Cz, Cq = np.zeros((nb, 4), complex), np.zeros((nb, nb), complex)
-        A, B, qmass = np.zeros((4, 4), complex), np.zeros((4, nb), complex), np.zeros((3, nb))
+        from .numerics.shapes import QMASS_ROWS
+
+        A, B = np.zeros((4, 4), complex), np.zeros((4, nb), complex)
+        qmass = np.zeros((QMASS_ROWS, nb))
         out = []
         event = self._compiled("shape_event_c")
         for row in m.event_order(p):

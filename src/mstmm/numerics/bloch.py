@@ -48,6 +48,7 @@ from .linalg import (
 from .segment import (
     segment_piece,
 )
+from .shapes import QMASS_ROWS
 from .walk import (
     STOP_END,
     STOP_EVENT,
@@ -124,7 +125,7 @@ def bloch_work(p, sizes, c):
         np.zeros((nb, nb), dtype=c),  # Cq
         np.zeros((4, 4), dtype=c),  # A
         np.zeros((4, nb), dtype=c),  # B
-        np.zeros((3, nb)),  # the unknowns' masses
+        np.zeros((QMASS_ROWS, nb)),  # the unknowns' masses
         np.zeros((nb, nb + 4), dtype=c),  # C
         np.zeros(nb, dtype=c),  # rhs
         np.ones(nb),  # row scales

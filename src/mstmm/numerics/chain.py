@@ -183,4 +183,6 @@ def chain_descriptor(st, Cz, Cq, A, B, qmass):
         qmass[0, j] = st[4, j].real
         qmass[1, j] = st[4, j].real
         qmass[2, j] = 1.0
+        qmass[3, j] = 0.0  # no mass shared with the beam's Y, theta (every row written:
+        qmass[4, j] = 0.0  # the array is reused from one component to the next)
     return n, n

@@ -40,6 +40,7 @@ from .segment import (
     segment_compound,
     segment_constraints,
 )
+from .shapes import QMASS_ROWS
 from .walk import (
     STOP_END,
     STOP_EVENT,
@@ -85,8 +86,8 @@ event_count = _printed
 #: The component's descriptor (Cz, Cq, A, B, qmass; paper Eqs. (2)-(3)), real and complex.
 event_descriptor = _printed
 event_descriptor_c = _printed
-#: Its mass matrix on [Y, theta]; its own frequencies; its unknowns; its constraints on
-#: rigid motions (stiffness, damping).
+#: Its mass matrix on [Y, theta] and its couplings' participation row (3 x 2); its own
+#: frequencies; its unknowns; its constraints on rigid motions (stiffness, damping).
 event_inertia = _printed
 event_internal = _printed
 event_nq = _printed
@@ -271,8 +272,9 @@ def shape_event(p, row, b4, Cz, Cq, A, B, qmass):
 
 
 def shape_inertia(p, row, Mp):
-    """The mass matrix on [Y, theta] of the component at event row ``row`` into Mp
-    (``event_inertia``); 1 if it holds one, else 0."""
+    """The mass matrix on [Y, theta] of the component at event row ``row`` and the
+    participation row of its couplings into Mp (3 x 2, ``event_inertia``); 1 if it holds
+    one, else 0."""
     return event_inertia(int(p[row]), p, int(p[row + 2]), p[0], p[1], p[2], Mp)
 
 
@@ -303,7 +305,7 @@ def u_bar_paper(omega, p):
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    qmass = np.zeros((3, nb))
+    qmass = np.zeros((QMASS_ROWS, nb))
     pos = 0.0
     seg = 0
     ncols = 2

@@ -14,6 +14,7 @@ from .segment import (
 from .shapes import (
     DEGENERATE,
     MARCH_STEP,
+    QMASS_ROWS,
 )
 from .walk import (
     STOP_END,
@@ -400,7 +401,7 @@ def frf_march(event, sizes, ends, w, p, damped, inputs, outputs, out, singular):
     Cq = np.zeros((nb, nb), dtype=np.complex128)
     Ad = np.zeros((4, 4), dtype=np.complex128)
     B = np.zeros((4, nb), dtype=np.complex128)
-    ev_mass = np.zeros((3, nb))
+    ev_mass = np.zeros((QMASS_ROWS, nb))
     C = np.zeros((nb, nb + 2), dtype=np.complex128)
     rhs = np.zeros(nb, dtype=np.complex128)
     row_scale = np.ones(nb)

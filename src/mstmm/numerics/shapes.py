@@ -47,6 +47,15 @@ MARCH_STEP = 1.0
 #: others at this omega: within this relative distance of the component's own frequency.
 #: Roots closer than this are one cluster for the mode shapes (``mstmm.modes``).
 DEGENERATE = 1e-8
+#: Rows of a component's ``qmass`` (``event_descriptor`` writes every one, for each of its
+#: unknowns q): the mass moving with q, its share in a rigid translation (R^T M)_q, the
+#: factor of a force on q in its row, and the mass q shares with the beam's Y and theta
+#: (M_Yq, M_thetaq: an inerter between the beam and q). ``mstmm.derive.emit`` prints it.
+QMASS_ROWS = 5
+#: Rows of a component's ``Mp`` (``event_inertia``): its mass matrix on the beam's own
+#: [Y, theta] (2 x 2) and the participation row its couplings add (sum of M_(q, [Y,
+#: theta]) over the q's a rigid translation carries).
+INERTIA_ROWS = 3
 #: Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
 GAUSS_POINTS = 8
 _GX, _GW = np.polynomial.legendre.leggauss(GAUSS_POINTS)
@@ -267,10 +276,13 @@ def mode_shapes(
     mass (or rotary inertia) moving with it and the share of that a rigid translation
     carries (units mbar_0 L for a displacement, mbar_0 L^3 for a rotation; 0 for a
     reaction); gram (m, m) and part (m): the mass inner products int mbar Y_i Y_j + sum
-    q_mass[0] q_i q_j + sum z_i^T M z_j and int mbar Y_i + sum q_mass[1] q_i + sum
-    (M z_i)_Y (for the participation factor in a base translation), z = [Y, theta] at
+    q_mass[0] q_i q_j + sum z_i^T M z_j + sum (M_Yq (Y_i q_j + Y_j q_i) + M_thetaq
+    (theta_i q_j + theta_j q_i)) and int mbar Y_i + sum q_mass[1] q_i + sum (M z_i)_Y +
+    sum P z_i (for the participation factor in a base translation), z = [Y, theta] at
     a component holding the point mass matrix M on the beam (a lumped mass and its
-    rotary inertia); ratio (m): singular value of each shape
+    rotary inertia; an inerter's M_YY), M_Yq and M_thetaq the mass an unknown shares
+    with the beam's z (an inerter between them) and P the participation row of those
+    couplings (``inertia`` fills [M; P], 3 x 2); ratio (m): singular value of each shape
     over the largest of the end matrix. Shapes are the right singular vectors of the end
     matrix for its m smallest singular values, walked back to the left end. ``event(p,
     row, b4, Cz, Cq, A, B, qmass)`` fills a component's descriptor, ``inertia(p, row, M)``
@@ -313,9 +325,12 @@ def mode_shapes(
     Cq = np.zeros((nb, nb))
     Ad = np.zeros((4, 4))
     B = np.zeros((4, nb))
-    ev_mass = np.zeros((3, nb))
-    Mp = np.zeros((2, 2))
-    Mbuf = np.zeros((n_steps, 2, 2))
+    ev_mass = np.zeros((QMASS_ROWS, nb))
+    Mp = np.zeros((INERTIA_ROWS, 2))
+    Mbuf = np.zeros((n_steps, INERTIA_ROWS, 2))
+    # each unknown's mass shared with the beam's (Y, theta), and its component's step
+    q_couple = np.zeros((2, max(1, nq_all)))
+    q_step = np.zeros(max(1, nq_all), dtype=np.int64)
     G = np.zeros((width, width))
     s = 0
     nq_total = 0
@@ -353,7 +368,7 @@ def mode_shapes(
         nc, nq = event(p, row, b4, Cz, Cq, Ad, B, ev_mass)
         nf = event_step(W, G, Cz, Cq, Ad, B, nc, nq)
         if inertia(p, row, Mp) != 0:
-            for r in range(2):
+            for r in range(INERTIA_ROWS):
                 for c in range(2):
                     Mbuf[s, r, c] = Mp[r, c]
         kind[s] = 1
@@ -364,6 +379,9 @@ def mode_shapes(
         for j in range(nq):
             q_mass[0, nq_total + j] = ev_mass[0, j]
             q_mass[1, nq_total + j] = ev_mass[1, j]
+            q_couple[0, nq_total + j] = ev_mass[3, j]
+            q_couple[1, nq_total + j] = ev_mass[4, j]
+            q_step[nq_total + j] = s
             q_x[nq_total + j] = x
         nq_total += nq
         nf_total += nf
@@ -433,11 +451,13 @@ def mode_shapes(
     ns = xs.shape[0]
     for t in range(n_steps):
         if kind[t] != 0:
-            # a point mass matrix on [Y, theta] left of the component (where A acts)
+            # a point mass matrix on [Y, theta] left of the component (where A acts), and
+            # the participation its couplings to the unknowns add
             for k in range(m):
                 mk0 = Mbuf[t, 0, 0] * Zn[k, t, 0] + Mbuf[t, 0, 1] * Zn[k, t, 1]
                 mk1 = Mbuf[t, 1, 0] * Zn[k, t, 0] + Mbuf[t, 1, 1] * Zn[k, t, 1]
                 part[k] += mk0
+                part[k] += Mbuf[t, 2, 0] * Zn[k, t, 0] + Mbuf[t, 2, 1] * Zn[k, t, 1]
                 for l in range(m):
                     gram[k, l] += Zn[l, t, 0] * mk0 + Zn[l, t, 1] * mk1
             continue
@@ -486,4 +506,12 @@ def mode_shapes(
             part[k] += q_mass[1, i] * q_out[k, i]
             for l in range(m):
                 gram[k, l] += q_mass[0, i] * q_out[k, i] * q_out[l, i]
+        if q_couple[0, i] != 0.0 or q_couple[1, i] != 0.0:
+            # the mass the unknown shares with the beam's [Y, theta] left of its component
+            t = q_step[i]
+            for k in range(m):
+                for l in range(m):
+                    gram[k, l] += q_couple[0, i] * (
+                        Zn[k, t, 0] * q_out[l, i] + Zn[l, t, 0] * q_out[k, i]
+                    ) + q_couple[1, i] * (Zn[k, t, 1] * q_out[l, i] + Zn[l, t, 1] * q_out[k, i])
     return nq_total
