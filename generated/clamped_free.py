@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "598208c3dc46e15e1df71bc9f625c3033ae04235"
-NUMERICS = "f7cd6ccf63f71e6fba88caaed4573795cf2364a8"
+SIGNATURE = "a358ea25b1260b51c2df388422e3b1147bee3a8f"
+NUMERICS = "40783185d029967df83aafd92eb8981b6e8b9ebc"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "ca135e167a1cec58af68916eec78cf94f1745859"
-NUMERICS = "f7cd6ccf63f71e6fba88caaed4573795cf2364a8"
+SIGNATURE = "655ac8c5e9941449dc0d96689393eff183e9a185"
+NUMERICS = "40783185d029967df83aafd92eb8981b6e8b9ebc"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

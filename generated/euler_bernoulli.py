@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "4884a4a1f9f78b43ac05dcb86d7baa7ad99b0405"
+DIGEST = "afc7b72cc4df5985c2f3eb145a02bd0abbf7bad7"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

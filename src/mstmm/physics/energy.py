@@ -22,7 +22,8 @@ class Energy:
     square), so that its potential energy is ``u^T K u / 2``, its dissipation
     ``u'^T C u' / 2`` and its kinetic energy ``u'^T M u' / 2``; ``moves[j]`` says which
     rigid motion of the beam carries ``q[j]`` (:data:`MOVES`). A damping value is 0 in an
-    undamped kernel."""
+    undamped kernel. The mass may couple the beam's Y and theta to an unknown (an
+    inerter): the modal masses carry it; a mass between two unknowns is refused."""
 
     K: Any
     C: Any
@@ -41,6 +42,12 @@ class Energy:
                 raise ValueError(f"energy: {name} must be symmetric")
         if any(m not in MOVES for m in self.moves):
             raise ValueError(f"energy: each q moves with one of {MOVES}")
-        Mq = self.M[2:, 2:]
-        if any(Mq[i, j] != 0 for i in range(n - 2) for j in range(n - 2) if i != j):
-            raise ValueError("energy: the mass of the unknowns must be diagonal")
+        for i in range(2, n):
+            for j in range(2, n):
+                if i != j and sp.expand(self.M[i, j]) != 0:
+                    raise ValueError(
+                        f"energy: M[{i}, {j}] = {self.M[i, j]} couples the unknowns q{i - 2}"
+                        f" and q{j - 2} (the modal mass carries the mass of each unknown and"
+                        " its coupling to the beam's Y and theta, not a mass between two"
+                        " unknowns)"
+                    )
