@@ -78,3 +78,35 @@ from hypothesis import settings  # noqa: E402
 settings.register_profile("ci", derandomize=True, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
+
+
+#: Exhaustive sweeps and property runs, by node id (a prefix: every parametrisation): the
+#: nightly command ``python -m pytest -m exhaustive -n auto`` runs them (README, "Tests");
+#: the default run (CI) keeps a representative case of each: the damped roots of every
+#: scene of tests/test_damped.py, the other repeated cells, the other extreme cases, the
+#: other damped FE scenes, the receptances of tests/test_frf.py's fixed cases, the withheld
+#: seed at 0.04, the random general scenes, and each kind's first end pair below.
+EXHAUSTIVE = (
+    "tests/test_damped.py::test_property_random_damped_scenes_against_the_reference",
+    "tests/test_repeated.py::test_roots_against_the_reference[chain_sliding_free]",
+    "tests/test_repeated.py::test_roots_where_the_count_or_the_function_loses_digits[grounded",
+    "tests/test_repeated.py::test_roots_where_the_count_or_the_function_loses_digits[long_cells",
+    "tests/test_extremes.py::test_default_formulation_matches_reference[many_1000]",
+    "tests/test_fem_damped.py::test_damped_roots_against_the_reference[every_kind]",
+    "tests/test_frf.py::test_property_reciprocity",
+    "tests/test_reference_damped.py::test_the_count_catches_a_withheld_seed[0.0]",
+    "tests/test_general_reference.py::test_random_compressed_timoshenko_scenes",
+    "tests/test_sympy_range.py::",
+)
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list) -> None:
+    """Mark :data:`EXHAUSTIVE` and every kind scene's end pairs past its first (the
+    default path of ``tests/test_kinds.py``: each kind keeps its first pair, as
+    ``PAPER_CASES`` does)."""
+    for item in items:
+        exhaustive = item.nodeid.startswith(EXHAUSTIVE)
+        if item.nodeid.startswith("tests/test_kinds.py::test_kind_scene_default_path["):
+            exhaustive = item.callspec.params["case"] not in item.module.PAPER_CASES
+        if exhaustive:
+            item.add_marker(pytest.mark.exhaustive)
