@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free"
-SIGNATURE = "a358ea25b1260b51c2df388422e3b1147bee3a8f"
-NUMERICS = "40783185d029967df83aafd92eb8981b6e8b9ebc"
+SIGNATURE = "3b4546096d8b7f1095166a18ed86b4e1a64b8025"
+NUMERICS = "28a44ebaa72f27159497fee98484484be221654c"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

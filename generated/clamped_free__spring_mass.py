@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "655ac8c5e9941449dc0d96689393eff183e9a185"
-NUMERICS = "40783185d029967df83aafd92eb8981b6e8b9ebc"
+SIGNATURE = "e42b0ad4edaf7375c092b3a7486747c840f2cec9"
+NUMERICS = "28a44ebaa72f27159497fee98484484be221654c"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -25,8 +25,10 @@ from .catalog import HEAD, SEGMENT_COLUMNS, SEGMENT_WIDTH
 from .kernels import Kernel
 from .physics import segment as segment_terms
 
-#: Column of the axial force (the compression the load factor scales) in a segment row.
-AXIAL = SEGMENT_COLUMNS[segment_terms.compression_key()]
+#: The term the load factor scales (the signed tension: the axial force) and its column
+#: in a segment row.
+COMPRESSION = segment_terms.compression_key()
+AXIAL = SEGMENT_COLUMNS[COMPRESSION]
 #: The test frequency, as a fraction of the beam's frequency scale sqrt(EI_0 / (mbar_0
 #: L^4)) and of the lowest own frequency of a component.
 PROBE = 1e-9
@@ -81,7 +83,7 @@ def shear_limit(p: np.ndarray) -> float:
         return math.inf
     rest = kGA  # g without the compression the load factor scales
     for t in segment_terms.of_role("tension"):
-        if t.name != segment_terms.compression_key():
+        if t.name != COMPRESSION:
             rest = rest + values[t.name]
     return float(np.min(rest[shear] / -P[shear])) * (1.0 - 1e-9)
 

@@ -313,13 +313,6 @@ def piece_matrix(p, seg, beta, h, U, F, ready):
     return ready
 
 
-@njit(cache=True)
-def segment_rotary(p, seg):
-    """The segment's rotary inertia per length rhoI (units mbar_0 L^2): the mass a section's
-    rotation psi carries in the modal mass (``mode_shapes``' gram)."""
-    return segment_values(p, seg, 1.0)[3]
-
-
 @njit(cache=True, inline="always")
 def _role_sum(p, seg, role):
     """The dimensionless sum of segment seg's terms of one role."""
@@ -328,6 +321,14 @@ def _role_sum(p, seg, role):
         if TERM_ROLE[j] == role:
             out += term_value(p, seg, j)
     return out
+
+
+@njit(cache=True)
+def segment_rotary(p, seg):
+    """The segment's rotary inertia per length rhoI (units mbar_0 L^2): the mass a section's
+    rotation psi carries in the modal mass (``mode_shapes``' gram; once per piece, so its
+    rotary terms alone, not every term's value)."""
+    return _role_sum(p, seg, ROTARY)
 
 
 @njit(cache=True)
