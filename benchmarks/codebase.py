@@ -74,7 +74,9 @@ def generated_share() -> dict:
     from mstmm import catalog
 
     committed = [("euler_bernoulli.py", emit.numerics_source)]
-    committed += [(f"{t.key}.py", lambda t=t: emit.kernel_source(t)) for t in BUNDLED_TOPOLOGIES]
+    committed += [
+        (f"{t.kernel_key}.py", lambda t=t: emit.kernel_source(t)) for t in BUNDLED_TOPOLOGIES
+    ]
     rows = {name: _printed(make) for name, make in committed}
     kinds = tuple(sorted(catalog.builtin_kinds()))
     every = {

@@ -19,19 +19,23 @@ from .emit import write_kernel, write_numerics
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m mstmm.derive", description=__doc__)
     group = ap.add_mutually_exclusive_group(required=True)
-    group.add_argument("--topology", help="topology key, e.g. clamped_free__spring_mass")
+    group.add_argument(
+        "--topology",
+        help="kernel key, e.g. beam__spring_mass (a topology key such as"
+        " clamped_free__spring_mass names its kernel too)",
+    )
     group.add_argument("--bundled", action="store_true", help="regenerate generated/")
     ap.add_argument("--out", type=Path, help="output directory (with --topology)")
     args = ap.parse_args(argv)
     if args.bundled:
         print(write_numerics(generated_dir()))
         for topology in BUNDLED_TOPOLOGIES:
-            print(write_kernel(topology, generated_dir(), name=f"{topology.key}.py"))
+            print(write_kernel(topology, generated_dir(), name=f"{topology.kernel_key}.py"))
         return 0
     if args.out is None:
         ap.error("--topology needs --out")
     topology = Topology.from_key(args.topology)
-    print(write_kernel(topology, args.out, name=f"{topology.key}.py"))
+    print(write_kernel(topology, args.out, name=f"{topology.kernel_key}.py"))
     return 0
 
 

@@ -6,8 +6,8 @@ use (the reduced functions with their branches: constant terms, series, scaled c
 forms; the transfer matrix and compound step filled from them; the general segment's field
 matrices), compiled by ``mstmm.numerics.beam``. A topology's kernel: its per-component
 functions (``event_<what>``), one branch per kind present, printed from each kind's
-descriptor (a bare beam gets no branch at all), and its ends' constants. The numerics, the
-characteristic functions' walk, the scan, the count, the marches, are ordinary code in
+descriptor (a bare beam gets no branch at all); its ends are data (every end pair). The
+numerics, the characteristic functions' walk, the scan, the count, the marches, are ordinary code in
 ``mstmm.numerics``: a kernel binds ``mstmm.numerics.characteristic`` to its printed
 functions. The templates (``templates/*.tmpl``) hold the modules' headers only.
 """
@@ -35,12 +35,11 @@ from sympy.codegen.ast import (
 )
 
 from mstmm import catalog
-from mstmm.catalog import KNOWN_ZERO, Topology, unknown
+from mstmm.catalog import END_CODES, Topology
 from mstmm.sign import derive_digest, numerics_digest, signature
 
 from . import descriptor, special
 from . import symbols as S
-from .compound import pair_index
 from .printer import If, Unpack, array, assignment_nodes, code, lit
 from .segments import euler_bernoulli as beam
 from .segments import general
@@ -549,9 +548,9 @@ def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
 
 def _parameter_doc(topology: Topology) -> str:
     parts = [
-        "[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment"
-        " (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks"
-        " (DATA_BLOCKS)]"
+        f"[L, EI_0, mbar_0, n_seg, n_ev, left end, right end (codes of {END_CODES}),"
+        " (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per"
+        " component sorted by x, data blocks (DATA_BLOCKS)]"
     ]
     for t, name in enumerate(topology.kinds):
         keys = ", ".join(
@@ -687,7 +686,7 @@ def _clean(text: str) -> str:
 
 def regenerate_command(topology: Topology) -> str:
     """Shell command that writes this kernel again."""
-    return f"python -m mstmm.derive --topology {topology.key} --out DIR"
+    return f"python -m mstmm.derive --topology {topology.kernel_key} --out DIR"
 
 
 def kernel_source(topology: Topology) -> str:
@@ -697,34 +696,19 @@ def kernel_source(topology: Topology) -> str:
     kinds = topology.kinds
     damped = topology.damped
     parsed = _parsed(kinds, damped)
-    left_unknown = unknown(topology.left)
-    right_unknown = unknown(topology.right)
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
-    ends = {
-        "LEFT_UNKNOWN": left_unknown,
-        "RIGHT_UNKNOWN": right_unknown,
-        "LEFT_KNOWN": KNOWN_ZERO[topology.left],
-        "RIGHT_KNOWN": KNOWN_ZERO[topology.right],
-    }
-    constants = [
-        Assignment(sp.Symbol(name), sp.Tuple(*(lit(i) for i in pair)))
-        for name, pair in ends.items()
-    ]
-    constants += [
-        Assignment(sp.Symbol("START_PAIR"), lit(pair_index(left_unknown))),
-        Assignment(sp.Symbol("END_PAIR"), lit(pair_index(KNOWN_ZERO[topology.right]))),
-    ]
-    printed = ["\n".join(code(c) for c in constants)] + _dispatch(parsed, damped)
+    printed = _dispatch(parsed, damped)
     about = (
-        f"A beam ({topology.left} at x = 0, {topology.right} at x = L) carrying {kinds_text}:"
-        " each kind's branch of the events of ``mstmm.numerics.characteristic``, printed by"
-        " SymPy from its declared physics (paper Eqs. (2)-(3)), and the ends' constants;"
-        f" the last line compiles them with the characteristic functions ({WHAT[damped]})."
+        f"A beam carrying {kinds_text}, at any end conditions (they are data: the parameter"
+        " vector's head): each kind's branch of the events of"
+        " ``mstmm.numerics.characteristic``, printed by SymPy from its declared physics"
+        " (paper Eqs. (2)-(3)); the last line compiles them with the characteristic"
+        f" functions ({WHAT[damped]})."
     )
     values = dict(
-        key=topology.key,
+        key=topology.kernel_key,
         about=textwrap.fill(about, 90, break_on_hyphens=False),
         kinds=repr(kinds),
         dampers=repr(_dampers(kinds)),
@@ -768,5 +752,5 @@ def write_kernel(topology: Topology, directory: Path, name: str | None = None) -
     """Derive the kernel of ``topology`` and write it atomically into ``directory`` (as
     ``name``, default ``<key>_<signature[:16]>.py``); returns its path."""
     directory = Path(directory)
-    path = directory / (name or f"{topology.key}_{signature(topology)[:16]}.py")
+    path = directory / (name or f"{topology.kernel_key}_{signature(topology)[:16]}.py")
     return _write_atomically(kernel_source(topology), path)

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "afc7b72cc4df5985c2f3eb145a02bd0abbf7bad7"
+DIGEST = "9287a2ee33fda689a4851076ee73719c6430a7aa"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

@@ -38,7 +38,7 @@ def scene(left: str, right: str, n: int = 2, L: float = 1.3, EI: float = 2.5, mb
 
 
 @pytest.mark.parametrize(
-    "topology", [None, *BUNDLED_TOPOLOGIES], ids=lambda t: t.key if t else "euler_bernoulli"
+    "topology", [None, *BUNDLED_TOPOLOGIES], ids=lambda t: t.kernel_key if t else "euler_bernoulli"
 )
 def test_regenerated_kernel_is_identical_to_committed(topology):
     """Text under the SymPy that printed the committed kernel, numbers under any other.
@@ -48,7 +48,7 @@ def test_regenerated_kernel_is_identical_to_committed(topology):
     computes (tests/kernel_equivalence.py: every public function at random
     parameters and frequencies, 1e-13 relative, counts exactly).
     """
-    name = topology.key if topology else "euler_bernoulli"
+    name = topology.kernel_key if topology else "euler_bernoulli"
     committed = (generated_dir() / f"{name}.py").read_text()
     fresh = kernel_source(topology) if topology else numerics_source()
     stale = f"generated/{name}.py is stale: run python -m mstmm.derive --bundled"

@@ -29,12 +29,13 @@ def test_sweep_matches_reference_at_every_point():
 
 def wu_chou_vector(x, k, m):
     """The parameter vector of the paper's scene written out by hand (docs/components.md,
-    section 4): [L, EI_0, mbar_0, n_seg, n_ev], the one segment (x_end, EI, mbar, eta,
-    kappa_GA, rho_I, P, k_w, k_G: Euler-Bernoulli, all 0), the event rows (tag, x, offset)
-    sorted by x, then each spring-mass's (k, m, c) in scene order (no dashpot given: c = 0)."""
+    section 4): [L, EI_0, mbar_0, n_seg, n_ev, left end, right end] (codes of
+    catalog.END_CODES: clamped 0, free 2), the one segment (x_end, EI, mbar, eta, kappa_GA,
+    rho_I, P, k_w, k_G: Euler-Bernoulli, all 0), the event rows (tag, x, offset) sorted by
+    x, then each spring-mass's (k, m, c) in scene order (no dashpot given: c = 0)."""
     ei, mbar = 63476.125002707834, 15.3875
-    head = [1.0, ei, mbar, 1.0, 3.0, 1.0, ei, mbar, 0.0] + [0.0] * 5
-    offsets = [23.0, 26.0, 29.0]  # 5 + 9 + 3 * 3 = 23: after the event table
+    head = [1.0, ei, mbar, 1.0, 3.0, 0.0, 2.0, 1.0, ei, mbar, 0.0] + [0.0] * 5
+    offsets = [25.0, 28.0, 31.0]  # 7 + 9 + 3 * 3 = 25: after the event table
     rows = sorted(zip(x, range(3)), key=lambda r: r[0])  # stable, by x
     events = [v for xi, i in rows for v in (0.0, xi, offsets[i])]
     return np.array(head + events + [v for i in range(3) for v in (k[i], m[i], 0.0)])
@@ -60,12 +61,12 @@ def test_varying_a_stiffness_and_the_beam():
     P = parameter_matrix(scene, {"attachments[2].k": [1.0, 2.0], "beam.length": [1.0, 2.0]})
     for k, length, row in zip([1.0, 2.0], [1.0, 2.0], P):
         expected = wu_chou_vector([0.1, 0.4, 0.8], [*WU_CHOU_K[:2], k], WU_CHOU_M)
-        expected[0] = expected[5] = length  # the total length and the segment's end
+        expected[0] = expected[7] = length  # the total length and the segment's end
         assert row.tolist() == expected.tolist()
     P = parameter_matrix(scene, {"beam.EI": [7.0], "beam.mass_per_length": [3.0]})
     expected = wu_chou_vector([0.1, 0.4, 0.8], WU_CHOU_K, WU_CHOU_M)
-    expected[[1, 6]] = 7.0  # the kernel's unit EI_0 and the segment's own EI
-    expected[[2, 7]] = 3.0
+    expected[[1, 8]] = 7.0  # the kernel's unit EI_0 and the segment's own EI
+    expected[[2, 9]] = 3.0
     assert P[0].tolist() == expected.tolist()
 
 
@@ -205,11 +206,12 @@ EVERY_KIND = {
 
 def every_kind_vector() -> list[float]:
     """The layout of EVERY_KIND written out by hand (tags: the kinds present, sorted)."""
-    # segment rows (x_end, EI, mbar, eta); the chain's dashpots, none given, as zeros
+    # the ends' codes (catalog.END_CODES: clamped 0, free 2); the chain's dashpots, none
+    # given, as zeros
     # segment rows (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G): Euler-Bernoulli
-    head = [1.0, 2.0e4, 12.0, 2, 6, 0.4, 2.0e4, 12.0, 0.0, 0, 0, 0, 0, 0]
+    head = [1.0, 2.0e4, 12.0, 2, 6, 0, 2, 0.4, 2.0e4, 12.0, 0.0, 0, 0, 0, 0, 0]
     head += [1.0, 1.0e4, 8.0, 0.0, 0, 0, 0, 0, 0]
-    events = [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.7, 52, 1, 1.0, 52, 3, 1.0, 54]
+    events = [4, 0.0, 43, 0, 0.3, 44, 2, 0.5, 45, 5, 0.7, 54, 1, 1.0, 54, 3, 1.0, 56]
     data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2, 0.0, 0.0, 2.0, 0.1, 3.0]
     return [float(v) for v in head + events + data]
 
@@ -217,18 +219,18 @@ def every_kind_vector() -> list[float]:
 @pytest.mark.parametrize(
     "path, cols",
     [
-        ("beam.segments[0].EI", (1, 6)),  # the kernel's unit EI_0 and the segment's own
-        ("beam.segments[0].mass_per_length", (2, 7)),
-        ("beam.segments[1].EI", (15,)),
-        ("beam.segments[1].mass_per_length", (16,)),
-        ("attachments[0].k", (41,)),
-        ("attachments[1].k", (42,)),
-        ("attachments[2].k[0]", (44,)),
-        ("attachments[2].k[1]", (45,)),
-        ("attachments[2].m[1]", (48,)),
-        ("attachments[3].x", (33,)),
-        ("attachments[4].J", (53,)),
-        ("attachments[5].x", (39,)),
+        ("beam.segments[0].EI", (1, 8)),  # the kernel's unit EI_0 and the segment's own
+        ("beam.segments[0].mass_per_length", (2, 9)),
+        ("beam.segments[1].EI", (17,)),
+        ("beam.segments[1].mass_per_length", (18,)),
+        ("attachments[0].k", (43,)),
+        ("attachments[1].k", (44,)),
+        ("attachments[2].k[0]", (46,)),
+        ("attachments[2].k[1]", (47,)),
+        ("attachments[2].m[1]", (50,)),
+        ("attachments[3].x", (35,)),
+        ("attachments[4].J", (55,)),
+        ("attachments[5].x", (41,)),
     ],
 )
 def test_columns_of_every_kind(path, cols):
@@ -249,11 +251,11 @@ def test_varying_values_of_every_kind():
     }
     (row,) = parameter_matrix(scene, vary)
     expected = every_kind_vector()
-    expected[1] = expected[6] = 3.0e4
-    expected[16] = 9.0
-    expected[45] = 4.0e4
-    expected[53] = 0.0
-    expected[42] = 7.0
+    expected[1] = expected[8] = 3.0e4
+    expected[18] = 9.0
+    expected[47] = 4.0e4
+    expected[55] = 0.0
+    expected[44] = 7.0
     assert row.tolist() == expected
 
 
@@ -263,12 +265,12 @@ def test_moving_a_support_keeps_it_apart_from_the_mass_sharing_its_offset():
     scene = mstmm.scene_from_dict(EVERY_KIND)
     P = parameter_matrix(scene, {"attachments[3].x": [0.7, 0.2, 0.95]})
     rows = [
-        [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.7, 52, 1, 1.0, 52, 3, 1.0, 54],
-        [4, 0.0, 41, 5, 0.2, 52, 0, 0.3, 42, 2, 0.5, 43, 1, 1.0, 52, 3, 1.0, 54],
-        [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.95, 52, 1, 1.0, 52, 3, 1.0, 54],
+        [4, 0.0, 43, 0, 0.3, 44, 2, 0.5, 45, 5, 0.7, 54, 1, 1.0, 54, 3, 1.0, 56],
+        [4, 0.0, 43, 5, 0.2, 54, 0, 0.3, 44, 2, 0.5, 45, 1, 1.0, 54, 3, 1.0, 56],
+        [4, 0.0, 43, 0, 0.3, 44, 2, 0.5, 45, 5, 0.95, 54, 1, 1.0, 54, 3, 1.0, 56],
     ]
     for row, events in zip(P, rows):
-        assert row[23:41].tolist() == [float(v) for v in events]
+        assert row[25:43].tolist() == [float(v) for v in events]
 
 
 @pytest.mark.parametrize(

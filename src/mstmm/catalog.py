@@ -43,6 +43,10 @@ KNOWN_ZERO: dict[str, tuple[int, int]] = {
     "sliding": (1, 3),  # theta = Q = 0
 }
 
+#: Each end condition's code in the parameter vector (``p[LEFT_END]``, ``p[RIGHT_END]``):
+#: the ends are data, not code, so one kernel serves every end pair of its kinds.
+END_CODES: tuple[str, ...] = tuple(KNOWN_ZERO)
+
 #: Parameters of the beam at the head of the parameter vector (the first segment's EI
 #: and mass per length are the reference units of the kernel).
 BEAM_PARAMETERS = ("L", "EI", "mbar")
@@ -62,11 +66,15 @@ SEGMENT_KEYS: tuple[str, ...] = (
     *(key for key, _, _ in SEGMENT_PHYSICS),
 )
 
-#: Layout of the head of the parameter vector (docs/components.md, section 4):
-#: ``[L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) * n_seg, (tag, x,
-#: offset) * n_ev, data...]`` (eta: the segment's loss factor, read by damped kernels
-#: only; the terms of ``SEGMENT_PHYSICS``, all 0 for Euler-Bernoulli: ``SEGMENT_COLUMNS``).
-HEAD = 5
+#: Layout of the head of the parameter vector (docs/components.md, section 4): ``[L, EI_0, mbar_0,
+#: n_seg, n_ev, left end, right end, (x_end, EI, mbar, eta, *terms) * n_seg, (tag, x, offset) *
+#: n_ev, data...]`` (the ends as codes of :data:`END_CODES`; eta: the segment's loss factor, read
+#: by damped kernels only; the terms of ``SEGMENT_PHYSICS``, all 0 for Euler-Bernoulli:
+#: ``SEGMENT_COLUMNS``).
+HEAD = 7
+#: Where the head holds the ends' codes (:data:`END_CODES`).
+LEFT_END = 5
+RIGHT_END = 6
 SEGMENT_WIDTH = 1 + len(SEGMENT_KEYS)
 EVENT_WIDTH = 3
 #: The column of each value in a segment row (the row of segment s starts at ``HEAD +
@@ -261,10 +269,20 @@ class Topology:
         ends = f"{self.left}_{self.right}" + ("_damped" if self.damped else "")
         return "__".join([ends, *self.kinds])
 
+    @property
+    def kernel_key(self) -> str:
+        """The name of this topology's kernel: its kinds and whether it is damped, e.g.
+        ``beam__spring_mass`` or ``damped__dashpot__spring_mass``. The ends are not in it:
+        they are data (the parameter vector's head), and one kernel serves every end pair."""
+        return "__".join(["damped" if self.damped else "beam", *self.kinds])
+
     @classmethod
     def from_key(cls, key: str) -> Topology:
-        """Inverse of :attr:`key`."""
+        """Inverse of :attr:`key`; a :attr:`kernel_key` gives the topology of its kernel
+        with clamped-free ends (any end pair has the same kernel)."""
         ends, *names = key.split("__")
+        if ends in ("beam", "damped"):
+            return cls("clamped", "free", tuple(names), ends == "damped")
         left, right, *damped = ends.split("_")
         if damped not in ([], ["damped"]):
             raise ValueError(f"not a topology key: {key!r}")
@@ -358,6 +376,7 @@ def layout(
     n_seg = len(segments)
     n_ev = len(components)
     head = [total, float(segments[0][1]), float(segments[0][2]), float(n_seg), float(n_ev)]
+    head += [float(END_CODES.index(topology.left)), float(END_CODES.index(topology.right))]
     seg_rows: list[float] = []
     end = 0.0
     for s, (length, *values) in enumerate(segments):

@@ -808,7 +808,7 @@ def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity
     outputs = np.asarray(rows, dtype=np.float64)
     fa = kernel._addresses("shape_event_c", "shape_sizes")
     entry = kernel._entry("damped_shapes")
-    ends = kernel.module.SHAPE_ENDS
+    ends = kernel.shape_ends
     n = xs.size
     out_shapes = []
     k = 0

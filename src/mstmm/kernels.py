@@ -34,7 +34,15 @@ import numpy as np
 
 from mstmm import catalog
 from mstmm.cachedir import cache_dir
-from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows
+from mstmm.catalog import (
+    EVENT_WIDTH,
+    HEAD,
+    KNOWN_ZERO,
+    SEGMENT_WIDTH,
+    TERMS_COLUMN,
+    event_rows,
+    unknown,
+)
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
@@ -67,7 +75,7 @@ class Found(NamedTuple):
 
 
 def _bundled(topology: Topology, sig: str) -> ModuleType | None:
-    name = f"mstmm.generated.{topology.key}"
+    name = f"mstmm.generated.{topology.kernel_key}"
     try:
         module = importlib.import_module(name)
     except ModuleNotFoundError as exc:
@@ -132,17 +140,17 @@ def kernel_module(topology: Topology) -> tuple[ModuleType, str, float]:
     if module is not None:
         return module, module.__name__, 0.0
     directory = cache_dir()
-    path = directory / f"{topology.key}_{sig[:16]}.py"
+    path = directory / f"{topology.kernel_key}_{sig[:16]}.py"
     derived = 0.0
     if not path.exists():
         t0 = time.perf_counter()
         try:
-            with progress.status(f"deriving the {topology.key} kernel with SymPy"):
+            with progress.status(f"deriving the {topology.kernel_key} kernel with SymPy"):
                 write_kernel(topology, directory)
         except OSError as exc:
             raise KernelError(f"kernel cache {directory} is not writable: {exc}") from exc
         derived = time.perf_counter() - t0
-    module_name = f"mstmm_kernel_{topology.key}_{sig[:16]}"
+    module_name = f"mstmm_kernel_{topology.kernel_key}_{sig[:16]}"
     module = sys.modules.get(module_name) or load_file(path, module_name)
     if not reads_this_layout(module, topology):
         raise KernelError(
@@ -177,6 +185,13 @@ class Kernel:
     #: Whether numba's cache lacked the characteristic function when first asked (``_cold``).
     _was_cold: bool | None = field(default=None, repr=False)
 
+    @property
+    def shape_ends(self) -> np.ndarray:
+        """The ends for the shared mode-shape march: the left end's unknowns, the right
+        end's knowns (state indices of [Y, theta, M, Q])."""
+        ends = unknown(self.topology.left) + KNOWN_ZERO[self.topology.right]
+        return np.array(ends, dtype=np.int64)
+
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
         root search with its characteristic function and the count), once per process.
@@ -185,7 +200,7 @@ class Kernel:
         if formulation in self.warmed:
             return
         interpret.mark_compiled()
-        with progress.status(f"compiling the {self.topology.key} kernel (numba caches it)"):
+        with progress.status(f"compiling the {self.topology.kernel_key} kernel (numba caches it)"):
             self.lowest(p, 1, formulation=formulation)
         self.warmed.add(formulation)
 
@@ -646,7 +661,7 @@ class Kernel:
         gram = np.zeros((m, m))
         part = np.zeros(m)
         ratio = np.zeros(m)
-        args = (self.module.SHAPE_ENDS, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part)
+        args = (self.shape_ends, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part)
         args += (ratio,)
         if python:
             interpret.timed_call(self._python_function("mode_shapes"), event, inertia, sizes, *args)
@@ -670,7 +685,7 @@ class Kernel:
         outputs = np.ascontiguousarray(outputs, dtype=np.float64)
         out = np.zeros((ws.size, inputs.shape[0], outputs.shape[0]), dtype=np.complex128)
         fa = self._addresses("shape_event_c", "shape_sizes")
-        ends = self.module.SHAPE_ENDS
+        ends = self.shape_ends
         self._entry("frf")(fa, ends, self.topology.damped, ws, _params(p), inputs, outputs, out)
         return out
 

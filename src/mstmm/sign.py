@@ -1,6 +1,6 @@
 """The signature of a kernel: what decides its content, hashed (SymPy-free).
 
-``SIGNATURE = sha1(topology key | derive/ sources and the catalog | the files of the
+``SIGNATURE = sha1(kernel key (kinds, damped) | derive/ sources and the catalog | the files of the
 topology's kinds | the shared numerics' sources and the physics they read (the segment
 terms) | SymPy version | KERNEL_FORMAT)``. Each
 kernel's digest covers only what it is printed from: adding or editing a kind changes the
@@ -25,7 +25,7 @@ from pathlib import Path
 from .catalog import Topology, kind_file
 
 #: Bump when the meaning of a kernel's functions changes without any derive/ file changing.
-KERNEL_FORMAT = 2
+KERNEL_FORMAT = 3
 
 _DIGEST: str | None = None
 
@@ -76,7 +76,7 @@ def signature(topology: Topology) -> str:
     kinds = [hashlib.sha1(kind_file(name).read_bytes()).hexdigest() for name in topology.kinds]
     text = "|".join(
         [
-            topology.key,
+            topology.kernel_key,
             derive_digest(),
             numerics_digest(),
             *kinds,

@@ -63,7 +63,8 @@ def _layout(scene) -> tuple[np.ndarray, dict[str, int]]:
 
 
 def parameter_vector(scene) -> np.ndarray:
-    """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, segment rows
+    """Run-time parameters of a scene (SI): ``[L, EI_0, mbar_0, n_seg, n_ev, left end, right
+    end (codes of catalog.END_CODES), segment rows
     (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G), event rows (tag, x, offset)
     sorted by x, data...]`` (:func:`mstmm.catalog.layout`). Laid out once and kept on the
     scene (immutable), as its topology is: 10,000 components take 40 ms of Python, more

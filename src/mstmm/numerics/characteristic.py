@@ -7,7 +7,9 @@ tree algorithm (``u_bar_paper``, paper Eq. (4)), the components' own frequencies
 rigid motions. What differs between topologies is what SymPy prints into a kernel module
 from each kind's declared physics (``mstmm.derive.emit``): the per-component functions
 ``event_chain``, ``event_count``, ``event_descriptor``, ... (one branch
-per kind present) and the ends' constants (``LEFT_KNOWN``, ``START_PAIR``, ...).
+per kind present). The ends are data (the parameter vector's head, read through the
+tables of ``layout``: ``KNOWN``, ``UNKNOWN``, ``START_PAIR``, ``END_PAIR``), so one kernel
+serves every end pair of its kinds.
 
 :func:`bind_characteristic`, called at the end of a kernel module, compiles a copy of each
 function below with the kernel's namespace as its globals: numba resolves the printed
@@ -30,7 +32,20 @@ from .beam import (
     node_stiffness_step,
 )
 from .count import field_count, neg2, pair_count, pair_stiffness
-from .layout import COL_ETA, HEAD, MERGE_LENGTH, PENALTY, RICCATI_STEP, SEGMENT_WIDTH
+from .layout import (
+    COL_ETA,
+    END_PAIR,
+    HEAD,
+    KNOWN,
+    LEFT_END,
+    MERGE_LENGTH,
+    PENALTY,
+    RICCATI_STEP,
+    RIGHT_END,
+    SEGMENT_WIDTH,
+    START_PAIR,
+    UNKNOWN,
+)
 from .linalg import lu_logdet
 from .paper import apply_columns, segment_transfer
 from .search import rigid_dimension
@@ -56,17 +71,6 @@ from .walk import (
 )
 
 __all__ = ["bind_characteristic", "UNDAMPED", "DAMPED"]
-
-# What a kernel module defines for its topology (printed by ``mstmm.derive.emit``): the
-# ends' unknowns and knowns (state indices of [Y, theta, M, Q]) and the pairs of minors
-# the chain starts from and ends on.
-LEFT_UNKNOWN = (0, 1)
-RIGHT_UNKNOWN = (0, 1)
-LEFT_KNOWN = (2, 3)
-RIGHT_KNOWN = (2, 3)
-START_PAIR = 0
-END_PAIR = 0
-
 
 def _printed(*args):
     raise NotImplementedError("printed per topology into its kernel module")
@@ -117,7 +121,7 @@ def delta_chain(w, p):
     w1, b4, beta = chain_frequency(w, L, EI, mbar)
     v = work(6)
     v[:] = 0.0
-    v[START_PAIR] = 1.0
+    v[START_PAIR[int(p[LEFT_END])]] = 1.0
     vb = borrowed(v)  # what the events get (no reference counts)
     pb = borrowed(p)
     log = 0.0 * v[0]  # 0, real or complex
@@ -176,7 +180,7 @@ def delta_chain(w, p):
         elif what == STOP_END:
             break
     log += renormalise_end(v)
-    return v[END_PAIR], log
+    return v[END_PAIR[int(p[RIGHT_END])]], log
 
 
 #: The names a kernel binds the chain under (``bind_characteristic``).
@@ -210,9 +214,10 @@ def count_below(omega, p):
     ready_s = 0
     e, f, bs = segment_factors(p, 0, beta, EI, mbar)
     Zc[0] = 1.0  # the free end: Y and theta admitted
-    if 0 in LEFT_KNOWN or 1 in LEFT_KNOWN:  # Y or theta held: a PENALTY stiffness each
-        kY = PENALTY if 0 in LEFT_KNOWN else 0.0
-        kT = PENALTY if 1 in LEFT_KNOWN else 0.0
+    left = KNOWN[int(p[LEFT_END])]
+    if 0 in left or 1 in left:  # Y or theta held: a PENALTY stiffness each
+        kY = PENALTY if 0 in left else 0.0
+        kT = PENALTY if 1 in left else 0.0
         node_stiffness_step(Zc, kY, kT)
     renormalise_end(Zc)
     count = 0
@@ -255,7 +260,7 @@ def count_below(omega, p):
     detS = pair_stiffness(Zc, S)
     s00 = S[0, 0]
     s11 = S[1, 1]
-    for d in RIGHT_KNOWN:
+    for d in KNOWN[int(p[RIGHT_END])]:
         if d < 2:  # Y or theta held by the end: a PENALTY stiffness
             S[d, d] += PENALTY
 
@@ -296,8 +301,9 @@ def u_bar_paper(omega, p):
     size = 4 + nq_total
     A = np.zeros((size, size))
     W = np.zeros((4, size))
-    W[LEFT_UNKNOWN[0], 0] = 1.0
-    W[LEFT_UNKNOWN[1], 1] = 1.0
+    left = UNKNOWN[int(p[LEFT_END])]
+    W[left[0], 0] = 1.0
+    W[left[1], 1] = 1.0
     U = np.zeros((4, 4))
     col = np.zeros(4)
     nb = max(1, most)
@@ -342,8 +348,9 @@ def u_bar_paper(omega, p):
     for i in range(4):
         for j in range(ncols):
             A[i, j] = W[i, j]
-    A[RIGHT_UNKNOWN[0], ncols] = -1.0
-    A[RIGHT_UNKNOWN[1], ncols + 1] = -1.0
+    right = UNKNOWN[int(p[RIGHT_END])]
+    A[right[0], ncols] = -1.0
+    A[right[1], ncols + 1] = -1.0
     return A
 
 
@@ -443,7 +450,7 @@ def rigid_motions(p, dampers):
             cx[n] = p[rows[r] + 1]
             ct[n] = flag
             n += 1
-    for x, known in ((0.0, LEFT_KNOWN), (p[0], RIGHT_KNOWN)):
+    for x, known in ((0.0, KNOWN[int(p[LEFT_END])]), (p[0], KNOWN[int(p[RIGHT_END])])):
         for d in known:
             if d < 2:  # Y (1) or theta (2) held by the end
                 cx[n] = x
@@ -500,15 +507,12 @@ def bind_characteristic(namespace: dict, names: tuple[str, ...]) -> None:
     define the functions ``names`` of this module in its ``namespace``, each compiled (on
     first call, or loaded from numba's cache) with them and the real or complex twins of
     ``generic`` (complex: a damped kernel's ``names``, which hold ``delta_damped``).
-    ``SHAPE_ENDS``: the ends for the shared mode-shape march (the left end's unknowns,
-    the right end's knowns)."""
+    """
     for name, f in list(namespace.items()):
         if name.startswith("event_") and isinstance(f, types.FunctionType):
             if f.__module__ == namespace["__name__"]:
                 inline = "always" if name in HOT_EVENTS else "never"
                 namespace[name] = njit(cache=True, inline=inline)(f)
-    ends = namespace["LEFT_UNKNOWN"] + namespace["RIGHT_KNOWN"]
-    namespace["SHAPE_ENDS"] = np.array(ends, dtype=np.int64)
     namespace.update(generic.COMPLEX if "delta_damped" in names else generic.REAL)
     for name in names:
         namespace[name] = njit(cache=True, parallel=name in _PARALLEL)(_tagged(name, namespace))

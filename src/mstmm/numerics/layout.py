@@ -1,10 +1,13 @@
 """The parameter vector's layout and the numerical constants every kernel shares.
 
-``p = [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment, (tag, x,
-offset) per component sorted by x, data blocks]`` (``mstmm.catalog.layout``). A segment
-row's columns are named (``catalog.SEGMENT_COLUMNS``); its terms (``mstmm.physics.
-segment``) are read through the tables below: each term's role, whether the loss factor
-multiplies it, and the exponents of (L, EI_0, mbar_0) that make it dimensionless."""
+``p = [L, EI_0, mbar_0, n_seg, n_ev, left end, right end, (x_end, EI, mbar, eta, *terms) per
+segment, (tag, x, offset) per component sorted by x, data blocks]``
+(``mstmm.catalog.layout``). A segment row's columns are named (``catalog.SEGMENT_COLUMNS``);
+its terms (``mstmm.physics.segment``) are read through the tables below: each term's role,
+whether the loss factor multiplies it, and the exponents of (L, EI_0, mbar_0) that make it
+dimensionless."""
+
+from itertools import combinations
 
 import numpy as np
 
@@ -15,6 +18,18 @@ from mstmm.physics import segment as terms
 HEAD = catalog.HEAD
 SEGMENT_WIDTH = catalog.SEGMENT_WIDTH
 EVENT_WIDTH = catalog.EVENT_WIDTH
+#: Where the head holds the ends' codes (``catalog.END_CODES``), and per code: the state
+#: indices ([Y, theta, M, Q]) the end holds at zero (``KNOWN``) and leaves unknown
+#: (``UNKNOWN``); the pair of minors the stable chain starts from at a left end of that
+#: kind (its unknowns) and ends on at a right end (its knowns), as indices of the 2x2
+#: minors in lexicographic order. The ends are data: one kernel serves every end pair.
+LEFT_END = catalog.LEFT_END
+RIGHT_END = catalog.RIGHT_END
+_PAIRS = tuple(combinations(range(4), 2))
+KNOWN = tuple(catalog.KNOWN_ZERO[end] for end in catalog.END_CODES)
+UNKNOWN = tuple(catalog.unknown(end) for end in catalog.END_CODES)
+START_PAIR = tuple(_PAIRS.index(pair) for pair in UNKNOWN)
+END_PAIR = tuple(_PAIRS.index(pair) for pair in KNOWN)
 #: The named columns of a segment row.
 X_END = catalog.SEGMENT_COLUMNS["x_end"]
 COL_EI = catalog.SEGMENT_COLUMNS["EI"]

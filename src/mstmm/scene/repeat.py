@@ -335,4 +335,5 @@ def _repeated_parameters(
         for key, values in graded.items():
             data[fields[f"attachments[{p}].{key}"] - data_start_c :: width] = values
     head = np.array([beam.length, cp[1], cp[2], n_seg, n_ev], dtype=np.float64)
+    head = np.concatenate([head, cp[catalog.LEFT_END : catalog.HEAD]])  # the ends
     return np.concatenate([head, segments.ravel(), events.ravel(), data])

@@ -1,21 +1,21 @@
-"""Per-component functions of the MSTMM topology ``clamped_free`` (generated, do not edit).
+"""Per-component functions of the MSTMM topology ``beam`` (generated, do not edit).
 
-A beam (clamped at x = 0, free at x = L) carrying no point components: each kind's branch
-of the events of ``mstmm.numerics.characteristic``, printed by SymPy from its declared
-physics (paper Eqs. (2)-(3)), and the ends' constants; the last line compiles them with
-the characteristic functions (``delta_stable`` (default) and ``delta_paper``, whose zeros
-are the natural frequencies, and ``count_below``, their number below omega).
+A beam carrying no point components, at any end conditions (they are data: the parameter
+vector's head): each kind's branch of the events of ``mstmm.numerics.characteristic``,
+printed by SymPy from its declared physics (paper Eqs. (2)-(3)); the last line compiles
+them with the characteristic functions (``delta_stable`` (default) and ``delta_paper``,
+whose zeros are the natural frequencies, and ``count_below``, their number below omega).
 
-Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]
-Regenerate: python -m mstmm.derive --topology clamped_free --out DIR
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, left end, right end (codes of ('clamped', 'pinned', 'free', 'sliding')), (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]
+Regenerate: python -m mstmm.derive --topology beam --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
 
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
-TOPOLOGY = "clamped_free"
-SIGNATURE = "3b4546096d8b7f1095166a18ed86b4e1a64b8025"
-NUMERICS = "28a44ebaa72f27159497fee98484484be221654c"
+TOPOLOGY = "beam"
+SIGNATURE = "f7f32e70c8077c48d792170360911a8c2aae4841"
+NUMERICS = "1882564421db33d857f39f76c24858127762d39b"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
@@ -31,14 +31,6 @@ SEGMENT_COLUMNS = (('x_end', 'm', (-1, 0, 0)),
  ('foundation_k', 'N/m^2', (4, -1, 0)),
  ('foundation_kG', 'N', (2, -1, 0)))
 DATA_BLOCKS = {}
-
-LEFT_UNKNOWN = (2, 3)
-RIGHT_UNKNOWN = (0, 1)
-LEFT_KNOWN = (0, 1)
-RIGHT_KNOWN = (2, 3)
-START_PAIR = 5
-END_PAIR = 5
-
 
 def event_chain(tag, p, o, v, w1, b4, L, EI, mbar):
     return 0.0

@@ -1,22 +1,22 @@
-"""Per-component functions of the MSTMM topology ``clamped_free__spring_mass`` (generated, do not edit).
+"""Per-component functions of the MSTMM topology ``beam__spring_mass`` (generated, do not edit).
 
-A beam (clamped at x = 0, free at x = L) carrying point components of the kinds
-spring_mass: each kind's branch of the events of ``mstmm.numerics.characteristic``,
-printed by SymPy from its declared physics (paper Eqs. (2)-(3)), and the ends' constants;
-the last line compiles them with the characteristic functions (``delta_stable`` (default)
-and ``delta_paper``, whose zeros are the natural frequencies, and ``count_below``, their
-number below omega).
+A beam carrying point components of the kinds spring_mass, at any end conditions (they are
+data: the parameter vector's head): each kind's branch of the events of
+``mstmm.numerics.characteristic``, printed by SymPy from its declared physics (paper Eqs.
+(2)-(3)); the last line compiles them with the characteristic functions (``delta_stable``
+(default) and ``delta_paper``, whose zeros are the natural frequencies, and
+``count_below``, their number below omega).
 
-Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
-Regenerate: python -m mstmm.derive --topology clamped_free__spring_mass --out DIR
+Parameter vector p (SI): [L, EI_0, mbar_0, n_seg, n_ev, left end, right end (codes of ('clamped', 'pinned', 'free', 'sliding')), (x_end, EI, mbar, eta, *terms) per segment (SEGMENT_COLUMNS), (tag, x, offset) per component sorted by x, data blocks (DATA_BLOCKS)]; tag 0 = spring_mass: k (N/m), m (kg), c (N s/m)
+Regenerate: python -m mstmm.derive --topology beam__spring_mass --out DIR
 Derived by mstmm.derive with SymPy 1.14.0.
 """
 
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
-TOPOLOGY = "clamped_free__spring_mass"
-SIGNATURE = "e42b0ad4edaf7375c092b3a7486747c840f2cec9"
-NUMERICS = "28a44ebaa72f27159497fee98484484be221654c"
+TOPOLOGY = "beam__spring_mass"
+SIGNATURE = "2dab34d146213efa57dbb5d5ec746303f42a9df4"
+NUMERICS = "1882564421db33d857f39f76c24858127762d39b"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
@@ -32,14 +32,6 @@ SEGMENT_COLUMNS = (('x_end', 'm', (-1, 0, 0)),
  ('foundation_k', 'N/m^2', (4, -1, 0)),
  ('foundation_kG', 'N', (2, -1, 0)))
 DATA_BLOCKS = {'spring_mass': (('k', 'N/m', 'scalar'), ('m', 'kg', 'scalar'), ('c', 'N s/m', 'scalar'))}
-
-LEFT_UNKNOWN = (2, 3)
-RIGHT_UNKNOWN = (0, 1)
-LEFT_KNOWN = (0, 1)
-RIGHT_KNOWN = (2, 3)
-START_PAIR = 5
-END_PAIR = 5
-
 
 def event_chain(tag, p, o, v, w1, b4, L, EI, mbar):
     if tag == 0:
