@@ -311,7 +311,8 @@ def main() -> None:
         "",
         f"Median wall time of one `kernel.evaluate(omegas, p, 'stable')` call on a "
         f"{COST_GRID}-point grid, divided by {COST_GRID}; clamped-free beam with N "
-        "spring-masses (the topology `clamped_free__spring_mass`), one thread.",
+        "spring-masses (the topology `clamped_free__spring_mass`, kernel `beam__spring_mass`),"
+        " one thread.",
         "",
         "| N attachments | time per evaluation | repeats |",
         "|---|---|---|",

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam"
-SIGNATURE = "f7f32e70c8077c48d792170360911a8c2aae4841"
-NUMERICS = "1882564421db33d857f39f76c24858127762d39b"
+SIGNATURE = "61b06eff7a5e574f43972ac3d234e4ea9c98b411"
+NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "2dab34d146213efa57dbb5d5ec746303f42a9df4"
-NUMERICS = "1882564421db33d857f39f76c24858127762d39b"
+SIGNATURE = "7e439a2aa1ea3808be80ad1ea0fbdd0340f00e50"
+NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -76,13 +76,15 @@ def test_band_between_two_cantilever_modes_has_no_roots(capsys):
 
 
 def test_kernel_cache_not_writable(tmp_path):
-    """A topology that is not bundled, with the cache under a regular file: one line, status 1."""
+    """A kernel that is not bundled (a point mass: every end pair of a bare beam or of
+    spring-masses is), with the cache under a regular file: one line, status 1."""
     blocker = tmp_path / "a_file"
     blocker.write_text("")
     scene = tmp_path / "pinned.toml"
     scene.write_text(
         "[beam]\nlength = 1.0\nEI = 1.0\nmass_per_length = 1.0\n"
         'left = "pinned"\nright = "sliding"\n'
+        '[[attachments]]\ntype = "mass"\nx = 0.5\nm = 0.1\n'
     )
     result = _run("solve", str(scene), env={"MSTMM_CACHE": str(blocker / "cache")})
     assert result.returncode == 1

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -241,8 +242,10 @@ print(json.dumps({
 
 
 def _new_topology(python_while_compiling: float) -> dict:
-    """A topology never derived (an empty ``MSTMM_CACHE``) solved compiled forced, with
-    helpers, in a fresh process; the shared drivers compiled on the machine first."""
+    """A kernel never compiled solved compiled forced, with helpers, in a fresh process;
+    the shared drivers compiled on the machine first. numba's cache is keyed by content
+    (``numerics.cache``): the fresh process gets a numba cache holding what this session
+    compiled (the drivers among it) except the bare beam's kernel (bundled, every end pair)."""
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     budget = interpret._Process.budget
     interpret.set_budget(0.0)
@@ -254,8 +257,11 @@ def _new_topology(python_while_compiling: float) -> dict:
         compiling.wait(name)
         assert compiling.cached(name), name
     with tempfile.TemporaryDirectory() as kc:
+        here = Path(compiling._cache_location(entries.entry_lowest)).parent
+        numba_cache = Path(kc) / "numba"
+        shutil.copytree(here, numba_cache, ignore=shutil.ignore_patterns("beam_*", "*.lock"))
         env = dict(os.environ, MSTMM_CACHE=kc, MSTMM_INTERPRET_BUDGET="0")
-        env["MSTMM_COMPILE_HELPERS"] = "1"
+        env.update(MSTMM_COMPILE_HELPERS="1", NUMBA_CACHE_DIR=str(numba_cache))
         done = subprocess.run(
             [sys.executable, "-c", _NEW_TOPOLOGY, str(python_while_compiling)],
             env=env,

@@ -153,14 +153,16 @@ def test_parameter_vector_of_every_kind_by_hand(tmp_path):
     scene = load_scene(write(tmp_path, STEPPED + EVERY_KIND))
     # tags: the kinds present, sorted: hinge 0, mass 1, oscillator_chain 2,
     # rotational_spring 3, spring 4, support 5
-    head = [1.0, 2.0e4, 12.0, 2.0, 6.0]
+    # [L, EI_0, mbar_0, n_seg, n_ev, left end, right end] (codes of catalog.END_CODES:
+    # clamped 0, free 2)
+    head = [1.0, 2.0e4, 12.0, 2.0, 6.0, 0.0, 2.0]
     # segment rows (x_end, EI, mbar, eta, kappa_GA, rho_I, P, k_w, k_G): Euler-Bernoulli
     segments = [0.4, 2.0e4, 12.0, 0.0, 0, 0, 0, 0, 0, 1.0, 1.0e4, 8.0, 0.0, 0, 0, 0, 0, 0]
-    # data from 5 + 2 * 9 + 6 * 3 = 41, one block per attachment in x order:
-    # spring [5] at 41, hinge [0] at 42, chain [2, 1e4, 2e4, 2, 1, 2, 2, 0, 0] at 43 (its
-    # dashpots, none given, as zeros), support [] at 52, mass [2, 0.1] at 52, rotational
-    # spring [3] at 54
-    events = [4, 0.0, 41, 0, 0.3, 42, 2, 0.5, 43, 5, 0.7, 52, 1, 1.0, 52, 3, 1.0, 54]
+    # data from 7 + 2 * 9 + 6 * 3 = 43, one block per attachment in x order:
+    # spring [5] at 43, hinge [0] at 44, chain [2, 1e4, 2e4, 2, 1, 2, 2, 0, 0] at 45 (its
+    # dashpots, none given, as zeros), support [] at 54, mass [2, 0.1] at 54, rotational
+    # spring [3] at 56
+    events = [4, 0.0, 43, 0, 0.3, 44, 2, 0.5, 45, 5, 0.7, 54, 1, 1.0, 54, 3, 1.0, 56]
     data = [5.0, 0.0, 2, 1.0e4, 2.0e4, 2, 1.0, 2.0, 2, 0.0, 0.0, 2.0, 0.1, 3.0]
     expected = head + segments + events + data
     assert mstmm.parameter_vector(scene).tolist() == [float(v) for v in expected]
@@ -615,9 +617,10 @@ def test_registered_kind_is_accepted(toy_kind):
     scene = scene_from_dict(data)
     assert scene.attachments[0].stiffness == 9.0
     assert scene_to_dict(scene) == data
-    # [L, EI, mbar, 1, 1], segment [1, 1, 1, 0, 0, 0, 0, 0, 0], event (tag 0, 0.25, 17),
-    # data [9]
-    expected = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0] + [0.0] * 5 + [0.0, 0.25, 17.0, 9.0]
+    # [L, EI, mbar, 1, 1, free 2, free 2], segment [1, 1, 1, 0, 0, 0, 0, 0, 0], event (tag 0,
+    # 0.25, 19), data [9]
+    expected = [1.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 1.0, 1.0, 1.0, 0.0] + [0.0] * 5
+    expected += [0.0, 0.25, 19.0, 9.0]
     assert mstmm.parameter_vector(scene).tolist() == expected
     data["attachments"][0]["k"] = 1.0
     with pytest.raises(SceneError, match=r"attachments\[0\]\.k: unknown key \(allowed: type, x,"):

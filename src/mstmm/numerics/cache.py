@@ -8,9 +8,15 @@ Two rules numba's own locators do not follow:
   editable install as a namespace package. Every function of mstmm (the shared numerics,
   the bundled kernels in ``mstmm.generated``, the kernels derived at run time and their
   copies of the characteristic functions) is cached under ``<cache>/numba``
-  (:func:`mstmm.cachedir.cache_dir`), in a folder named after its file's folder as numba
-  names them; ``NUMBA_CACHE_DIR`` takes its place when the user set it, and a
-  temporary folder when neither can be written.
+  (:func:`mstmm.cachedir.cache_dir`); ``NUMBA_CACHE_DIR`` takes its place when the user
+  set it, and a temporary folder when neither can be written.
+- **Keyed by content, not by path.** numba names a file's cache folder after the folder's
+  path and stamps it with the file's modification time: a reinstall into another
+  environment, or a copy of the package, would compile everything again (the shared
+  numerics alone take about 40 s on a 2-core machine). Here the numerics' folder is named
+  after :func:`digest` and every other file's after a hash of its content, which is also
+  its stamp: the same sources anywhere share their machine code, and different ones never
+  share a folder.
 - **One stamp for the numerics.** numba stamps a cached function with its own file's
   content only: a function of ``frf.py`` that inlines one of ``walk.py`` (or of the
   printed ``mstmm.generated.euler_bernoulli``) would keep machine code compiled against
@@ -62,6 +68,13 @@ def digest() -> str:
     return _DIGEST[0]
 
 
+def _content(path: str) -> str:
+    """sha1 of a file's content (a kernel's or a module's: what its machine code is
+    compiled from, besides the numerics it calls, which its own content names: a kernel's
+    signature covers them)."""
+    return hashlib.sha1(Path(path).read_bytes()).hexdigest()
+
+
 def numba_dir() -> Path:
     """Where numba's machine code of mstmm's functions goes: ``NUMBA_CACHE_DIR`` if the
     user set one, else ``<cache>/numba``."""
@@ -85,13 +98,15 @@ class UserCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLoca
         self._py_file = py_file
         self._lineno = py_func.__code__.co_firstlineno
         self._numerics = numerics
-        self._cache_path = str(base / self.get_suitable_cache_subpath(py_file))
+        self._stamp = digest() if numerics else _content(py_file)
+        name = "numerics" if numerics else Path(py_file).stem
+        self._cache_path = str(base / f"{name}_{self._stamp[:20]}")
 
     def get_cache_path(self) -> str:
         return self._cache_path
 
     def get_source_stamp(self):
-        return digest() if self._numerics else super().get_source_stamp()
+        return self._stamp
 
     @classmethod
     def from_function(cls, py_func, py_file):
