@@ -38,7 +38,7 @@ from mstmm import catalog
 from mstmm.catalog import END_CODES, Topology
 from mstmm.sign import derive_digest, numerics_digest, signature
 
-from . import descriptor, special
+from . import descriptor, ir, special
 from . import symbols as S
 from .printer import If, Unpack, array, assignment_nodes, code, lit
 from .segments import euler_bernoulli as beam
@@ -493,7 +493,7 @@ def _function(name: str, args: str, body: list, complex_: bool) -> str:
     return code(fd, complex_)
 
 
-def _stage_dispatch(parsed: list, damped: bool) -> list[str]:
+def _stage_functions(parsed: list, damped: bool) -> list[ir.FunctionIR]:
     """``event_stages`` (real; not in a damped kernel) and ``event_stages_c`` (complex):
     the stages of the kinds of stages present, what the chain numerics take; nothing for
     a topology without such a kind."""
@@ -502,48 +502,44 @@ def _stage_dispatch(parsed: list, damped: bool) -> list[str]:
     out = []
     for complex_ in (False, True) if not damped else (True,):
         suffix, w = ("_c", "w1") if complex_ else ("", "b4")
-        body = _branch_lines(parsed, _stage_lines(damped, complex_))
-        out.append(
-            _function(f"event_stages{suffix}", f"tag, p, o, {w}, L, EI, mbar, st", body, complex_)
-        )
+        branches = _branches(parsed, _stage_lines(damped, complex_))
+        params = ("tag", "p", "o", w, "L", "EI", "mbar", "st")
+        out.append(ir.FunctionIR(f"event_stages{suffix}", params, branches, None, complex_))
     return out
 
 
-def _branch_lines(parsed: list, body) -> list:
-    """``if tag == 0: ...``, ``if tag == 1: ...``: one branch per kind present (tags are
-    its index in the kernel's ``KINDS``), its body printed from the kind's descriptor by
-    ``body`` (none where ``body`` gives None)."""
-    lines: list = []
+def _branches(parsed: list, body) -> tuple:
+    """``(tag, statements)`` of each kind present (tags are its index in the kernel's
+    ``KINDS``), its statements made from the kind's descriptor by ``body`` (none where
+    ``body`` gives None)."""
+    out = []
     for t, (_, module, d) in enumerate(parsed):
         body_lines = body(module, d)
-        if body_lines is None:
-            continue
-        lines.append(If(sp.Eq(tag_, lit(t)), body_lines))
-    return lines
+        if body_lines is not None:
+            out.append((t, tuple(body_lines)))
+    return tuple(out)
 
 
-def _dispatch(parsed: list, damped: bool = False) -> list[str]:
+def _functions(parsed: list, damped: bool = False) -> list[ir.FunctionIR]:
     """``event_<what>(tag, ...)``: one branch per kind present (none for a bare beam), each
-    printed inline (one compiled function per entry, not per kind: compile time); the
+    inline (one compiled function per entry, not per kind: compile time); the
     characteristic functions call them at each component (they compile them:
     ``mstmm.numerics.characteristic.bind_characteristic``)."""
     out = []
     for what, args, body, tail, complex_ in dispatch_table(damped):
-        lines = _branch_lines(parsed, body) + [Return(tail)]
-        out.append(_function(f"event_{what}", f"tag, {args}", lines, complex_ or damped))
-    return _stage_dispatch(parsed, damped) + out
+        params = ("tag", *(a.strip() for a in args.split(",")))
+        branches = _branches(parsed, body)
+        out.append(ir.FunctionIR(f"event_{what}", params, branches, tail, complex_ or damped))
+    return _stage_functions(parsed, damped) + out
 
 
-def _dampers(kinds: tuple[str, ...]) -> dict[str, str]:
-    """``descriptor.damper_of`` of each kind present that has damping (read at run time by
-    the proved decay bound, ``mstmm.decay_bound``: the runtime has no SymPy)."""
-    out = {}
-    for k in kinds:
-        module = catalog.kind(k)
-        what = descriptor.damper_of(module, _value_lines(module, damped=True)[1])
-        if what != "none":
-            out[k] = what
-    return out
+def print_function(f: ir.FunctionIR) -> str:
+    """A function of the IR printed: ``if tag == t:`` and its statements for each branch,
+    then its tail returned (SymPy's ``FunctionDefinition``, real or complex arithmetic)."""
+    body: list = [If(sp.Eq(tag_, lit(t)), list(lines)) for t, lines in f.branches]
+    if f.tail is not None:
+        body.append(Return(f.tail))
+    return _function(f.name, ", ".join(f.params), body, f.complex_)
 
 
 def _parameter_doc(topology: Topology) -> str:
@@ -689,17 +685,24 @@ def regenerate_command(topology: Topology) -> str:
     return f"python -m mstmm.derive --topology {topology.kernel_key} --out DIR"
 
 
-def kernel_source(topology: Topology) -> str:
-    """The complete source of the kernel module of ``topology`` (it imports the shared
-    numerics, ``numerics_source``): real for an undamped topology, complex for a damped
-    one."""
+def lower(topology: Topology) -> ir.KernelIR:
+    """The IR of the kernel of ``topology`` (:mod:`mstmm.derive.ir`): every decision SymPy
+    makes about it, nothing printed yet. Real for an undamped topology, complex for a
+    damped one; the ends are not in it (they are data)."""
     kinds = topology.kinds
     damped = topology.damped
     parsed = _parsed(kinds, damped)
+    blocks = catalog.data_blocks(kinds)
+    kind_irs = []
+    for t, (name, module, d) in enumerate(parsed):
+        staged = _staged(module)
+        inertia = sp.zeros(3, 2) if staged else descriptor.inertia_rows(d)
+        damper = descriptor.damper_of(module, _value_lines(module, damped=True)[1])
+        file = catalog.kind_file(name)
+        kind_irs.append(ir.KindIR(name, t, file, staged, d, inertia, damper, blocks[name]))
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
-    printed = _dispatch(parsed, damped)
     about = (
         f"A beam carrying {kinds_text}, at any end conditions (they are data: the parameter"
         " vector's head): each kind's branch of the events of"
@@ -707,22 +710,49 @@ def kernel_source(topology: Topology) -> str:
         " (paper Eqs. (2)-(3)); the last line compiles them with the characteristic"
         f" functions ({WHAT[damped]})."
     )
-    values = dict(
+    return ir.KernelIR(
         key=topology.kernel_key,
-        about=textwrap.fill(about, 90, break_on_hyphens=False),
-        kinds=repr(kinds),
-        dampers=repr(_dampers(kinds)),
-        segment_columns=pformat(catalog.segment_columns(), width=92),
-        data_blocks=pformat(catalog.data_blocks(kinds), width=92),
+        signature=signature(topology),
+        numerics=numerics_digest(),
+        damped=damped,
+        kinds=tuple(kind_irs),
+        functions=tuple(_functions(parsed, damped)),
+        segment_columns=catalog.segment_columns(),
+        data_blocks=blocks,
+        end_codes=END_CODES,
+        dampers={k.name: k.damper for k in kind_irs if k.damper != "none"},
+        about=about,
         parameter_doc=_parameter_doc(topology),
         regenerate=regenerate_command(topology),
+        bind=FUNCTIONS[damped],
+    )
+
+
+def print_kernel(kernel: ir.KernelIR) -> str:
+    """The complete source of a kernel module printed from its IR (it imports the shared
+    numerics, ``numerics_source``); nothing is decided here."""
+    values = dict(
+        key=kernel.key,
+        about=textwrap.fill(kernel.about, 90, break_on_hyphens=False),
+        kinds=repr(tuple(k.name for k in kernel.kinds)),
+        dampers=repr(kernel.dampers),
+        segment_columns=pformat(kernel.segment_columns, width=92),
+        data_blocks=pformat(kernel.data_blocks, width=92),
+        parameter_doc=kernel.parameter_doc,
+        regenerate=kernel.regenerate,
         sympy_version=importlib.metadata.version("sympy"),
-        signature=signature(topology),
-        digest=numerics_digest(),
-        printed="\n\n\n".join(printed),
-        functions=FUNCTIONS[damped],
+        signature=kernel.signature,
+        digest=kernel.numerics,
+        printed="\n\n\n".join(print_function(f) for f in kernel.functions),
+        functions=kernel.bind,
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))
+
+
+def kernel_source(topology: Topology) -> str:
+    """The complete source of the kernel module of ``topology``: its IR (:func:`lower`),
+    printed (:func:`print_kernel`)."""
+    return print_kernel(lower(topology))
 
 
 def _write_atomically(source: str, path: Path) -> Path:

@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "7e439a2aa1ea3808be80ad1ea0fbdd0340f00e50"
+SIGNATURE = "e22fedda796b576b9ae19171f89f46564d92c2b7"
 NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
