@@ -692,6 +692,7 @@ def lower(topology: Topology) -> ir.KernelIR:
     kinds = topology.kinds
     damped = topology.damped
     parsed = _parsed(kinds, damped)
+    functions = tuple(_functions(parsed, damped))  # first: what a kind cannot carry is refused
     blocks = catalog.data_blocks(kinds)
     kind_irs = []
     for t, (name, module, d) in enumerate(parsed):
@@ -716,7 +717,7 @@ def lower(topology: Topology) -> ir.KernelIR:
         numerics=numerics_digest(),
         damped=damped,
         kinds=tuple(kind_irs),
-        functions=tuple(_functions(parsed, damped)),
+        functions=functions,
         segment_columns=catalog.segment_columns(),
         data_blocks=blocks,
         end_codes=END_CODES,

@@ -14,7 +14,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam"
-SIGNATURE = "6932db7c34982e984db7479098398a8e5a66502e"
+SIGNATURE = "9a99b768e9d71559d4ba5c1f5507f6a5e4ac846e"
 NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
 KINDS = ()
 DAMPERS = {}

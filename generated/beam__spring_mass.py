@@ -15,7 +15,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "e22fedda796b576b9ae19171f89f46564d92c2b7"
+SIGNATURE = "c1eea79bb1bbe9e2eb17a82b9802f43199ef120e"
 NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}

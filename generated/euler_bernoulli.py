@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "b4798450da42ff7e9e5c4c54863e50bafe4ddf34"
+DIGEST = "1864ea75f13df521496e5a49d46309399a9733e6"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815
