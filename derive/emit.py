@@ -6,8 +6,9 @@ use (the reduced functions with their branches: constant terms, series, scaled c
 forms; the transfer matrix and compound step filled from them; the general segment's field
 matrices), compiled by ``mstmm.numerics.beam``. A topology's kernel: its per-component
 functions (``event_<what>``), one branch per kind present, printed from each kind's
-descriptor (a bare beam gets no branch at all); its ends are data (every end pair). The
-numerics, the characteristic functions' walk, the scan, the count, the marches, are ordinary code in
+descriptor (a bare beam gets no branch at all); its ends are data (every end pair), and
+``lower`` makes its IR (``derive/ir.py``) that ``print_kernel`` prints. The numerics, the
+characteristic functions' walk, the scan, the count, the marches, are ordinary code in
 ``mstmm.numerics``: a kernel binds ``mstmm.numerics.characteristic`` to its printed
 functions. The templates (``templates/*.tmpl``) hold the modules' headers only.
 """
@@ -721,7 +722,6 @@ def lower(topology: Topology) -> ir.KernelIR:
         segment_columns=catalog.segment_columns(),
         data_blocks=blocks,
         end_codes=END_CODES,
-        dampers={k.name: k.damper for k in kind_irs if k.damper != "none"},
         about=about,
         parameter_doc=_parameter_doc(topology),
         regenerate=regenerate_command(topology),

@@ -44,13 +44,13 @@ class KindIR:
 class FunctionIR:
     """One printed function ``event_<what>(tag, ...)``: its parameters, the body of each
     kind's branch (SymPy codegen statements, keyed by tag; a kind with no branch is
-    absent), what it returns where no branch does, and whether it computes in complex
-    arithmetic."""
+    absent), what it returns where no branch does (None: nothing, for the stages'
+    functions), and whether it computes in complex arithmetic."""
 
     name: str
     params: tuple[str, ...]
     branches: tuple[tuple[int, tuple], ...]
-    tail: sp.Basic
+    tail: sp.Basic | None
     complex_: bool
 
 
@@ -69,11 +69,16 @@ class KernelIR:
     segment_columns: tuple
     data_blocks: dict
     end_codes: tuple[str, ...]
-    dampers: dict
     about: str
     parameter_doc: str
     regenerate: str
     bind: str
+
+    @property
+    def dampers(self) -> dict[str, str]:
+        """The damper class of each kind that damps (read at run time by the proved decay
+        bound, ``mstmm.decay_bound``: the runtime has no SymPy)."""
+        return {k.name: k.damper for k in self.kinds if k.damper != "none"}
 
     def kind(self, name: str) -> KindIR:
         """The :class:`KindIR` of kind ``name``."""

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam"
-SIGNATURE = "9a99b768e9d71559d4ba5c1f5507f6a5e4ac846e"
-NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
+SIGNATURE = "d667f9e27a71f4603e25d695c21005c4f187358f"
+NUMERICS = "a1cabd795d366389dad349fd2e3b436fcb26eda9"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "c1eea79bb1bbe9e2eb17a82b9802f43199ef120e"
-NUMERICS = "0830872b3c8a2cdcdab0a7d10a1312db7a54724a"
+SIGNATURE = "b6a1c9df617c4cc9d4707dd132e8397aec14cf3b"
+NUMERICS = "a1cabd795d366389dad349fd2e3b436fcb26eda9"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "1864ea75f13df521496e5a49d46309399a9733e6"
+DIGEST = "9639af1611f59f8ae71fd8348737d5dc350c62e9"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

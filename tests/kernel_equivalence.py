@@ -163,10 +163,10 @@ def random_parameters(rng: np.random.Generator, kinds: tuple, left: str, right: 
 
 def _shape_ends(p: np.ndarray) -> np.ndarray:
     """The mode-shape march's ends of ``p``: its left end's unknowns, its right end's knowns."""
-    from mstmm.catalog import END_CODES, KNOWN_ZERO, LEFT_END, RIGHT_END, unknown
+    from mstmm.catalog import END_CODES, LEFT_END, RIGHT_END, shape_ends
 
-    left, right = END_CODES[int(p[LEFT_END])], END_CODES[int(p[RIGHT_END])]
-    return np.array(unknown(left) + KNOWN_ZERO[right], dtype=np.int64)
+    ends = shape_ends(END_CODES[int(p[LEFT_END])], END_CODES[int(p[RIGHT_END])])
+    return np.array(ends, dtype=np.int64)
 
 
 def _topology(ns: dict) -> tuple:

@@ -91,6 +91,12 @@ def unknown(kind: str) -> tuple[int, int]:
     return tuple(i for i in range(4) if i not in zero)  # type: ignore[return-value]
 
 
+def shape_ends(left: str, right: str) -> tuple[int, ...]:
+    """The ends the mode-shape march takes: the left end's unknowns, then the right end's
+    knowns (state indices of [Y, theta, M, Q])."""
+    return unknown(left) + KNOWN_ZERO[right]
+
+
 @dataclass(frozen=True)
 class Key:
     """One scene key of a component kind.

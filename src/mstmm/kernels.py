@@ -34,15 +34,7 @@ import numpy as np
 
 from mstmm import catalog
 from mstmm.cachedir import cache_dir
-from mstmm.catalog import (
-    EVENT_WIDTH,
-    HEAD,
-    KNOWN_ZERO,
-    SEGMENT_WIDTH,
-    TERMS_COLUMN,
-    event_rows,
-    unknown,
-)
+from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows, shape_ends
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
@@ -189,8 +181,7 @@ class Kernel:
     def shape_ends(self) -> np.ndarray:
         """The ends for the shared mode-shape march: the left end's unknowns, the right
         end's knowns (state indices of [Y, theta, M, Q])."""
-        ends = unknown(self.topology.left) + KNOWN_ZERO[self.topology.right]
-        return np.array(ends, dtype=np.int64)
+        return np.array(shape_ends(self.topology.left, self.topology.right), dtype=np.int64)
 
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the

@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from . import compiling
-from .catalog import KNOWN_ZERO, unknown
+from .catalog import END_CODES, KNOWN_ZERO
 from .kernels import Kernel, load_kernel, numerics
 from .physics import segment as segment_terms
 from .scan import BAND_EDGE, Root, Roots
@@ -60,11 +60,9 @@ class Chain:
         free = [i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.left]]
         free += [2 + i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.right]]
         self.free = np.array(free + [-1] * (4 - len(free)), dtype=np.int64)
-        pairs = [tuple(x) for x in numerics().PAIRS]
-        self.ends = np.array(
-            [pairs.index(unknown(scene.beam.left)), pairs.index(KNOWN_ZERO[scene.beam.right])],
-            dtype=np.int64,
-        )
+        n = numerics()
+        left, right = END_CODES.index(scene.beam.left), END_CODES.index(scene.beam.right)
+        self.ends = np.array([n.START_PAIR[left], n.END_PAIR[right]], dtype=np.int64)
         self.scale = _scale(scene)
         self.fa = self.kernel._addresses(*_FUNCTIONS)
         self.n = numerics()

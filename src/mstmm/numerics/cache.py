@@ -30,6 +30,7 @@ Two rules numba's own locators do not follow:
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib.util
 import os
@@ -71,7 +72,14 @@ def digest() -> str:
 def _content(path: str) -> str:
     """sha1 of a file's content (a kernel's or a module's: what its machine code is
     compiled from, besides the numerics it calls, which its own content names: a kernel's
-    signature covers them)."""
+    signature covers them), read once per version of the file (a kernel's ~20 functions
+    each make a locator)."""
+    st = os.stat(path)
+    return _hashed(path, st.st_mtime_ns, st.st_size)
+
+
+@functools.lru_cache(maxsize=256)
+def _hashed(path: str, mtime_ns: int, size: int) -> str:
     return hashlib.sha1(Path(path).read_bytes()).hexdigest()
 
 
@@ -97,7 +105,6 @@ class UserCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLoca
     def __init__(self, py_func, py_file: str, numerics: bool, base: Path):
         self._py_file = py_file
         self._lineno = py_func.__code__.co_firstlineno
-        self._numerics = numerics
         self._stamp = digest() if numerics else _content(py_file)
         name = "numerics" if numerics else Path(py_file).stem
         self._cache_path = str(base / f"{name}_{self._stamp[:20]}")

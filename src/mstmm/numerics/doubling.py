@@ -48,6 +48,7 @@ from .bloch import (
     bloch_work,
 )
 from .layout import (
+    PAIRS,
     POLE_GUARD,
 )
 from .linalg import (
@@ -380,9 +381,6 @@ def joined_count(Ja, Ta, Jb, Tb, Da, Db, S):
             S[r, c] = Da[2 + r, 2 + c] + Db[r, c]
     return Ja + Jb + negatives2(S[0, 0], 0.5 * (S[0, 1] + S[1, 0]), S[1, 1]), True
 
-
-#: The pairs (i, j), i < j, of state indices: the rows and columns of a second compound.
-PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 
 
 @njit(cache=True)

@@ -7,8 +7,6 @@ its terms (``mstmm.physics.segment``) are read through the tables below: each te
 whether the loss factor multiplies it, and the exponents of (L, EI_0, mbar_0) that make it
 dimensionless."""
 
-from itertools import combinations
-
 import numpy as np
 
 from mstmm import catalog
@@ -25,11 +23,13 @@ EVENT_WIDTH = catalog.EVENT_WIDTH
 #: minors in lexicographic order. The ends are data: one kernel serves every end pair.
 LEFT_END = catalog.LEFT_END
 RIGHT_END = catalog.RIGHT_END
-_PAIRS = tuple(combinations(range(4), 2))
+#: The pairs (i, j), i < j, of state indices: the rows and columns of a second compound
+#: (``derive.compound.PAIRS``).
+PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 KNOWN = tuple(catalog.KNOWN_ZERO[end] for end in catalog.END_CODES)
 UNKNOWN = tuple(catalog.unknown(end) for end in catalog.END_CODES)
-START_PAIR = tuple(_PAIRS.index(pair) for pair in UNKNOWN)
-END_PAIR = tuple(_PAIRS.index(pair) for pair in KNOWN)
+START_PAIR = tuple(PAIRS.index(pair) for pair in UNKNOWN)
+END_PAIR = tuple(PAIRS.index(pair) for pair in KNOWN)
 #: The named columns of a segment row.
 X_END = catalog.SEGMENT_COLUMNS["x_end"]
 COL_EI = catalog.SEGMENT_COLUMNS["EI"]
