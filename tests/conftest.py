@@ -27,11 +27,37 @@ os.environ["MSTMM_CACHE"] = CACHE
 # <MSTMM_CACHE>/numba unless NUMBA_CACHE_DIR says otherwise; a test of a cold machine sets
 # its own).
 os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(CACHE, "numba"))
+# No compile helpers (mstmm.compiling) but where a test asks for them: a test session is
+# the busy machine they are designed to yield on (a worker on every core), where each new
+# kernel's helper started a process, got almost no CPU, and was left behind.
+# tests/test_compiling.py and tests/test_install.py turn them on for what they check.
+os.environ.setdefault("MSTMM_COMPILE_HELPERS", "0")
+
+
+# The reference models' slow calls answered from their stored answers (tests/stored.py).
+import stored  # noqa: E402
+
+stored.install()
+_MISSES = Path(CACHE) / "stored_misses"
+_missed = [0]
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:
-    if _OWN_CACHE:
+    if stored.misses and not stored.RECORD:  # this process's count (a worker's too)
+        with open(_MISSES, "a") as fh:
+            fh.write(f"{stored.misses}\n")
+    if _OWN_CACHE:  # the controller, after its workers: the session's count
+        _missed[0] = sum(map(int, _MISSES.read_text().split())) if _MISSES.exists() else 0
         shutil.rmtree(CACHE, ignore_errors=True)
+
+
+def pytest_terminal_summary(terminalreporter) -> None:
+    misses = _missed[0]
+    if misses:
+        terminalreporter.write_line(
+            f"{misses} reference-model calls were not in tests/data/stored_references.jsonl.gz"
+            " and ran the model: write the store again (python tests/make_stored.py)"
+        )
 
 
 @pytest.fixture(scope="session")

@@ -243,3 +243,32 @@ def test_ctrl_c_in_a_fresh_process_as_numpy_loads():
     stdout, stderr = _signal_when(proc, ready, signal.SIGINT, poll=0.001)
     assert proc.returncode == 130, stderr
     assert stderr == "mstmm: interrupted\n" and stdout == ""
+
+
+def test_an_interrupt_that_c_code_turns_into_an_import_error_is_still_an_interrupt():
+    """numpy's C extension, interrupted while it imports ``datetime``, raised
+    ``ImportError`` (seen once in CI): inside ``interrupts_kept`` (the command line's heavy
+    imports) the error is replaced by the interrupt that caused it, SIGINT and SIGTERM."""
+    from mstmm.signals import Terminated, interrupts_kept, sigterm_as_interrupt
+
+    def c_code_swallowing(signum: int) -> None:
+        try:
+            os.kill(os.getpid(), signum)
+            time.sleep(5)
+        except KeyboardInterrupt:
+            raise ImportError('PyCapsule_Import could not import module "datetime"') from None
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt) as caught:
+            with interrupts_kept():
+                c_code_swallowing(signal.SIGINT)
+        assert not isinstance(caught.value, Terminated)
+        with pytest.raises(Terminated):
+            with sigterm_as_interrupt(), interrupts_kept():
+                c_code_swallowing(signal.SIGTERM)
+        with pytest.raises(ImportError):  # no signal: the error is the error
+            with interrupts_kept():
+                raise ImportError("no module named 'x'")
+    finally:
+        signal.signal(signal.SIGINT, previous)

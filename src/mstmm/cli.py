@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from . import __version__, progress
-from .signals import EXIT_TERMINATED, Terminated, sigterm_as_interrupt
+from .signals import EXIT_TERMINATED, Terminated, interrupts_kept, sigterm_as_interrupt
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -856,7 +856,8 @@ def main(argv: list[str] | None = None) -> int:
         os.environ.setdefault(name, "1")
     try:
         with sigterm_as_interrupt():
-            _load()
+            with interrupts_kept():
+                _load()
             return _main(argv)
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM: one line, 128 + the signal
         if "--debug" in (sys.argv[1:] if argv is None else argv):

@@ -50,3 +50,42 @@ def sigterm_as_interrupt() -> Iterator[None]:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+@contextmanager
+def interrupts_kept() -> Iterator[None]:
+    """While the block runs (the heavy imports), a Ctrl-C or SIGTERM is raised as the
+    interrupt it is even where C code turns it into another error: numpy's C extension,
+    interrupted while it imports ``datetime``, raises ``ImportError: PyCapsule_Import
+    could not import module "datetime"`` (seen in a CI run). The signal is noted as it
+    arrives (where Python's own handler, or :func:`sigterm_as_interrupt`'s, would have
+    raised); an exception that leaves the block after one is replaced by the interrupt.
+    The previous handlers come back after the block; outside the main thread nothing is
+    installed."""
+    arrived: list[int] = []
+    handlers = {}
+
+    def note(signum: int, frame: object) -> None:
+        arrived.append(signum)
+        handlers[signum](signum, frame)
+
+    try:
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            handler = signal.getsignal(signum)
+            if callable(handler):  # not SIG_IGN (a background job's Ctrl-C) nor SIG_DFL
+                handlers[signum] = handler
+                signal.signal(signum, note)
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    except Exception as exc:
+        if not arrived:
+            raise
+        if arrived[0] == signal.SIGTERM:
+            raise Terminated("SIGTERM") from exc
+        raise KeyboardInterrupt from exc
+    finally:
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
