@@ -6,7 +6,7 @@ independent truth; they are also slow (30-40 digits, global assembly): about 560
 default test run's 1,250 s on a warm machine went into them, the same calls on the same
 inputs every run. :func:`install` (``tests/conftest.py``) wraps the slow public functions of
 :data:`STORED`: a call whose exact inputs (every argument encoded exactly, the defaults
-applied, mpmath's working precision) were stored by ``tests/make_stored.py`` returns the
+applied) were stored by ``tests/make_stored.py`` returns the
 stored answer, bit for bit what the model returned for them; any other call runs the model.
 
 What keeps the store honest:
@@ -92,7 +92,8 @@ class Unstorable(TypeError):
 
 def encode(value: Any) -> Any:
     """JSON of ``value``, exact: floats by repr, mpf by its raw (sign, mantissa, exponent,
-    bits), dataclasses (a scene) field by field, tuples tagged apart from lists."""
+    bits), dataclasses (a scene) by the fields they compare, tuples tagged apart from
+    lists."""
     if value is None or isinstance(value, (bool, str)):
         return value
     if isinstance(value, (int, np.integer)):
@@ -124,7 +125,10 @@ def encode(value: Any) -> Any:
         return {"dict": {k: encode(v) for k, v in value.items()}}
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         cls = type(value)
-        fields = {f.name: encode(getattr(value, f.name)) for f in dataclasses.fields(value)}
+        # what the dataclass compares: not a scene's ``source`` (the file it was read
+        # from: a clone elsewhere is the same scene), ``repeat``, ``cell``, ``graded``
+        compared = [f for f in dataclasses.fields(value) if f.compare]
+        fields = {f.name: encode(getattr(value, f.name)) for f in compared}
         return {"dataclass": [f"{cls.__module__}:{cls.__qualname__}", fields]}
     raise Unstorable(f"cannot store a {type(value).__name__}")
 
@@ -166,9 +170,12 @@ def decode(data: Any) -> Any:
     raise Unstorable(f"unknown tag {tag!r}")
 
 
-def key_of(name: str, prec: int, arguments: Any) -> str:
-    """A call's key: the function, mpmath's working precision (bits), the arguments."""
-    text = json.dumps([name, prec, arguments], sort_keys=True, separators=(",", ":"))
+def key_of(name: str, arguments: Any) -> str:
+    """A call's key: the function and its arguments. Not mpmath's global precision: the
+    models work at the ``dps`` they are given (test modules set the global one as they
+    are imported, so it depends on which files a worker ran before); a stored call is
+    recomputed at mpmath's default precision by tests/test_stored.py."""
+    text = json.dumps([name, arguments], sort_keys=True, separators=(",", ":"))
     return hashlib.sha1(text.encode()).hexdigest()
 
 
@@ -247,7 +254,7 @@ def stored(f, name: str):
             return f(*args, **kwargs)
         try:
             arguments = encode(_bound(f, args, kwargs))
-            key = key_of(name, mp.prec, arguments)
+            key = key_of(name, arguments)
         except Unstorable:
             return f(*args, **kwargs)
         entry = None if RECORD else _entries().get(key)
@@ -293,13 +300,14 @@ def install() -> None:
 
 
 def recompute(entry: dict) -> tuple[Any, Any]:
-    """(stored value, the model's value now) of one entry, both decoded."""
+    """(stored value, the model's value now, at mpmath's default precision) of one
+    entry, both decoded."""
     module_name, _, name = entry["function"].rpartition(".")
     f = getattr(importlib.import_module(module_name), name)
     f = getattr(f, "live", f)
     kwargs = decode(entry["arguments"])
     prec = mp.prec
-    mp.prec = entry["prec"]
+    mp.prec = 53  # mpmath's default; the entry was made at entry["prec"]
     _inside.depth = 1  # the model's own calls run the model too
     try:
         now = f(**kwargs)
