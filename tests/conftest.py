@@ -127,11 +127,23 @@ EXHAUSTIVE = (
 )
 
 
+#: Files that meet the same slow kernel (every kind in every scene: about 15 s of numba
+#: per function set), run by one worker so that it is compiled once, not by both at the
+#: same moment; every other file is a group of its own (``--dist loadgroup``, pyproject).
+SAME_WORKER = {
+    "tests/test_kind_properties.py": "every_kind",
+    "tests/test_segment_properties.py": "every_kind",
+}
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups
 def pytest_collection_modifyitems(config: pytest.Config, items: list) -> None:
     """Mark :data:`EXHAUSTIVE` and every kind scene's end pairs past its first (the
     default path of ``tests/test_kinds.py``: each kind keeps its first pair, as
-    ``PAPER_CASES`` does)."""
+    ``PAPER_CASES`` does); put each test in its file's group (:data:`SAME_WORKER`)."""
     for item in items:
+        path = item.nodeid.split("::")[0]
+        item.add_marker(pytest.mark.xdist_group(SAME_WORKER.get(path, path)))
         exhaustive = item.nodeid.startswith(EXHAUSTIVE)
         if item.nodeid.startswith("tests/test_kinds.py::test_kind_scene_default_path["):
             exhaustive = item.callspec.params["case"] not in item.module.PAPER_CASES

@@ -70,6 +70,8 @@ STORED = {
 SOURCES = ("reference_model.py", "reference_bloch.py")
 
 RECORD = os.environ.get("MSTMM_STORED") == "record"
+#: A file to list the calls the store lacked in (function and arguments, a line each).
+MISSED = os.environ.get("MSTMM_STORED_MISSED")
 #: Calls answered from the store and calls the models ran, this session.
 hits = 0
 misses = 0
@@ -267,6 +269,9 @@ def stored(f, name: str):
                 hits += 1
                 return value
         misses += 1
+        if MISSED and not RECORD:
+            with _lock, open(MISSED, "a") as fh:
+                fh.write(json.dumps([name, arguments]) + "\n")
         t0 = time.perf_counter()
         _inside.depth = 1
         try:
