@@ -56,8 +56,8 @@ def pytest_terminal_summary(terminalreporter) -> None:
     if misses:
         terminalreporter.write_line(
             f"{misses} reference-model calls were not in tests/data/stored_references.jsonl.gz"
-            " and ran the model (expected for the random property examples of a run without"
-            " CI=true; otherwise write the store again: python tests/make_stored.py)"
+            " and ran the model (some are expected: tests/stored.py; many mean the store is"
+            " stale: python tests/make_stored.py)"
         )
 
 
