@@ -62,13 +62,6 @@ def write(entries: dict[str, dict], model: str | None = None, path: Path = store
     os.replace(tmp, path)
 
 
-def rewrite() -> None:
-    """The store written again from itself, under the digest it had (after a change of
-    its layout, not of the models)."""
-    header, entries = stored.read_store()
-    write(entries, header["model"])
-
-
 def main(argv: list[str]) -> int:
     shutil.rmtree(stored.PARTIAL, ignore_errors=True)
     # CI=true: hypothesis draws CI's examples (tests/conftest.py), the calls CI makes

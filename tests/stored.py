@@ -184,11 +184,12 @@ def key_of(name: str, arguments: Any) -> str:
     return hashlib.sha1(text.encode()).hexdigest()
 
 
+@functools.cache  # read once per process: the lookups and tests/test_stored.py share it
 def read_store(path: Path = STORE) -> tuple[dict, dict[str, dict]]:
     """The store's header and its entries by key, their arguments whole (empty without a
-    store). An argument of more than :data:`SHARED` characters is stored once, on a line
-    of its own, and named by its digest where a call has it (thousands of calls share a
-    scene)."""
+    store; not to be changed by callers). An argument of more than :data:`SHARED`
+    characters is stored once, on a line of its own, and named by its digest where a call
+    has it (thousands of calls share a scene)."""
     if not path.exists():
         return {}, {}
     shared, entries = {}, {}
