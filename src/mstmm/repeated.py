@@ -60,12 +60,11 @@ class Chain:
         free = [i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.left]]
         free += [2 + i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.right]]
         self.free = np.array(free + [-1] * (4 - len(free)), dtype=np.int64)
-        n = numerics()
+        self.n = numerics()
         left, right = END_CODES.index(scene.beam.left), END_CODES.index(scene.beam.right)
-        self.ends = np.array([n.START_PAIR[left], n.END_PAIR[right]], dtype=np.int64)
+        self.ends = np.array([self.n.START_PAIR[left], self.n.END_PAIR[right]], dtype=np.int64)
         self.scale = _scale(scene)
         self.fa = self.kernel._addresses(*_FUNCTIONS)
-        self.n = numerics()
 
     def at(self, omegas: np.ndarray) -> np.ndarray:
         """(J, mantissa, log, ok) at each omega (rad/s): the count of the whole structure
