@@ -9,12 +9,9 @@ done symbolically, once, instead of in floating point at every evaluation.
 
 from __future__ import annotations
 
-from itertools import combinations
-
 import sympy as sp
 
-#: Row/column pairs of a 4x4 matrix in lexicographic order: index of a 2x2 minor.
-PAIRS: tuple[tuple[int, int], ...] = tuple(combinations(range(4), 2))
+from mstmm.catalog import PAIRS
 
 
 def pair_index(pair: tuple[int, int]) -> int:

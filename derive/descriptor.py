@@ -99,8 +99,6 @@ class Descriptor:
             raise ValueError("descriptor: inertia is 3 x 2 (M on [Y, theta], participation)")
 
 
-
-
 def kind_source(module) -> str:
     """How a refusal names a kind: its name and its file."""
     where = getattr(module, "__file__", None) or module.__name__
@@ -288,6 +286,25 @@ def _own_mass(e: Energy, i: int) -> sp.Expr:
     if sp.simplify(R.det()) == 0:
         return sp.Integer(0)
     return sp.simplify(e.M[i, i] - (m.T * R.inv() * m)[0, 0])
+
+
+def own_masses(e: Energy) -> tuple:
+    """The own mass (:func:`_own_mass`) of each unknown a ``carried`` kind's damping moves,
+    in the order of the unknowns (empty for any other class): the proved decay bound's
+    ``2 c_j |q_a|^2 <= (2 c_j / m_a) m`` takes ``m_a`` from these, not from a key's unit
+    (``mstmm.decay_bound``)."""
+    if damper_class(e) != "carried":
+        return ()
+    n = e.C.rows
+    qs = sorted({i for i in range(2, n) for j in range(n) if sp.expand(e.C[i, j]) != 0})
+    return tuple(_own_mass(e, i) for i in qs)
+
+
+def own_masses_of(module, values: dict) -> tuple:
+    """A kind's :func:`own_masses` from its energy or its stage's (a stage's values for a
+    kind of stages); none for a kind without a declared energy."""
+    derived = _from_declared_energy(module, values, own_masses)
+    return () if derived is None else derived
 
 
 def damper_of(module, values: dict) -> str:

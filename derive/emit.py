@@ -699,9 +699,11 @@ def lower(topology: Topology) -> ir.KernelIR:
     for t, (name, module, d) in enumerate(parsed):
         staged = _staged(module)
         inertia = sp.zeros(3, 2) if staged else descriptor.inertia_rows(d)
-        damper = descriptor.damper_of(module, _value_lines(module, damped=True)[1])
+        values = _value_lines(module, damped=True)[1]
+        damper = descriptor.damper_of(module, values)
+        own = descriptor.own_masses_of(module, values)
         file = catalog.kind_file(name)
-        kind_irs.append(ir.KindIR(name, t, file, staged, d, inertia, damper, blocks[name]))
+        kind_irs.append(ir.KindIR(name, t, file, staged, d, inertia, damper, own, blocks[name]))
     kinds_text = (
         "point components of the kinds " + ", ".join(kinds) if kinds else "no point components"
     )
@@ -744,10 +746,32 @@ def print_kernel(kernel: ir.KernelIR) -> str:
         sympy_version=importlib.metadata.version("sympy"),
         signature=kernel.signature,
         digest=kernel.numerics,
-        printed="\n\n\n".join(print_function(f) for f in kernel.functions),
+        printed="\n\n\n".join(
+            [*(print_function(f) for f in kernel.functions), print_own_masses(kernel)]
+        ),
         functions=kernel.bind,
     )
     return _clean(Template(TEMPLATE.read_text()).substitute(values))
+
+
+def print_own_masses(kernel: ir.KernelIR) -> str:
+    """``own_masses(kind, v)``: the own masses (units L = EI_0 = mbar_0 = 1) of the unknowns
+    a ``carried`` damper of ``kind`` moves, from its values ``v`` (key -> value in those
+    units; a stage's for a kind of stages), as :attr:`ir.KernelIR.own_masses` holds them."""
+    lines = [
+        "def own_masses(kind, v):",
+        '    """The own mass of each unknown a damper of ``kind`` moves (the Schur complement',
+        "    of its mass matrix; units L = EI_0 = mbar_0 = 1) from its values ``v`` in those",
+        '    units: the proved decay bound\'s m_a (``mstmm.decay_bound``)."""',
+    ]
+    for name, masses in kernel.own_masses.items():
+        lines.append(f"    if kind == {name!r}:")
+        used = sorted({s.name for m in masses for s in m.free_symbols})
+        lines += [f"        {u} = v[{u.removeprefix('val_')!r}]" for u in used]
+        codes = [sp.pycode(m) for m in masses]
+        lines.append(f"        return ({', '.join(codes)}{',' if len(codes) == 1 else ''})")
+    lines.append("    return ()")
+    return "\n".join(lines)
 
 
 def kernel_source(topology: Topology) -> str:

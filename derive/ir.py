@@ -28,7 +28,10 @@ class KindIR:
     ``Cz``, ``Cq``, ``A``, ``B`` and the mass of its unknowns), the mass matrix it holds
     on [Y, theta] with the participation row of its couplings (3 x 2; zero for a kind of
     stages, whose stages are condensed at run time), its damper class
-    (``descriptor.DAMPERS``) and its data block (key, SI unit, shape)."""
+    (``descriptor.DAMPERS``), the own mass of each unknown its damping moves (a ``carried``
+    damper's; SymPy expressions of its values ``val_<key>`` in units L = EI = mbar = 1, a
+    stage's for a kind of stages: ``descriptor.own_masses``) and its data block (key, SI
+    unit, shape)."""
 
     name: str
     tag: int
@@ -37,6 +40,7 @@ class KindIR:
     descriptor: object
     inertia: sp.Matrix
     damper: str
+    own_masses: tuple
     data_block: tuple
 
 
@@ -79,6 +83,12 @@ class KernelIR:
         """The damper class of each kind that damps (read at run time by the proved decay
         bound, ``mstmm.decay_bound``: the runtime has no SymPy)."""
         return {k.name: k.damper for k in self.kinds if k.damper != "none"}
+
+    @property
+    def own_masses(self) -> dict[str, tuple]:
+        """The own masses of each ``carried`` damper's unknowns, by kind (printed as the
+        kernel's ``own_masses``, read by the proved decay bound)."""
+        return {k.name: k.own_masses for k in self.kinds if k.own_masses}
 
     def kind(self, name: str) -> KindIR:
         """The :class:`KindIR` of kind ``name``."""

@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam"
-SIGNATURE = "d667f9e27a71f4603e25d695c21005c4f187358f"
-NUMERICS = "a1cabd795d366389dad349fd2e3b436fcb26eda9"
+SIGNATURE = "aa3e9edde8efa5dd3b698dfc85a858c91f6325d8"
+NUMERICS = "8ddb17ac9818ba6e150d9964d970d3cfe5fae657"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
@@ -66,6 +66,13 @@ def event_rigid(tag, p, o):
 
 def event_damps(tag, p, o):
     return 0
+
+
+def own_masses(kind, v):
+    """The own mass of each unknown a damper of ``kind`` moves (the Schur complement
+    of its mass matrix; units L = EI_0 = mbar_0 = 1) from its values ``v`` in those
+    units: the proved decay bound's m_a (``mstmm.decay_bound``)."""
+    return ()
 
 
 bind_characteristic(globals(), UNDAMPED)

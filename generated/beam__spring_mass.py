@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "b6a1c9df617c4cc9d4707dd132e8397aec14cf3b"
-NUMERICS = "a1cabd795d366389dad349fd2e3b436fcb26eda9"
+SIGNATURE = "709778b72408d1817730996525182735576e7b20"
+NUMERICS = "8ddb17ac9818ba6e150d9964d970d3cfe5fae657"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns
@@ -201,6 +201,16 @@ def event_damps(tag, p, o):
     if tag == 0:
         return 0
     return 0
+
+
+def own_masses(kind, v):
+    """The own mass of each unknown a damper of ``kind`` moves (the Schur complement
+    of its mass matrix; units L = EI_0 = mbar_0 = 1) from its values ``v`` in those
+    units: the proved decay bound's m_a (``mstmm.decay_bound``)."""
+    if kind == 'spring_mass':
+        val_m = v['m']
+        return (val_m,)
+    return ()
 
 
 bind_characteristic(globals(), UNDAMPED)

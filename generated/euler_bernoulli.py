@@ -11,7 +11,7 @@ Derived by mstmm.derive with SymPy 1.14.0.
 import cmath
 import math
 
-DIGEST = "9639af1611f59f8ae71fd8348737d5dc350c62e9"
+DIGEST = "7705f80b1dd3bac8636dc31fb19af1b72032bc7c"
 
 SERIES_THRESHOLD = 1.5
 KRYLOV_TINY = 0.00013509300777591815

@@ -163,10 +163,9 @@ def random_parameters(rng: np.random.Generator, kinds: tuple, left: str, right: 
 
 def _shape_ends(p: np.ndarray) -> np.ndarray:
     """The mode-shape march's ends of ``p``: its left end's unknowns, its right end's knowns."""
-    from mstmm.catalog import END_CODES, LEFT_END, RIGHT_END, shape_ends
+    from mstmm.catalog import march_ends
 
-    ends = shape_ends(END_CODES[int(p[LEFT_END])], END_CODES[int(p[RIGHT_END])])
-    return np.array(ends, dtype=np.int64)
+    return np.array(march_ends(p), dtype=np.int64)
 
 
 def _topology(ns: dict) -> tuple:

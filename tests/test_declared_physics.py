@@ -175,3 +175,25 @@ def test_the_decay_bound_refuses_a_damper_it_does_not_cover():
         assert sigma_max(grounded, 100.0).gamma == 0.2
     finally:
         del catalog.kinds()["maxwell"]
+
+
+def test_the_decay_bound_takes_a_carried_dampers_mass_from_its_energy():
+    """The proof's ``2 c |q|^2 <= (2 c / m_a) m`` needs ``m_a |q|^2 <= u* M u`` for every
+    motion u: for the inerter absorber (``tests/kinds/inerter_absorber.py``) the kinetic
+    energy is ``b (Y_m - Y)^2 + m Y_m^2 >= m Y_m^2`` (equality at Y = Y_m), so m_a = m,
+    whatever b; not the smallest key in kg (b < m here), nor m + b. The kernel prints it
+    (``own_masses``) from the kind's mass matrix; the bound's R is 2 c / m_a."""
+    from mstmm.decay_bound import sigma_max
+
+    module = _kind_file("inerter_absorber")
+    catalog.register_kind(module)
+    try:
+        beam = dict(length=2.0, EI=1.0e4, mass_per_length=10.0, left="clamped", right="free")
+        m, b, c = 1.5, 0.25, 4.0
+        absorber = {"type": "inerter_absorber", "x": 1.25, "k": 3000.0, "m": m, "b": b, "c": c}
+        scene = mstmm.scene_from_dict({"beam": beam, "attachments": [absorber]})
+        bound = sigma_max(scene, 100.0)
+        assert bound is not None
+        assert bound.rate == pytest.approx(2.0 * c / m, rel=1e-14)
+    finally:
+        del catalog.kinds()["inerter_absorber"]

@@ -210,7 +210,7 @@ def test_the_driver_compiles_for_the_signature_a_solve_calls_and_runs_as_python(
     sol = mstmm.solve(scene, modes=10, shapes=False)
     assert sol.kernel_mode == "repeated cells"
     assert entries.entry_repeated_search.signatures == [entries.SIGNATURES["repeated_search"]]
-    monkeypatch.setattr(compiling, "python_instead", lambda name, estimate: True)
+    monkeypatch.setattr(compiling, "python_instead", lambda name, estimate, pending=False: True)
     scene = metamaterial(13)
     sol = mstmm.solve(scene, modes=10, shapes=False)
     exact = np.array([float(w) for w in ref.frequencies(scene, 10, dps=30)])

@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from .buckling import compressed, probe_frequency
-from .kernels import Kernel, load_kernel, numerics
+from .kernels import Kernel, load_kernel
 from .limits import MAX_BAND_POINTS, check_bands_band, check_count
 from .scene import (
     Scene,
@@ -226,19 +226,18 @@ class _Cell:
         self.kernel: Kernel = load_kernel(topology_of(self.closed))
         self.p = np.ascontiguousarray(parameter_vector(self.closed), dtype=np.float64)
         self.damped = bool(self.kernel.topology.damped)
-        names = ("shape_event_c", "shape_sizes")
+        self._waves = self.kernel.compiled("bloch_waves")
         if not self.damped:  # the real march (``numerics.bloch``) and the count
-            names += ("shape_event", "count_below")
-        self.fa = self.kernel._addresses(*names)
+            self._closed = self.kernel.compiled("closed")
+            self._subspace = self.kernel.compiled("subspace")
         self._K = np.zeros((2, 2))
-        self.n = numerics()
 
     def waves(self, omegas: np.ndarray) -> np.ndarray:
         """(mu_1, mu_2, k_1 L, k_2 L, propagating pairs) at each omega, the more attenuated
         pair first."""
         ws = np.ascontiguousarray(omegas, dtype=np.complex128)
         out = np.zeros((ws.size, 5), dtype=np.complex128)
-        self.n.entry_bloch_waves(self.fa, self.damped, ws, self.p, out)
+        self._waves(self.damped, ws, self.p, out)
         return out
 
     def mu(self, omegas: np.ndarray) -> np.ndarray:
@@ -254,7 +253,7 @@ class _Cell:
         """(sign, log) of det(X_L - s X_0) and the count of the closed cell below w (None
         exactly at a frequency of the clamped cell, where the joint stiffness is not
         defined)."""
-        sign, log, ok = self.n.entry_closed(self.fa, float(w), self.p, float(s), self._K)
+        sign, log, ok = self._closed(float(w), self.p, float(s), self._K)
         if not ok or not count:
             return sign, log, None
         K = self._K
@@ -275,7 +274,7 @@ class _Cell:
         Williams: the clamped cell's count plus the negative eigenvalues of the Hermitian
         joint stiffness, :func:`phase_stiffness`); None where that is not defined (a
         frequency of the clamped cell) or not Hermitian to round-off."""
-        X = self.n.entry_subspace(self.fa, False, complex(float(w), 0.0), self.p)
+        X = self._subspace(False, complex(float(w), 0.0), self.p)
         K = phase_stiffness(X, theta) if X.shape[0] == 8 else None
         if K is None:
             return None

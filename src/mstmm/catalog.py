@@ -85,6 +85,12 @@ SEGMENT_COLUMNS: dict[str, int] = {"x_end": 0, **{k: 1 + j for j, k in enumerate
 TERMS_COLUMN = SEGMENT_COLUMNS[SEGMENT_PHYSICS[0][0]] if SEGMENT_PHYSICS else SEGMENT_WIDTH
 
 
+#: The pairs (i, j), i < j, of state indices in lexicographic order: the rows and columns
+#: of a second compound (2x2 minors), as ``mstmm.derive.compound`` derives them and the
+#: numerics index them (``mstmm.numerics.layout``).
+PAIRS: tuple[tuple[int, int], ...] = tuple((i, j) for i in range(4) for j in range(i + 1, 4))
+
+
 def unknown(kind: str) -> tuple[int, int]:
     """Indices of the state variables left unknown at an end of the given kind."""
     zero = KNOWN_ZERO[kind]
@@ -95,6 +101,12 @@ def shape_ends(left: str, right: str) -> tuple[int, ...]:
     """The ends the mode-shape march takes: the left end's unknowns, then the right end's
     knowns (state indices of [Y, theta, M, Q])."""
     return unknown(left) + KNOWN_ZERO[right]
+
+
+def march_ends(p: Sequence[float]) -> tuple[int, ...]:
+    """:func:`shape_ends` of the ends a parameter vector's head holds (the ends are data:
+    one kernel serves every end pair)."""
+    return shape_ends(END_CODES[int(p[LEFT_END])], END_CODES[int(p[RIGHT_END])])
 
 
 @dataclass(frozen=True)

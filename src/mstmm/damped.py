@@ -806,9 +806,8 @@ def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity
         rows += [[0, x, -1, L], [1, x, -1, 1.0], [3, x, -1, EI / L], [4, x, -1, EI / L**2]]
     rows += [[2, 0.0, q, L] for q, _ in masses]
     outputs = np.asarray(rows, dtype=np.float64)
-    fa = kernel._addresses("shape_event_c", "shape_sizes")
-    entry = kernel._entry("damped_shapes")
-    ends = kernel.shape_ends
+    shapes = kernel.compiled("damped_shapes")
+    ends = kernel.shape_ends(p)
     n = xs.size
     out_shapes = []
     k = 0
@@ -821,7 +820,7 @@ def damped_shapes(kernel: Kernel, p: np.ndarray, omega: np.ndarray, multiplicity
         singular = np.zeros(inputs.shape[0])
         if w == 0:  # the march cannot tell rigid motions apart at w = 0: the state is static
             w = complex(1e-9 * math.sqrt(EI / p[2]) / (L * L), 0.0)
-        entry(fa, ends, kernel.topology.damped, w, p, inputs, outputs, res, singular)
+        shapes(ends, kernel.topology.damped, w, p, inputs, outputs, res, singular)
         for s in range(inputs.shape[0]):
             v = res[s]
             beam = v[: 4 * n].reshape(n, 4)

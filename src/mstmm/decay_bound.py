@@ -78,13 +78,38 @@ class DecayBound:
     eta: float  # the largest loss factor
 
 
-def _dampers(scene) -> dict[str, str]:
-    """What each kind's damping connects, derived from its declared energy when its kernel
-    was printed (the kernel's ``DAMPERS``: ``grounded``, ``carried`` or ``unproved``)."""
+def _kernel_module(scene):
+    """The scene's kernel module: what each kind's damping connects and the own masses it
+    moves were derived from its declared energy when the kernel was printed (``DAMPERS``:
+    ``grounded``, ``carried`` or ``unproved``; ``own_masses``)."""
     from .kernels import load_kernel
     from .topology import topology_of
 
-    return dict(getattr(load_kernel(topology_of(scene)).module, "DAMPERS", {}))
+    return load_kernel(topology_of(scene)).module
+
+
+def _own_mass(module, kind: str, given: dict, units: tuple[float, float, float]) -> float:
+    """The least own mass (kg) of the unknowns a ``carried`` damper of ``kind`` moves, from
+    the kernel's ``own_masses`` (the Schur complement of the kind's declared mass matrix,
+    in units L = EI_0 = mbar_0 = 1) at the component's values (each stage's for a kind of
+    stages); 0 where the kernel has none (the proof then does not apply)."""
+    own = getattr(module, "own_masses", None)
+    if own is None:
+        return 0.0
+    L, EI, mbar = units
+    values: dict[str, list[float]] = {}
+    for key in catalog.kind(kind).KEYS[1:]:
+        v = catalog.value(kind, given, key)
+        a, b, c = (float(e) for e in key.scale)
+        factor = L**a * EI**b * mbar**c
+        values[key.name] = [float(x) * factor for x in (v if key.shape == "list" else [v])]
+    stages = max((len(v) for v in values.values()), default=1)
+    masses = [
+        float(m)
+        for j in range(stages)
+        for m in own(kind, {k: v[min(j, len(v) - 1)] for k, v in values.items()})
+    ]
+    return min(masses) * mbar * L if masses else 0.0
 
 
 def _positive_root(coefficients: list[float]) -> float:
@@ -143,37 +168,36 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
     gamma = 0.0
     rate = 0.0
     where: list[tuple[float, float]] = []  # each damper: x and Gamma_j
-    dampers: dict[str, str] | None = None  # read from the kernel at the first damper
+    module = None  # the kernel's, read at the first damper
+    units = (float(beam.length), float(segs[0].EI), float(segs[0].mass_per_length))
     for a in scene.attachments:
         if catalog.splits_rotation(a.kind):
             breaks.add(float(a.x))
         given = dict(a.values)
         cs: list[float] = []
-        ms: list[float] = []
         for key in catalog.kind(a.kind).KEYS[1:]:
-            v = catalog.value(a.kind, given, key)
-            vs = [float(c) for c in v] if key.shape == "list" else [float(v)]
             if key.damping:
+                v = catalog.value(a.kind, given, key)
+                vs = [float(c) for c in v] if key.shape == "list" else [float(v)]
                 if any(c > 0.0 for c in vs) and key.unit != "N s/m":
                     return None
                 cs += [c for c in vs if c > 0.0]
-            elif key.unit == "kg":
-                ms += vs
         if not cs:
             continue
         total = math.fsum(cs)
-        if dampers is None:
-            dampers = _dampers(scene)
-        what = dampers.get(a.kind, "unproved")
+        if module is None:
+            module = _kernel_module(scene)
+        what = getattr(module, "DAMPERS", {}).get(a.kind, "unproved")
         if what == "grounded":
             gamma += total
             where.append((float(a.x), total))
             continue
-        if what != "carried" or not ms or min(ms) <= 0.0:
+        m_a = _own_mass(module, a.kind, given, units) if what == "carried" else 0.0
+        if not m_a > 0.0:
             return None
         gamma += 2.0 * total
         where.append((float(a.x), 2.0 * total))
-        rate = max(rate, 2.0 * total / min(ms))
+        rate = max(rate, 2.0 * total / m_a)
     if shear and where:  # a Timoshenko segment's k_R does not hold EI ||u''||^2
         return None
     points = sorted(breaks)

@@ -34,7 +34,7 @@ import numpy as np
 
 from mstmm import catalog
 from mstmm.cachedir import cache_dir
-from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows, shape_ends
+from mstmm.catalog import EVENT_WIDTH, HEAD, SEGMENT_WIDTH, TERMS_COLUMN, event_rows, march_ends
 from mstmm.sign import signature
 
 from . import compiling, interpret, progress
@@ -167,21 +167,18 @@ class Kernel:
     _python: dict | None = field(default=None, repr=False)
     #: Addresses of the compiled functions the shared drivers call (:meth:`_addresses`).
     _fa: np.ndarray | None = field(default=None, repr=False)
-    #: Where each formulation's characteristic function sits in ``_fa``; the shared entry
-    #: points already looked up; whether the search's other functions are in ``_fa``.
-    _at: dict = field(default_factory=dict, repr=False)
-    _entries: dict = field(default_factory=dict, repr=False)
-    _searchable: bool = field(default=False, repr=False)
+    #: The shared drivers bound to ``_fa`` (:meth:`compiled`), by (driver, formulation).
+    _bound: dict = field(default_factory=dict, repr=False)
     #: Kernel functions compiled or loaded from numba's cache in this process.
     _loaded: set = field(default_factory=set, repr=False)
     #: Whether numba's cache lacked the characteristic function when first asked (``_cold``).
     _was_cold: bool | None = field(default=None, repr=False)
 
-    @property
-    def shape_ends(self) -> np.ndarray:
-        """The ends for the shared mode-shape march: the left end's unknowns, the right
-        end's knowns (state indices of [Y, theta, M, Q])."""
-        return np.array(shape_ends(self.topology.left, self.topology.right), dtype=np.int64)
+    @staticmethod
+    def shape_ends(p: np.ndarray) -> np.ndarray:
+        """The ends for the shared mode-shape march of ``p``: the left end's unknowns, the
+        right end's knowns (state indices of [Y, theta, M, Q]), as p's head holds them."""
+        return np.array(march_ends(p), dtype=np.int64)
 
     def warm_up(self, p: np.ndarray, formulation: str = "stable") -> None:
         """Compile (or load from numba's cache) what a solve of ``formulation`` calls (the
@@ -203,30 +200,122 @@ class Kernel:
         mant = np.empty_like(omegas)
         logs = np.empty_like(omegas)
         p = _params(p)
-
-        def python() -> None:
-            (delta,) = interpret.watched((self._python_function(f"delta_{formulation}"),))
-            self._python_function("evaluate")(delta, omegas, p, mant, logs)
-
-        def compiled() -> None:
-            at = self._delta(formulation)
-            self._entry("evaluate")(self._fa, at, omegas, p, mant, logs)
-
         modes = omegas.size / interpret.EVALUATIONS_PER_MODE
-        self._tiered(p, modes, formulation, python, compiled)
+        self.run(lambda call: call("evaluate", omegas, p, mant, logs), p, modes, formulation)
         return mant, logs
 
-    def _tiered(self, p: np.ndarray, modes: float, formulation: str, python, compiled):
-        """``python()`` as plain Python when the interpreted tier takes work of ``modes``
-        modes of :meth:`lowest` (:meth:`interprets`; the stable formulation only), stopped
-        at its deadline (``interpret.deadline``); else, or then, ``compiled()``."""
-        if formulation == "stable" and self.interprets(p, math.ceil(modes)):
+    def run(
+        self,
+        body,
+        p: np.ndarray,
+        modes: float | None,
+        formulation: str = "stable",
+        what: str | None = None,
+        driver: str | None = None,
+        cost: float | None = None,
+    ):
+        """``body(call)`` in the cheapest tier that may run it now, where ``call(name,
+        *args)`` runs the shared driver ``name`` (``numerics.entries.DRIVERS``: its own
+        arguments, the kernel's functions put in by the tier); the one place that chooses:
+
+        1. as plain Python (:mod:`mstmm.interpret`), when the interpreted tier takes work of
+           ``modes`` modes of :meth:`lowest` (:meth:`interprets` of ``what``, the
+           formulation by default; the stable formulation only; not at all for ``modes``
+           None), stopped at its deadline;
+        2. the driver ``driver`` as Python while a helper compiles it or a kernel function
+           it takes (``compiling.python_instead``, ``cost`` seconds or the interpreted
+           tier's estimate), around the kernel's functions (compiled, but those a helper is
+           still compiling), stopped where its Python allowance ends;
+        3. compiled (``call.compiled``): the driver's machine code with the addresses of the
+           kernel's compiled functions (:meth:`compiled`).
+
+        A run stopped at its deadline is run again from the start in the next tier: ``body``
+        must begin by clearing what it writes."""
+        what = what or formulation
+        if (
+            modes is not None
+            and formulation == "stable"
+            and self.interprets(p, math.ceil(modes), what)
+        ):
+            call = _Call(lambda name, *a: interpret.timed_call(self._in_python(name), *a))
             try:
                 with interpret.deadline(interpret.allowance(self._cold())):
-                    return interpret.timed_call(python)
+                    return body(call)
             except interpret.Overrun:  # the estimate was wrong: compiled, from the start,
                 interpret.mark_compiled()  # and so is the rest of this process's work
-        return compiled()
+        if driver is not None:
+            names = self._functions(driver, formulation)
+            pending = self._pending(*names)
+            own = driver in self.PYTHON_WHILE_COMPILING
+            if cost is None:
+                walks = pending or own  # the events run as Python: they cost per component
+                n = self.attachments(p) if walks else 0
+                cost = interpret.estimated_cost(modes or 0, n)
+            if compiling.python_instead(driver, cost, pending):
+                get = self._python_function if own else self._for_python
+                run = self._in_python
+
+                def python(name, *a):
+                    return compiling.timed_call(driver, run(name, formulation, get), *a)
+
+                try:
+                    with interpret.deadline(compiling.python_left(driver)):
+                        return body(_Call(python))
+                except interpret.Overrun:  # past its allowance: the driver is waited for
+                    pass
+        result = body(_Call(lambda name, *a: self.compiled(name, formulation)(*a), True))
+        self.warmed.add(what)
+        return result
+
+    #: Drivers whose run as Python while they compile takes the kernel's functions as Python
+    #: too (they walk the components themselves: machine code for one event gains little).
+    PYTHON_WHILE_COMPILING = ("counts", "mode_shapes")
+
+    def _functions(self, driver: str, formulation: str = "stable") -> tuple[str, ...]:
+        """The kernel functions the driver ``driver`` takes (``numerics.entries.DRIVERS``),
+        ``delta`` the formulation's characteristic function."""
+        if formulation not in FORMULATIONS:
+            raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
+        names = numerics().DRIVERS[driver][1]
+        return tuple(f"delta_{formulation}" if n == "delta" else n for n in names)
+
+    def _in_python(self, driver: str, formulation: str = "stable", get=None):
+        """The driver ``driver`` as plain Python around the kernel's functions (``get``: as
+        plain Python by default), each checking the run's deadline."""
+        get = get or self._python_function
+        functions = interpret.watched(tuple(get(n) for n in self._functions(driver, formulation)))
+        python = self._python_function(numerics().DRIVERS[driver][0])
+        return lambda *args: python(*functions, *args)
+
+    def _for_python(self, name: str):
+        """A kernel function for a driver run as Python: compiled, or as Python while a
+        helper compiles it; a frequency passed on as a float (an int would make numba
+        compile another specialization)."""
+        if self._pending(name):
+            return self._python_function(name)
+        f = self._compiled(name)
+        if name in _FREQUENCY_FIRST:
+            return lambda w, *a: f(float(w), *a)
+        return f
+
+    def compiled(self, driver: str, formulation: str = "stable"):
+        """The shared driver ``entry_<driver>`` bound to this kernel's compiled functions
+        (``numerics.entries.DRIVERS``; compiled or loaded from numba's cache on first use):
+        call it with the driver's own arguments."""
+        bound = self._bound.get((driver, formulation))
+        if bound is None:
+            # those the kernel has: a damped kernel has no real march (``bloch_waves`` then
+            # marches in complex arithmetic only)
+            names = self._functions(driver, formulation)
+            fa = self._addresses(*(n for n in names if hasattr(self.module, n)))
+            entry = self._entry(driver)
+            if "delta" in numerics().DRIVERS[driver][1]:
+                at = numerics().FUNCTION_TYPES[f"delta_{formulation}"][0]
+                bound = functools.partial(entry, fa, at)
+            else:
+                bound = functools.partial(entry, fa)
+            self._bound[(driver, formulation)] = bound
+        return bound
 
     def delta(
         self, omega: float, p: np.ndarray, formulation: str = "stable"
@@ -245,43 +334,16 @@ class Kernel:
         maxiter: int = 200,
     ) -> tuple[float, int, bool]:
         """Root in a sign-change bracket ``[a, b]``: ``(omega, iterations, converged)``."""
-        at = self._delta(formulation)
-        refine = self._entry("refine")
-        root, its, ok = refine(
-            self._fa, at, float(a), float(b), _params(p), float(rtol), int(maxiter)
-        )
+        refine = self.compiled("refine", formulation)
+        root, its, ok = refine(float(a), float(b), _params(p), float(rtol), int(maxiter))
         return float(root), int(its), bool(ok)
-
-    def _delta(self, formulation: str) -> int:
-        """Where the addresses of a formulation's characteristic function sit in
-        :meth:`_addresses` (they are compiled on the way)."""
-        at = self._at.get(formulation)
-        if at is None:
-            if formulation not in FORMULATIONS:
-                raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
-            name = f"delta_{formulation}"
-            self._addresses(name)
-            at = self._at[formulation] = numerics().FUNCTION_TYPES[name][0]
-        return at
 
     def _entry(self, name: str):
         """A shared driver of ``mstmm.numerics`` (``entry_<name>``)."""
-        entry = self._entries.get(name)
-        if entry is None:
-            interpret.mark_compiled()
-            compiling.start()
-            compiling.wait(name)
-            entry = self._entries[name] = getattr(numerics(), f"entry_{name}")
-        return entry
-
-    def _search(self, formulation: str) -> tuple[np.ndarray, int]:
-        """``(fa, at)`` for the shared search: every function it calls compiled (or loaded)
-        and its characteristic function at ``fa[at]``."""
-        at = self._delta(formulation)
-        if not self._searchable:
-            self._addresses(*self.SEARCH)
-            self._searchable = True
-        return self._fa, at
+        interpret.mark_compiled()
+        compiling.start()
+        compiling.wait(name)
+        return getattr(numerics(), f"entry_{name}")
 
     def _addresses(self, *names: str) -> np.ndarray:
         """The array ``fa`` the shared drivers take: the addresses of this kernel's compiled
@@ -328,22 +390,6 @@ class Kernel:
         if self._pending(name):
             return self._python_function(name)
         return self._compiled(name)
-
-    #: The kernel functions the shared search calls (besides the characteristic function).
-    SEARCH = ("count_below", "oscillator_frequencies", "rigid_body_modes")
-
-    def _compiled_search(self, formulation: str) -> tuple:
-        """The search's kernel functions for its driver run as Python: compiled, but those a
-        helper is still compiling as Python (a frequency passed on as a float: an int would
-        make numba compile another specialization)."""
-        delta = self._compiled(f"delta_{formulation}")
-        count, osc, rigid = (self._ready(n) for n in self.SEARCH)
-        return (lambda w, p: delta(float(w), p), lambda w, p: count(float(w), p), osc, rigid)
-
-    def _search_functions(self, formulation: str) -> tuple:
-        """The search's functions as plain Python (the interpreted path)."""
-        names = (f"delta_{formulation}",) + self.SEARCH
-        return tuple(self._python_function(n) for n in names)
 
     def attachments(self, p: np.ndarray) -> int:
         """Number of point components a parameter vector describes."""
@@ -409,53 +455,27 @@ class Kernel:
         terminal).
         """
         modes = int(modes)
-        out = np.zeros(modes)
-        flags = np.zeros(modes, dtype=np.int64)
-        state = np.zeros(self.module.STATE_SIZE)
         p = _params(p)
         certify = bool(certify)
         rtol = float(rtol)
+        size = self.module.STATE_SIZE
 
-        def python() -> Found:
-            f = interpret.watched(self._search_functions(formulation))
-            k = self._python_function("lowest")(*f, p, modes, out, flags, state, certify, rtol)
+        def body(call) -> Found:
+            out = np.zeros(modes)
+            flags = np.zeros(modes, dtype=np.int64)
+            state = np.zeros(size)
+            if call.compiled and modes > BLOCK_MODES:
+                k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
+                return self._found(out, flags, state, k)
+            if call.compiled and self._defers(p):  # room for the brackets left pending
+                state = np.full(size + self.module.PENDING_WIDTH * modes, np.nan)
+                state[:size] = 0.0
+            k = call("lowest", p, modes, out, flags, state, certify, rtol)
+            if call.compiled:
+                self._refine_pending(formulation, p, state, out, flags, k, rtol)
             return self._found(out, flags, state, int(k))
 
-        def compiled() -> Found:
-            out[:], flags[:], state[:] = 0.0, 0, 0.0  # after a run as Python stopped
-            return self._lowest_compiled(p, modes, out, flags, state, certify, formulation, rtol)
-
-        return self._tiered(p, modes, formulation, python, compiled)
-
-    def _lowest_compiled(self, p, modes, out, flags, state, certify, formulation, rtol) -> Found:
-        """:meth:`lowest` with the compiled search (or its driver as Python while a helper
-        compiles it)."""
-        if modes <= BLOCK_MODES:
-            at = self._delta(formulation)
-            # the driver, or the count and the like, still compiling in helpers: as Python
-            pending = not self._searchable and self._pending(*self.SEARCH)
-            cost = interpret.estimated_cost(modes, self.attachments(p) if pending else 0)
-            k = None
-            if compiling.python_instead("lowest", cost, pending):
-                f = self._compiled_search(formulation)
-                f = interpret.watched(f)
-                lowest = self._python_function("lowest")
-                args = (p, modes, out, flags, state, certify, rtol)
-                try:
-                    with interpret.deadline(compiling.python_left("lowest")):
-                        k = compiling.timed_call("lowest", lowest, *f, *args)
-                except interpret.Overrun:  # past the budget: wait for the driver, or compile
-                    out[:], flags[:], state[:] = 0.0, 0, 0.0
-            if k is None:
-                fa, at = self._search(formulation)
-                if self._defers(p):  # room for the brackets left pending
-                    state = np.full(state.size + self.module.PENDING_WIDTH * modes, np.nan)
-                    state[: self.module.STATE_SIZE] = 0.0
-                k = self._entry("lowest")(fa, at, p, modes, out, flags, state, certify, rtol)
-                self._refine_pending(fa, at, p, state, out, flags, k, rtol)
-        else:
-            k = self._lowest_in_blocks(p, modes, out, flags, state, certify, formulation, rtol)
-        return self._found(out, flags, state, int(k))
+        return self.run(body, p, modes, formulation, driver="lowest")
 
     @staticmethod
     def _defers(p: np.ndarray) -> bool:
@@ -467,7 +487,7 @@ class Kernel:
         a solve in another thread refines its roots itself)."""
         return p[4] >= DEFER_EVENTS and threading.current_thread() is threading.main_thread()
 
-    def _refine_pending(self, fa, at, p, state, out, flags, k: int, rtol: float) -> None:
+    def _refine_pending(self, formulation, p, state, out, flags, k: int, rtol: float) -> None:
         """Refine the roots ``lowest`` left pending (their brackets in ``state`` beyond
         STATE_SIZE, ``numerics.search.PENDING_WIDTH``), in parallel over the roots."""
         m = self.module
@@ -477,7 +497,8 @@ class Kernel:
         pending = state[m.STATE_SIZE :].reshape(-1, m.PENDING_WIDTH)[:k, 0]
         rows = np.flatnonzero(np.isfinite(pending)).astype(np.int64)
         if rows.size:
-            self._entry("refine_pending")(fa, at, p, state, rows, out, flags, float(rtol))
+            refine = self.compiled("refine_pending", formulation)
+            refine(p, state, rows, out, flags, float(rtol))
 
     def _found(self, out: np.ndarray, flags: np.ndarray, state: np.ndarray, k: int) -> Found:
         m = self.module
@@ -509,15 +530,14 @@ class Kernel:
         (about 0.25 us per mode below it on the paper's example, against about
         12 us per mode for the scan and Brent), so the counts add under 10% and
         the cost stays linear in ``modes``."""
-        fa, at = self._search(formulation)
-        k = int(self._entry("lowest_start")(fa, p, modes, out, flags, state, certify))
-        run = self._entry("lowest_run")
+        k = int(self.compiled("lowest_start")(p, modes, out, flags, state, certify))
+        run = self.compiled("lowest_run", formulation)
         bar = progress.Bar(modes, "modes")
         try:
             bar.update(max(k, 0))
             while 0 <= k < modes:
                 stop = min(modes, k + max(BLOCK_MODES, k // 4))
-                k_new = int(run(fa, at, p, modes, out, flags, state, stop, certify, np.inf, rtol))
+                k_new = int(run(p, modes, out, flags, state, stop, certify, np.inf, rtol))
                 bar.update(max(k_new - k, 0))
                 k = k_new
         finally:
@@ -545,12 +565,12 @@ class Kernel:
         n_lo = 0 if from_bottom else int(self.count_below(lo, p)[0])
         size = max(n_hi - n_lo, 0)
 
-        def search(start, run) -> Found:
+        def body(call) -> Found:
             out = np.zeros(size)
             flags = np.zeros(size, dtype=np.int64)
             state = np.zeros(m.STATE_SIZE)
             if from_bottom:
-                k = int(start(p, size, out, flags, state, True))
+                k = int(call("lowest_start", p, size, out, flags, state, True))
             else:
                 state[m.STATE_W], state[m.STATE_COUNT] = lo, n_lo
                 state[m.STATE_CERTIFIED] = 1.0
@@ -558,30 +578,18 @@ class Kernel:
             if n_hi < n_lo:  # a count that decreases: nothing it says can be certified
                 state[m.STATE_CERTIFIED], state[m.STATE_FAILED] = 0.0, lo
             if 0 <= k < size:
-                k = int(run(p, size, out, flags, state, size, True, float(hi), rtol))
+                args = (p, size, out, flags, state, size, True, float(hi), rtol)
+                k = int(call("lowest_run", *args))
             return self._found(out, flags, state, k)
 
-        def python() -> Found:
-            delta, count, osc, rigid = interpret.watched(self._search_functions(formulation))
-            start, run = (self._python_function(n) for n in ("lowest_start", "lowest_run"))
-            return search(
-                lambda *a: start(count, rigid, *a), lambda *a: run(delta, count, osc, *a)
-            )
-
-        def compiled() -> Found:
-            fa, at = self._search(formulation)
-            start, run = self._entry("lowest_start"), self._entry("lowest_run")
-            return search(lambda *a: start(fa, *a), lambda *a: run(fa, at, *a))
-
-        return self._tiered(p, size, formulation, python, compiled)
+        return self.run(body, p, size, formulation)
 
     def sweep(self, P: np.ndarray, modes: int) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`lowest` for every row of ``P``, in parallel on all cores (numba prange)."""
         P = np.ascontiguousarray(P, dtype=np.float64)
         out = np.zeros((P.shape[0], int(modes)))
         certified = np.zeros(P.shape[0], dtype=np.bool_)
-        fa, _ = self._search("stable")
-        self._entry("sweep_lowest")(fa, P, int(modes), out, certified)
+        self.compiled("sweep_lowest")(P, int(modes), out, certified)
         return out, certified
 
     def count_below(self, omegas: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -593,26 +601,10 @@ class Kernel:
         keeps its own counts off those points the same way: ``search.near_pole``)."""
         omegas = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.empty(omegas.shape, dtype=np.int64)
-        names = ("count_below", "oscillator_frequencies")
-        python = self.interprets(p, 1, "counts")
-        # while a helper compiles the count: the estimate only then (a warm call skips it)
-        while_compiling = not python and self._pending(*names)
-        if while_compiling:
-            cost = interpret.estimated_cost(omegas.size, self.attachments(p))
-            while_compiling = compiling.python_instead("counts", cost, True)
-        if python or while_compiling:
-            # a few counts of a small first solve (or while a helper compiles the count):
-            # as plain Python, not worth loading
-            count, osc = (self._python_function(n) for n in names)
-            args = (count, osc, omegas, _params(p), out)
-            counts = self._python_function("counts_off_poles")
-            if python:
-                interpret.timed_call(counts, *args)
-            else:
-                compiling.timed_call("counts", counts, *args)
-            return out
-        fa = self._addresses("count_below", "oscillator_frequencies")
-        self._entry("counts")(fa, omegas, _params(p), out)
+        p = _params(p)
+        modes = omegas.size / interpret.EVALUATIONS_PER_MODE
+        counts = lambda call: call("counts", omegas, p, out)  # noqa: E731
+        self.run(counts, p, modes, what="counts", driver="counts")
         return out
 
     def event_positions(self, p: np.ndarray) -> np.ndarray:
@@ -634,35 +626,23 @@ class Kernel:
         p = _params(p)
         xs = np.ascontiguousarray(xs, dtype=np.float64)
         m = int(m)
-        python = self.interprets(p, m * interpret.SHAPE_COST_FACTOR, "mode_shapes")
-        cost = interpret.estimated_cost(m * interpret.SHAPE_COST_FACTOR, self.attachments(p))
-        names = ("shape_event", "shape_inertia", "shape_sizes")
-        pending = not python and self._pending(*names)
-        while_compiling = not python and compiling.python_instead("mode_shapes", cost, pending)
-        if python or while_compiling:
-            event, inertia, sizes = (self._python_function(n) for n in names)
-        else:
-            event, inertia, sizes = (self._compiled(n) for n in names)
-            fa = self._addresses(*names)
-        nq = int(sizes(p)[0])
-        Z = np.zeros((m, xs.shape[0], 4))
-        q = np.zeros((m, nq))
-        q_x = np.zeros(nq)
-        q_mass = np.zeros((2, nq))
-        gram = np.zeros((m, m))
-        part = np.zeros(m)
-        ratio = np.zeros(m)
-        args = (self.shape_ends, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part)
-        args += (ratio,)
-        if python:
-            interpret.timed_call(self._python_function("mode_shapes"), event, inertia, sizes, *args)
-        elif while_compiling:  # the driver compiles in a helper (mstmm.compiling)
-            shapes = self._python_function("mode_shapes")
-            compiling.timed_call("mode_shapes", shapes, event, inertia, sizes, *args)
-        else:
-            self._entry("mode_shapes")(fa, *args)
-            self.warmed.add("mode_shapes")
-        return Z, q, q_x, q_mass, gram, part, ratio
+        nq = int(self._cheapest("shape_sizes")(p)[0])
+        ends = self.shape_ends(p)
+
+        def body(call) -> tuple:
+            Z = np.zeros((m, xs.shape[0], 4))
+            q = np.zeros((m, nq))
+            q_x = np.zeros(nq)
+            q_mass = np.zeros((2, nq))
+            gram = np.zeros((m, m))
+            part = np.zeros(m)
+            ratio = np.zeros(m)
+            args = (ends, float(omega), p, m, xs, Z, q, q_x, q_mass, gram, part, ratio)
+            call("mode_shapes", *args)
+            return Z, q, q_x, q_mass, gram, part, ratio
+
+        cost = m * interpret.SHAPE_COST_FACTOR
+        return self.run(body, p, cost, what="mode_shapes", driver="mode_shapes")
 
     def frf(
         self, omegas: np.ndarray, p: np.ndarray, inputs: np.ndarray, outputs: np.ndarray
@@ -675,9 +655,9 @@ class Kernel:
         inputs = np.ascontiguousarray(inputs, dtype=np.float64)
         outputs = np.ascontiguousarray(outputs, dtype=np.float64)
         out = np.zeros((ws.size, inputs.shape[0], outputs.shape[0]), dtype=np.complex128)
-        fa = self._addresses("shape_event_c", "shape_sizes")
-        ends = self.shape_ends
-        self._entry("frf")(fa, ends, self.topology.damped, ws, _params(p), inputs, outputs, out)
+        p = _params(p)
+        damped = self.topology.damped
+        self.compiled("frf")(self.shape_ends(p), damped, ws, p, inputs, outputs, out)
         return out
 
     def unknowns(self, p: np.ndarray) -> list[tuple[float, float, float]]:
@@ -705,6 +685,25 @@ class Kernel:
     def u_bar(self, omega: float, p: np.ndarray) -> np.ndarray:
         """``U_bar(omega)`` of paper Eq. (4), reduced by the boundary conditions."""
         return self._compiled("u_bar_paper")(float(omega), _params(p))
+
+
+class _Call:
+    """How one tier of :meth:`Kernel.run` runs a shared driver: ``call(name, *args)``;
+    ``compiled``: whether it runs machine code (the compiled tier)."""
+
+    __slots__ = ("run", "compiled")
+
+    def __init__(self, run, compiled: bool = False):
+        self.run = run
+        self.compiled = compiled
+
+    def __call__(self, name: str, *args):
+        return self.run(name, *args)
+
+
+#: Kernel functions whose first argument is a frequency (passed on as a float by
+#: :meth:`Kernel._for_python`).
+_FREQUENCY_FIRST = ("delta_stable", "delta_paper", "count_below")
 
 
 def _ieee(f):

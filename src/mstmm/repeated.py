@@ -21,7 +21,6 @@ import math
 
 import numpy as np
 
-from . import compiling
 from .catalog import END_CODES, KNOWN_ZERO
 from .kernels import Kernel, load_kernel, numerics
 from .physics import segment as segment_terms
@@ -35,10 +34,9 @@ from .topology import parameter_vector, topology_of
 MIN_CELLS = DEFAULT_MIN_CELLS = 500
 
 
-#: The shared driver of this path (``numerics.entries.entry_repeated_search``), and the cell
-#: kernel's functions it calls.
+#: The shared driver of this path (``numerics.entries.entry_repeated_search``; the cell
+#: kernel's functions it calls: ``numerics.entries.DRIVERS``).
 DRIVER = "repeated_search"
-_FUNCTIONS = ("shape_event", "count_below", "shape_sizes", "oscillator_frequencies")
 #: Python time a root of this path costs while its driver compiles in a helper, for
 #: ``compiling.python_instead`` (measured: 12 ms a root, 1,000 metamaterial cells).
 PYTHON_SECONDS_PER_ROOT = 0.02
@@ -64,14 +62,14 @@ class Chain:
         left, right = END_CODES.index(scene.beam.left), END_CODES.index(scene.beam.right)
         self.ends = np.array([self.n.START_PAIR[left], self.n.END_PAIR[right]], dtype=np.int64)
         self.scale = _scale(scene)
-        self.fa = self.kernel._addresses(*_FUNCTIONS)
+        self._at = self.kernel.compiled("repeated_at")
 
     def at(self, omegas: np.ndarray) -> np.ndarray:
         """(J, mantissa, log, ok) at each omega (rad/s): the count of the whole structure
         below it and its characteristic function (``numerics.doubling.structure_at``)."""
         ws = np.ascontiguousarray(np.atleast_1d(omegas), dtype=np.float64)
         out = np.zeros((ws.size, 4))
-        self.n.entry_repeated_at(self.fa, ws, self.p, self.n_cells, self.ends, self.free, out)
+        self._at(ws, self.p, self.n_cells, self.ends, self.free, out)
         return out
 
     def search(
@@ -87,19 +85,17 @@ class Chain:
         flags = np.zeros(most, dtype=np.int64)
         args = (self.p, self.n_cells, self.ends, self.free, int(rigid), int(want), float(lo))
         args += (float(hi), self.scale, out, mult, flags)
-        if compiling.python_instead(DRIVER, PYTHON_SECONDS_PER_ROOT * max(most, 1)):
-            # the driver's helper is still compiling it: its Python copy meanwhile, around
-            # the cell kernel's compiled functions
-            kernel = self.kernel
-            names = ("shape_event", "shape_sizes", "oscillator_frequencies")
-            event, sizes, osc = (kernel._compiled(n) for n in names)
-            count = kernel._compiled("count_below")
-            driver = kernel._python_function(DRIVER)
-            k, certified, started = compiling.timed_call(
-                DRIVER, driver, event, lambda w, p: count(float(w), p), sizes, osc, *args
-            )
-        else:
-            k, certified, started = self.kernel._entry(DRIVER)(self.fa, *args)
+
+        def body(call):
+            out[:], mult[:], flags[:] = 0.0, 0, 0
+            return call(DRIVER, *args)
+
+        # its Python copy around the cell kernel's compiled functions while a helper
+        # compiles the driver, else compiled (never the interpreted tier: modes None)
+        cost = PYTHON_SECONDS_PER_ROOT * max(most, 1)
+        k, certified, started = self.kernel.run(
+            body, self.p, None, what=DRIVER, driver=DRIVER, cost=cost
+        )
         if not started:
             return None
         return out[:k], mult[:k], flags[:k].astype(bool), bool(certified)

@@ -89,6 +89,38 @@ FUNCTION_TYPES = {
     "shape_inertia": (FA_INERTIA, INERTIA),
 }
 
+#: The entry points ``mstmm.kernels.Kernel`` calls, by name (``entry_<name>``): the function
+#: of the numerics each wraps, which the interpreted tier runs as Python (None: compiled
+#: only), and the kernel functions it takes, in that function's order. ``delta`` is the
+#: characteristic function of the formulation asked for: its entry takes the position of
+#: its addresses in ``fa`` (``at``) after ``fa``; the others sit at their FA_* place.
+#: Each entry is then ``entry_<name>(fa[, at], *args)`` where the function is
+#: ``function(*kernel_functions, *args)``: one contract for every tier.
+DRIVERS = {
+    "evaluate": ("evaluate", ("delta",)),
+    "refine": ("refine", ("delta",)),
+    "counts": ("counts_off_poles", ("count_below", "oscillator_frequencies")),
+    "lowest": ("lowest", ("delta", "count_below", "oscillator_frequencies", "rigid_body_modes")),
+    "lowest_start": ("lowest_start", ("count_below", "rigid_body_modes")),
+    "lowest_run": ("lowest_run", ("delta", "count_below", "oscillator_frequencies")),
+    "refine_pending": (None, ("delta", "oscillator_frequencies")),
+    "sweep_lowest": (
+        None,
+        ("delta_stable", "count_below", "oscillator_frequencies", "rigid_body_modes"),
+    ),
+    "mode_shapes": ("mode_shapes", ("shape_event", "shape_inertia", "shape_sizes")),
+    "frf": (None, ("shape_event_c", "shape_sizes")),
+    "damped_shapes": (None, ("shape_event_c", "shape_sizes")),
+    "bloch_waves": (None, ("shape_event_c", "shape_sizes", "shape_event")),
+    "closed": (None, ("shape_event", "shape_sizes")),
+    "subspace": (None, ("shape_event_c", "shape_sizes")),
+    "repeated_at": (None, ("shape_event", "count_below", "shape_sizes")),
+    "repeated_search": (
+        "repeated_search",
+        ("shape_event", "count_below", "shape_sizes", "oscillator_frequencies"),
+    ),
+}
+
 _I1 = types.int64[::1]
 #: The one signature each driver compiled ahead of its call is called with (by
 #: ``mstmm.kernels.Kernel``; ``mstmm.compiling`` compiles them in helper processes).

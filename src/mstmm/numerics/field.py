@@ -25,7 +25,7 @@ from mstmm.jit import njit
 #: 0.5^19 / 19! ~ 1.6e-23 of the norm, far under rounding.
 TAYLOR = 18
 #: The pairs of state indices of the second compound, in the stable chain's order
-#: (``mstmm.derive.compound.PAIRS``).
+#: (``mstmm.catalog.PAIRS``).
 PAIR_I = np.array([0, 0, 0, 1, 1, 2])
 PAIR_J = np.array([1, 2, 3, 2, 3, 3])
 #: The order of each state in the wavenumber (Y ~ 1, theta ~ k, M ~ k^2, Q ~ k^3) and of
@@ -38,7 +38,7 @@ DEGREES_6 = np.array([1, 2, 3, 3, 4, 5])
 def additive_compound(A, A2):
     """``A2`` (6 x 6) with ``C2(exp(A t)) = exp(A2 t)``: the derivative of the second
     compound of ``I + t A`` at t = 0, over the pairs (0,1), (0,2), (0,3), (1,2), (1,3),
-    (2,3) of the stable chain (``mstmm.derive.compound.PAIRS``)."""
+    (2,3) of the stable chain (``mstmm.catalog.PAIRS``)."""
     for a in range(6):
         i = PAIR_I[a]
         j = PAIR_J[a]

@@ -23,9 +23,8 @@ EVENT_WIDTH = catalog.EVENT_WIDTH
 #: minors in lexicographic order. The ends are data: one kernel serves every end pair.
 LEFT_END = catalog.LEFT_END
 RIGHT_END = catalog.RIGHT_END
-#: The pairs (i, j), i < j, of state indices: the rows and columns of a second compound
-#: (``derive.compound.PAIRS``).
-PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+#: The pairs (i, j), i < j, of state indices: the rows and columns of a second compound.
+PAIRS = catalog.PAIRS
 KNOWN = tuple(catalog.KNOWN_ZERO[end] for end in catalog.END_CODES)
 UNKNOWN = tuple(catalog.unknown(end) for end in catalog.END_CODES)
 START_PAIR = tuple(PAIRS.index(pair) for pair in UNKNOWN)
