@@ -269,6 +269,14 @@ def running(name: str) -> bool:
     return False
 
 
+def any_helper() -> bool:
+    """Whether a helper (this process's, of a driver or a kernel, or another process's this
+    one saw) may still be compiling: nothing else here needs asking when none is."""
+    return bool(_State.helpers or _State.elsewhere) or any(
+        h is not None for h in _State.kernels.values()
+    )
+
+
 def python_instead(name: str, estimate: float, pending: bool = False) -> bool:
     """Whether to run the driver ``entry_<name>`` as Python now: its helper is still
     compiling it (or, ``pending``, a kernel function it calls: ``kernel_pending``), and the

@@ -244,6 +244,12 @@ class Kernel:
             except interpret.Overrun:  # the estimate was wrong: compiled, from the start,
                 interpret.mark_compiled()  # and so is the rest of this process's work
         if driver is not None:
+            # past the interpreted tier: machine code from here on, and the helpers
+            # compile what numba's cache lacks meanwhile (before they are asked about)
+            interpret.mark_compiled()
+            compiling.start()
+            compiling.start_kernel(self.module)
+        if driver is not None and compiling.any_helper():
             names = self._functions(driver, formulation)
             pending = self._pending(*names)
             own = driver in self.PYTHON_WHILE_COMPILING
@@ -274,10 +280,15 @@ class Kernel:
     def _functions(self, driver: str, formulation: str = "stable") -> tuple[str, ...]:
         """The kernel functions the driver ``driver`` takes (``numerics.entries.DRIVERS``),
         ``delta`` the formulation's characteristic function."""
-        if formulation not in FORMULATIONS:
-            raise ValueError(f"unknown formulation {formulation!r}; choose from {FORMULATIONS}")
-        names = numerics().DRIVERS[driver][1]
-        return tuple(f"delta_{formulation}" if n == "delta" else n for n in names)
+        names = _DRIVER_FUNCTIONS.get((driver, formulation))
+        if names is None:
+            if formulation not in FORMULATIONS:
+                choose = f"choose from {FORMULATIONS}"
+                raise ValueError(f"unknown formulation {formulation!r}; {choose}")
+            declared = numerics().DRIVERS[driver][1]
+            names = tuple(f"delta_{formulation}" if n == "delta" else n for n in declared)
+            _DRIVER_FUNCTIONS[(driver, formulation)] = names
+        return names
 
     def _in_python(self, driver: str, formulation: str = "stable", get=None):
         """The driver ``driver`` as plain Python around the kernel's functions (``get``: as
@@ -700,6 +711,9 @@ class _Call:
     def __call__(self, name: str, *args):
         return self.run(name, *args)
 
+
+#: The kernel functions each (driver, formulation) takes (``Kernel._functions``).
+_DRIVER_FUNCTIONS: dict[tuple[str, str], tuple[str, ...]] = {}
 
 #: Kernel functions whose first argument is a frequency (passed on as a float by
 #: :meth:`Kernel._for_python`).
