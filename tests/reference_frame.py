@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import mpmath
 from mpmath import mp, mpf
-from reference_model import segment_stiffness_matrix
+from reference_model import _segment_stiffness, segment_stiffness_matrix
 
 
 @dataclass(frozen=True)
@@ -88,9 +88,7 @@ def _bending(m: Member, L, w):
     d = [mpf(1), L, mpf(1), L]  # dW/dxi = L theta
     scale = m.EI / L**3
     K = [[scale * d[i] * K[i][j] * d[j] for j in range(4)] for i in range(4)]
-    i = int(mpmath.floor(beta / mp.pi))
-    delta = 1 - mpmath.cos(beta) * mpmath.cosh(beta)
-    return K, i - (1 - (-1) ** i * (1 if delta > 0 else -1)) // 2
+    return K, _segment_stiffness(beta, beta**2, beta**3, mpf(1))[1]  # its count, J0
 
 
 def dynamic_stiffness(frame: Frame, w) -> tuple:

@@ -302,9 +302,7 @@ class Kernel:
         """A kernel function for a driver run as Python: compiled, or as Python while a
         helper compiles it; a frequency passed on as a float (an int would make numba
         compile another specialization)."""
-        if self._pending(name):
-            return self._python_function(name)
-        f = self._compiled(name)
+        f = self._ready(name)
         if name in _FREQUENCY_FIRST:
             return lambda w, *a: f(float(w), *a)
         return f

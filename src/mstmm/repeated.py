@@ -58,9 +58,9 @@ class Chain:
         free = [i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.left]]
         free += [2 + i for i in (0, 1) if i not in KNOWN_ZERO[scene.beam.right]]
         self.free = np.array(free + [-1] * (4 - len(free)), dtype=np.int64)
-        self.n = numerics()
+        n = numerics()
         left, right = END_CODES.index(scene.beam.left), END_CODES.index(scene.beam.right)
-        self.ends = np.array([self.n.START_PAIR[left], self.n.END_PAIR[right]], dtype=np.int64)
+        self.ends = np.array([n.START_PAIR[left], n.END_PAIR[right]], dtype=np.int64)
         self.scale = _scale(scene)
         self._at = self.kernel.compiled("repeated_at")
 
