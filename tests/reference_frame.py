@@ -245,3 +245,53 @@ def nafems_fv2(held_centre: bool = False, axial_factor: float = 1.0) -> Frame:
         held[name] = "xy"
         members.append(Member("O", name, EI, E * A * axial_factor, rho * A))
     return Frame(nodes, tuple(members), held)
+
+
+def sample_frames() -> dict:
+    """An L-frame (clamped base, free tip), a portal frame (clamped feet, a heavier beam, a
+    node mass with rotary inertia at a corner), a tree (three members at one node, one
+    pinned to it at its end and pinned to the ground at the other) and a two-bay
+    two-storey frame (closed loops, a roof mass)."""
+    EI, EA, m = 2.0e3, 5.0e5, 3.0
+    return {
+        "L": Frame(
+            {"A": (0, 0), "B": (0, 3.0), "C": (2.0, 3.0)},
+            (Member("A", "B", EI, EA, m), Member("B", "C", EI, EA, m)),
+            held={"A": "xyt"},
+        ),
+        "portal": Frame(
+            {"A": (0, 0), "B": (0, 3.0), "C": (4.0, 3.0), "D": (4.0, 0)},
+            (
+                Member("A", "B", EI, EA, m),
+                Member("B", "C", 2 * EI, EA, 1.5 * m),
+                Member("D", "C", EI, EA, m),
+            ),
+            held={"A": "xyt", "D": "xyt"},
+            masses={"C": (5.0, 0.7)},
+        ),
+        "tree": Frame(
+            {"A": (0, 0), "B": (0, 2.0), "C": (1.5, 3.0), "D": (-1.0, 3.5)},
+            (
+                Member("A", "B", EI, EA, m),
+                Member("B", "C", EI, EA, m, pinned=(True, False)),
+                Member("B", "D", EI, EA, m),
+            ),
+            held={"A": "xyt", "C": "xy"},
+        ),
+        # two bays, two storeys: a closed frame with six loops' worth of redundancy
+        "two_bay_two_storey": Frame(
+            {
+                **{f"G{j}": (4.0 * j, 0.0) for j in range(3)},
+                **{f"F{j}": (4.0 * j, 3.0) for j in range(3)},
+                **{f"R{j}": (4.0 * j, 6.0) for j in range(3)},
+            },
+            tuple(
+                [Member(f"G{j}", f"F{j}", EI, EA, m) for j in range(3)]
+                + [Member(f"F{j}", f"R{j}", 0.7 * EI, EA, m) for j in range(3)]
+                + [Member(f"F{j}", f"F{j + 1}", 1.5 * EI, EA, 2 * m) for j in range(2)]
+                + [Member(f"R{j}", f"R{j + 1}", 1.5 * EI, EA, 2 * m) for j in range(2)]
+            ),
+            held={f"G{j}": "xyt" for j in range(3)},
+            masses={"R1": (10.0, 1.0)},
+        ),
+    }

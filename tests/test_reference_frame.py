@@ -30,7 +30,14 @@ import pytest
 from mpmath import mp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from reference_frame import Frame, Member, count_below, frequencies, nafems_fv2  # noqa: E402
+from reference_frame import (  # noqa: E402
+    Frame,
+    Member,
+    count_below,
+    frequencies,
+    nafems_fv2,
+    sample_frames,
+)
 
 DPS = 30
 
@@ -101,38 +108,6 @@ def test_fv2_with_a_free_centre_keeps_five_of_each_seven():
             assert above - below == jump
 
 
-def _frames() -> dict:
-    """An L-frame (clamped base, free tip), a portal frame (clamped feet, a heavier beam, a
-    node mass with rotary inertia at a corner) and a tree (three members at one node, one
-    pinned to it at its end and pinned to the ground at the other)."""
-    EI, EA, m = 2.0e3, 5.0e5, 3.0
-    L = Frame(
-        {"A": (0, 0), "B": (0, 3.0), "C": (2.0, 3.0)},
-        (Member("A", "B", EI, EA, m), Member("B", "C", EI, EA, m)),
-        held={"A": "xyt"},
-    )
-    portal = Frame(
-        {"A": (0, 0), "B": (0, 3.0), "C": (4.0, 3.0), "D": (4.0, 0)},
-        (
-            Member("A", "B", EI, EA, m),
-            Member("B", "C", 2 * EI, EA, 1.5 * m),
-            Member("D", "C", EI, EA, m),
-        ),
-        held={"A": "xyt", "D": "xyt"},
-        masses={"C": (5.0, 0.7)},
-    )
-    tree = Frame(
-        {"A": (0, 0), "B": (0, 2.0), "C": (1.5, 3.0), "D": (-1.0, 3.5)},
-        (
-            Member("A", "B", EI, EA, m),
-            Member("B", "C", EI, EA, m, pinned=(True, False)),
-            Member("B", "D", EI, EA, m),
-        ),
-        held={"A": "xyt", "C": "xy"},
-    )
-    return {"L": L, "portal": portal, "tree": tree}
-
-
 @pytest.mark.parametrize("name", ["L", "portal", "tree"])
 def test_frames_against_finite_elements(name):
     """The exact model against the finite-element one (``tests/reference_frame_fem.py``,
@@ -145,7 +120,7 @@ def test_frames_against_finite_elements(name):
     import numpy as np
     import reference_frame_fem as fem
 
-    frame = _frames()[name]
+    frame = sample_frames()[name]
     with mp.workdps(20):
         exact = np.array([float(w) for w, m in frequencies(frame, 6, 20) for _ in range(m)])[:6]
     coarse = np.abs(fem.frequencies(frame, 6, 16) / exact - 1)

@@ -378,12 +378,53 @@ def _warn(message: str) -> None:
     print(f"mstmm: warning: {_plain_numbers(message)}", file=sys.stderr)
 
 
+def _is_frame_file(path: str | None) -> bool:
+    """Whether the scene file holds a frame (``[[members]]``); an unreadable file is left
+    to the beam reader's message."""
+    if path is None:
+        return False
+    import tomllib
+
+    from .frame import is_frame
+
+    try:
+        with open(path, "rb") as f:
+            return is_frame(tomllib.load(f))
+    except (OSError, tomllib.TOMLDecodeError):
+        return False
+
+
+def _solve_frame(args) -> int:
+    from .frame import load_frame, solve_frame
+    from .frame.report import frame_text
+
+    if args.formulation != "stable":
+        raise SceneError(
+            COMMAND_LINE, "--formulation", "a frame is solved by its dynamic stiffness only",
+            args.formulation,
+        )  # fmt: skip
+    frame = load_frame(args.scene)
+    band = tuple(args.band) if args.band else None
+    if band is not None and band[1] <= band[0]:
+        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(band))
+    sol = solve_frame(frame, modes=args.modes, band=band, shapes=args.shapes)
+    if band is not None and not sol.omega.size:
+        raise NoRoots(
+            f"no natural frequency in the band [{band[0]:.6g}, {band[1]:.6g}] rad/s"
+            " (the count confirms it)"
+        )
+    _emit(args, frame_text(sol, args.format, args.shapes))
+    return 0 if sol.count_checked else EXIT_UNTRUSTED
+
+
 def _solve(args) -> int:
     from . import output
     from .solve import solve
     from .topology import topology_of
 
     _out_format(args)
+    if _is_frame_file(args.scene):
+        return _solve_frame(args)
     scene = _scene(args.scene)
     band = _checked_band(args, scene)
     damped = topology_of(scene).damped

@@ -60,6 +60,11 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
     ``source`` names the origin in error messages and, when ``data`` has no
     ``name``, gives the default name (the file stem).  Raises :class:`SceneError`.
     """
+    if isinstance(data, Mapping) and ("members" in data or "nodes" in data):
+        raise SceneError(
+            source, "members", "a frame scene: read it with mstmm.frame.load_frame"
+            " (mstmm solve reads both; docs/frames.md)",
+        )  # fmt: skip
     source, name = _head(data, source)
     if "repeat" in data:
         return _repeated(data, name, _repeat(data["repeat"], source), source)

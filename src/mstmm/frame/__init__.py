@@ -1,0 +1,26 @@
+"""Plane frames, trees and closed loops of members (issue 43; docs/frames.md).
+
+A frame scene (TOML) has ``[[nodes]]`` and ``[[members]]`` instead of a ``[beam]``
+(:mod:`mstmm.frame.reading`); each member carries axial (rod) motion and in-plane bending
+with every segment term a beam declares. Its natural frequencies come from the members'
+exact dynamic stiffness assembled at the joints and counted by Wittrick-Williams, so that
+no root is missed and each repeated root has its exact multiplicity
+(:mod:`mstmm.frame.solve`).
+"""
+
+from .model import Absorber, Frame, FrameSegment, Member, Node
+from .reading import frame_from_dict, is_frame, load_frame
+from .solve import FrameSolution, solve_frame
+
+__all__ = [
+    "Absorber",
+    "Frame",
+    "FrameSegment",
+    "FrameSolution",
+    "Member",
+    "Node",
+    "frame_from_dict",
+    "is_frame",
+    "load_frame",
+    "solve_frame",
+]

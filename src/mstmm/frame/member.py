@@ -1,0 +1,216 @@
+"""One member's exact dynamic stiffness and its clamped-clamped count (compiled).
+
+Bending: the member is its beam (a parameter vector of ``catalog.layout``, ends clamped,
+no components), cut into pieces short enough that each piece's transfer matrix is
+well conditioned (k h <= 1, ``segment.segment_pieces``) and that its proved
+clamped-clamped bound (``field.clamped_clamped_bound``) lies above the frequency: each
+piece's J0 is then 0. Every segment term the beam declares (``mstmm/physics/terms``)
+enters through ``segment.piece_matrix``, the same transfer the beam's walks take. Each
+piece's transfer ``Z(h) = U Z(0)``, ``Z = [Y, psi, M, Q]``, becomes its dynamic stiffness
+(``piece_stiffness``), and the pieces' inner nodes are eliminated along the member: the
+negative pivots counted there are the member's clamped-clamped frequencies below omega
+(Wittrick and Williams 1971: J0 of the member = the pieces' J0, 0, plus the negative
+eigenvalues of its inner nodes' eliminated stiffness).
+
+Axial: each segment is a rod, ``EA mu / (h sin mu) [[cos mu, -1], [-1, cos mu]]``, ``mu =
+omega h sqrt(mbar / EA)``, J0 = floor(mu / pi); the segments' inner nodes eliminated the
+same way.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mstmm.jit import njit
+from mstmm.numerics.field import clamped_clamped_bound
+from mstmm.numerics.layout import HEAD, SEGMENT_WIDTH, X_END
+from mstmm.numerics.segment import piece_matrix, segment_pieces, segment_values
+
+#: Each piece's proved clamped-clamped bound lies this many times above omega^2: its
+#: transfer's B block (the end displacements the end forces make) stays well conditioned.
+BOUND_MARGIN = 2.0
+#: The longest piece, in k h (a wavenumber times its length).
+PIECE_STEP = 1.0
+
+
+@njit(cache=True)
+def inv2(A, out):
+    """out <- A^-1 of a 2 x 2; returns det A."""
+    det = A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+    out[0, 0] = A[1, 1] / det
+    out[0, 1] = -A[0, 1] / det
+    out[1, 0] = -A[1, 0] / det
+    out[1, 1] = A[0, 0] / det
+    return det
+
+
+@njit(cache=True)
+def piece_stiffness(U, k):
+    """k (4 x 4 over the nodal [Y_0, psi_0, Y_h, psi_h]) <- the dynamic stiffness of a piece
+    whose transfer is U (``Z(h) = U Z(0)``, ``Z = [Y, psi, M, Q]``, blocks ``[[A, B], [C,
+    D]]``). The nodal force and moment are ``[Q, -M]`` at the start and ``[-Q, M]`` at the
+    end (``count.pair_count``'s PI_LEFT and PI_RIGHT): with ``f_0 = B^-1 (d_h - A d_0)``
+    and ``f_h = C d_0 + D f_0``, symmetrised (its asymmetry is round-off)."""
+    Bi = np.empty((2, 2))
+    inv2(U[0:2, 2:4], Bi)
+    f0 = np.zeros((2, 4))  # f_0 = [-Bi A | Bi] [d_0; d_h]
+    fh = np.zeros((2, 4))
+    for r in range(2):
+        for c in range(2):
+            f0[r, 2 + c] = Bi[r, c]
+            for j in range(2):
+                f0[r, c] -= Bi[r, j] * U[j, c]
+    for r in range(2):
+        for c in range(4):
+            acc = U[2 + r, c] if c < 2 else 0.0
+            for j in range(2):
+                acc += U[2 + r, 2 + j] * f0[j, c]
+            fh[r, c] = acc
+    for c in range(4):
+        k[0, c] = f0[1, c]
+        k[1, c] = -f0[0, c]
+        k[2, c] = -fh[1, c]
+        k[3, c] = fh[0, c]
+    for r in range(4):
+        for c in range(r + 1, 4):
+            s = 0.5 * (k[r, c] + k[c, r])
+            k[r, c] = s
+            k[c, r] = s
+
+
+@njit(cache=True)
+def negatives_sym(P):
+    """Negative eigenvalues of a symmetric 2 x 2 (an exactly singular one counts its
+    negative part only)."""
+    det = P[0, 0] * P[1, 1] - P[0, 1] * P[1, 0]
+    if det < 0.0:
+        return 1
+    if P[0, 0] + P[1, 1] < 0.0:
+        return 2 if det > 0.0 else 1
+    return 0
+
+
+@njit(cache=True)
+def chain_add(S, k, n, first):
+    """Append a piece of stiffness k (2n x 2n over [near; far], n freedoms a node) to the
+    chain S (2n x 2n over [start; last node]), eliminating the last node: S <- over [start;
+    far]. Returns the negative pivots eliminated (``first``: S <- k, none)."""
+    if first:
+        for r in range(2 * n):
+            for c in range(2 * n):
+                S[r, c] = k[r, c]
+        return 0
+    P = np.empty((n, n))
+    for r in range(n):
+        for c in range(n):
+            P[r, c] = S[n + r, n + c] + k[r, c]
+    if n == 1:
+        neg = 1 if P[0, 0] < 0.0 else 0
+        Pi = np.empty((1, 1))
+        Pi[0, 0] = 1.0 / P[0, 0]
+    else:
+        neg = negatives_sym(P)
+        Pi = np.empty((2, 2))
+        inv2(P, Pi)
+    # [start; far] after eliminating the middle: X = [S_sm; k_fm] (2n x n), M = X Pi X^T
+    X = np.empty((2 * n, n))
+    for r in range(n):
+        for c in range(n):
+            X[r, c] = S[r, n + c]
+            X[n + r, c] = k[n + r, c]
+    Y = X @ Pi
+    T = np.empty((2 * n, 2 * n))
+    for r in range(n):
+        for c in range(n):
+            T[r, c] = S[r, c]
+            T[r, n + c] = 0.0
+            T[n + r, c] = 0.0
+            T[n + r, n + c] = k[n + r, n + c]
+    R = T - Y @ X.T
+    for r in range(2 * n):
+        for c in range(2 * n):
+            S[r, c] = 0.5 * (R[r, c] + R[c, r])
+    return neg
+
+
+@njit(cache=True)
+def member_bending(p, beta, K):
+    """K (4 x 4 over the nodal [Y_a, psi_a, Y_b, psi_b], units L = EI_0 = 1) <- the exact
+    bending dynamic stiffness of the member whose beam is p at beta = lam_0 L; returns its
+    clamped-clamped frequencies below (J0)."""
+    U = np.empty((4, 4))
+    F = np.empty((4, 4, 4))
+    k = np.empty((4, 4))
+    w2 = beta**4
+    ready = -1
+    n_seg = int(p[3])
+    start = 0.0
+    J0 = 0
+    first = True
+    for seg in range(n_seg):
+        end = 1.0 if seg == n_seg - 1 else p[HEAD + SEGMENT_WIDTH * seg + X_END] / p[0]
+        rho = end - start
+        start = end
+        pieces, ready = segment_pieces(p, seg, beta, rho, PIECE_STEP, F, ready)
+        e, m, kGA, rhoI, t, r, k_w = segment_values(p, seg, 1.0)
+        shear = math.inf if kGA == 0.0 else kGA
+        for _ in range(60):
+            if clamped_clamped_bound(e, shear, rhoI, m, t, rho / pieces) > BOUND_MARGIN * w2:
+                break
+            pieces *= 2
+        ready = piece_matrix(p, seg, beta, rho / pieces, U, F, ready)
+        piece_stiffness(U, k)
+        for _ in range(pieces):
+            J0 += chain_add(K, k, 2, first)
+            first = False
+    return J0
+
+
+@njit(cache=True)
+def member_rod(EA, mbar, h, w, K):
+    """K (2 x 2 over [u_a, u_b], SI) <- the exact axial dynamic stiffness of segments of
+    axial stiffness EA, mass per length mbar and lengths h at w (rad/s); returns the
+    member's clamped-clamped axial frequencies below w (J0)."""
+    k = np.empty((2, 2))
+    J0 = 0
+    for j in range(len(EA)):
+        mu = w * h[j] * math.sqrt(mbar[j] / EA[j])
+        f = EA[j] / h[j] * (mu / math.sin(mu) if mu != 0.0 else 1.0)
+        c = math.cos(mu)
+        k[0, 0] = f * c
+        k[1, 1] = f * c
+        k[0, 1] = -f
+        k[1, 0] = -f
+        J0 += int(math.floor(mu / math.pi))
+        J0 += chain_add(K, k, 1, j == 0)
+    return J0
+
+
+@njit(cache=True)
+def member_march(p, beta, Z0, xs, out):
+    """out[j] <- the state Z = [Y, psi, M, Q] (units L = EI_0 = 1) at xs[j] (ascending, in
+    units of L) from Z0 at the member's start, piece by piece (k h <= 1)."""
+    U = np.empty((4, 4))
+    F = np.empty((4, 4, 4))
+    ready = -1
+    n_seg = int(p[3])
+    Z = Z0.copy()
+    x = 0.0
+    seg = 0
+    j = 0
+    while j < len(xs):
+        end = 1.0 if seg == n_seg - 1 else p[HEAD + SEGMENT_WIDTH * seg + X_END] / p[0]
+        target = min(xs[j], end)
+        if target > x:
+            pieces, ready = segment_pieces(p, seg, beta, target - x, PIECE_STEP, F, ready)
+            ready = piece_matrix(p, seg, beta, (target - x) / pieces, U, F, ready)
+            for _ in range(pieces):
+                Z = U @ Z
+            x = target
+        if xs[j] <= end or seg == n_seg - 1:
+            out[j] = Z
+            j += 1
+        else:
+            seg += 1

@@ -1,0 +1,98 @@
+"""A plane frame as data: nodes, members between them, supports and what the nodes carry.
+
+Sign convention (docs/frames.md): global axes X, Y in the plane, rotations Theta
+counterclockwise. A member runs from its ``start`` node to its ``end`` node; its local
+``x`` points from start to end, its local ``y`` is ``x`` turned +90 degrees; along it
+``u`` is the axial displacement, ``w`` the transverse one (along local y) and ``psi`` the
+section's rotation (``dw/dx`` without shear deformation), as the beam's ``[Y, theta]``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+__all__ = ["Absorber", "Frame", "FrameSegment", "Member", "Node"]
+
+
+@dataclass(frozen=True)
+class FrameSegment:
+    """One stretch of a member with uniform properties (SI), from its start: the beam's
+    segment keys (``EI``, ``mass_per_length`` and the declared terms of
+    ``catalog.SEGMENT_PHYSICS``, each 0 when absent) and the axial stiffness ``EA``."""
+
+    length: float
+    EI: float
+    EA: float
+    mass_per_length: float
+    physics: tuple[tuple[str, float], ...] = ()
+
+
+@dataclass(frozen=True)
+class Member:
+    """A straight member from node ``start`` to node ``end`` made of ``segments`` (from the
+    start); ``pinned`` ends carry no moment into the node, unless a rotational spring
+    ``hinge_k`` (N m/rad) joins the member's end to the node there."""
+
+    name: str
+    start: str
+    end: str
+    segments: tuple[FrameSegment, ...]
+    pinned: tuple[bool, bool] = (False, False)
+    hinge_k: tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Absorber:
+    """A mass ``m`` on a spring ``k`` hung at ``node``, moving along the unit vector
+    ``direction`` (a tuned mass damper on a roof acts horizontally)."""
+
+    node: str
+    k: float
+    m: float
+    direction: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Node:
+    """A joint at (x, y): the freedoms a support holds (``"x"``, ``"y"``, ``"t"`` in the
+    global axes, or ``"n"``: the translation along ``normal``, a roller), springs to
+    ground (``(k_xx, k_xy, k_yy)`` N/m on the translations, ``k_t`` N m/rad on Theta) and a
+    node mass with its rotary inertia."""
+
+    name: str
+    x: float
+    y: float
+    held: str = ""
+    normal: tuple[float, float] = (0.0, 1.0)
+    springs: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    k_t: float = 0.0
+    mass: float = 0.0
+    J: float = 0.0
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A plane frame: its nodes (by name, in file order), its members and its absorbers.
+    ``source`` names the file it came from (messages name it)."""
+
+    name: str
+    nodes: dict[str, Node]
+    members: tuple[Member, ...]
+    absorbers: tuple[Absorber, ...] = ()
+    source: str = "<frame>"
+    origins: dict[str, str] = field(default_factory=dict, compare=False)
+
+    def geometry(self, member: Member) -> tuple[float, float, float]:
+        """``(L, c, s)``: the member's length and its local x as (cos, sin) in the global axes."""
+        a, b = self.nodes[member.start], self.nodes[member.end]
+        dx, dy = b.x - a.x, b.y - a.y
+        L = math.hypot(dx, dy)
+        return L, dx / L, dy / L
+
+    @property
+    def mass(self) -> float:
+        """Total mass (kg): members, node masses and absorbers."""
+        total = sum(s.mass_per_length * s.length for m in self.members for s in m.segments)
+        total += sum(n.mass for n in self.nodes.values())
+        return total + sum(a.m for a in self.absorbers)

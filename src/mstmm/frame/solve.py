@@ -1,0 +1,382 @@
+"""Natural frequencies of a plane frame with their exact multiplicities, and mode shapes.
+
+Every root comes from the count (:meth:`Assembly.count`, Wittrick-Williams), so none is
+missed and a repeated root's multiplicity is the count's jump across it:
+
+1. a bracket ``[a, b]`` whose count rises is cut in two until the members' own count J0
+   is the same at both ends (no member's clamped frequency inside: D(omega) has no pole
+   there);
+2. then ``g(omega)``, the ``(count(a) - J0)``-th eigenvalue of D in ascending order, is
+   >= 0 at a and < 0 from the bracket's first root on (D's negative eigenvalues never
+   fall between poles, as the count never does): Brent's method finds that root;
+3. the counts just below and above it say how many roots lie there: the narrowest
+   window (:data:`SETTLE`, 4 ulp to 1e-9) at whose edges no eigenvalue of D lies within
+   its round-off (:meth:`Assembly.sure_count`), with the bracket's count below, gives the
+   root's multiplicity, and the bracket's rest is searched again. Roots closer than that
+   window are one root of their joint multiplicity.
+
+Mode shapes: the null space of D at the root (one independent shape per multiplicity),
+the joints' displacements, and along each member the fields ``u, w, psi, N, Q, M``
+marched from its start (:func:`mstmm.frame.member.member_march` and the rod's closed form).
+Each shape is normalised to unit modal mass, the kinetic energy form ``-dD/d(omega^2)``
+(exact for a dynamic stiffness, Wittrick and Williams), evaluated by a central difference.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mstmm.scene import SceneError
+
+from .assembly import Assembly, MemberMap
+from .member import member_bending, member_march, member_rod
+from .model import Frame
+
+__all__ = ["FrameMode", "FrameSolution", "solve_frame"]
+
+#: Relative precision of Brent's refinement (ulp of float64).
+ROOT_GUARD = 4 * np.finfo(float).eps
+#: Relative half-widths of the windows tried around a refined root: the first at whose
+#: edges every eigenvalue of D is decided (beyond its round-off) gives the root's
+#: multiplicity. Near a root the count is decided by eigenvalues of D as small as its
+#: round-off: with members EA L^2 / EI = 2e4 times stiffer axially (FV2), its sign
+#: wavers within about 1e-12 of a five-fold root.
+SETTLE = (ROOT_GUARD, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9)
+#: Relative size of the smallest eigenvalue of the static D (0) that means a mechanism.
+MECHANISM = 1e-11
+#: Relative step of the central difference in omega^2 for the modal mass.
+MASS_STEP = 1e-4
+#: The longest step ``polish`` takes (relative): Brent's root is good to about 1e-10 in
+#: the worst conditioning it meets.
+POLISH_REACH = 1e-8
+#: Gauss-Legendre points per segment and per wave in it (a field's wavelength / 2 pi)
+#: for the participation integrals.
+GAUSS_POINTS = 16
+
+
+@dataclass
+class FrameMode:
+    """One mode: its frequency (rad/s), the joints' (X, Y, Theta), the mass-normalised
+    freedom vector (SI) and, on demand, each member's fields."""
+
+    omega: float
+    multiplicity: int
+    nodes: dict[str, tuple[float, float, float]]
+    vector: np.ndarray
+    participation: tuple[float, float] = (0.0, 0.0)
+
+    @property
+    def effective_mass(self) -> tuple[float, float]:
+        """Effective masses along X and Y (kg): the participations squared."""
+        return self.participation[0] ** 2, self.participation[1] ** 2
+
+
+@dataclass
+class FrameSolution:
+    """Natural frequencies (rad/s, ascending, each repeated root once per multiplicity),
+    the multiplicity of the root each belongs to, the modes, and whether the count
+    confirmed every root (``count_checked``)."""
+
+    frame: Frame
+    omega: np.ndarray
+    multiplicity: np.ndarray
+    modes: list[FrameMode] = field(default_factory=list)
+    count_checked: bool = True
+    assembly: Assembly | None = None
+
+    @property
+    def f(self) -> np.ndarray:
+        """Frequencies in Hz."""
+        return self.omega / (2 * math.pi)
+
+    def member_fields(self, mode: int, member: str, points: int = 21) -> dict[str, np.ndarray]:
+        """Along member ``member`` in mode ``mode``: ``x`` (m from its start) and ``u, w,
+        psi, N, Q, M`` (SI, local axes; N tension positive)."""
+        return member_fields(self.assembly, self.modes[mode], member, points)
+
+    def to_dict(self) -> dict:
+        """Plain data: frequencies, multiplicities and each mode's joint displacements."""
+        return {
+            "frame": self.frame.name,
+            "omega": self.omega.tolist(),
+            "f": self.f.tolist(),
+            "multiplicity": self.multiplicity.tolist(),
+            "count_checked": self.count_checked,
+            "modes": [
+                {
+                    "omega": m.omega,
+                    "nodes": {k: list(v) for k, v in m.nodes.items()},
+                    "participation": list(m.participation),
+                    "effective_mass": list(m.effective_mass),
+                }
+                for m in self.modes
+            ],
+        }
+
+
+def _mechanism(asm: Assembly) -> None:
+    """Refuse a frame whose supports and joints leave a rigid motion free (D(0) singular)."""
+    if asm.n == 0:
+        return
+    D0, _ = asm.matrix(0.0)
+    e = np.linalg.eigvalsh(D0)
+    free = int(np.count_nonzero(np.abs(e) <= MECHANISM * np.max(np.abs(e))))
+    if free:
+        raise SceneError(
+            asm.frame.source, "-",
+            f"the structure is a mechanism: {free} free rigid motion(s) at zero frequency"
+            " (add supports or rigid joints)",
+        )  # fmt: skip
+
+
+def roots(
+    asm: Assembly, modes: int | None = None, band: tuple[float, float] | None = None
+) -> list[tuple[float, int]]:
+    """The distinct natural frequencies (rad/s) with their multiplicities: the lowest
+    ``modes`` (the last root kept whole) or all in ``band``."""
+    from scipy.optimize import brentq
+
+    _mechanism(asm)
+    if band is None:
+        lo, hi = 0.0, asm.omega_ref
+        while asm.count(hi) < modes:
+            hi *= 2.0
+    else:
+        lo, hi = band
+    found: list[tuple[float, int]] = []
+
+    def total() -> int:
+        return sum(m for _, m in found)
+
+    def g(w: float, idx: int) -> float:
+        D, _ = asm.matrix(w)
+        return float(np.linalg.eigvalsh(D)[idx])
+
+    stack = [(lo, asm.count(lo) if lo > 0 else 0, hi, asm.count(hi))]
+    while stack:
+        a, ca, b, cb = stack.pop()
+        if cb == ca or (modes is not None and total() >= modes):
+            continue
+        J0a, J0b = asm.matrix(a)[1], asm.matrix(b)[1]
+        if J0a != J0b and b - a > ROOT_GUARD * b:
+            mid = 0.5 * (a + b)
+            cm = asm.count(mid)
+            stack += [(mid, cm, b, cb), (a, ca, mid, cm)]
+            continue
+        idx = ca - J0a
+        ga, gb = g(a, idx), g(b, idx)
+        if ga >= 0.0 and gb < 0.0 and ga != 0.0:
+            w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=ROOT_GUARD, maxiter=200)
+        else:
+            w = 0.5 * (a + b)
+        if b - a <= 2 * SETTLE[-1] * b:  # float64 separates nothing inside: one cluster
+            found.append((w, cb - ca))
+            continue
+        for delta in SETTLE:
+            below = max(a, w * (1 - delta))
+            c_below, unsure_below = asm.sure_count(below)
+            if unsure_below or c_below != ca:
+                continue
+            above = min(b, w * (1 + delta))
+            c_above, unsure_above = asm.sure_count(above)
+            if unsure_above or c_above == ca:
+                continue
+            found.append((w, c_above - ca))
+            if above < b:
+                stack.append((above, c_above, b, cb))
+            break
+        else:  # no window settles: the bracket is cut in two and searched again
+            mid = 0.5 * (a + b)
+            cm = asm.count(mid)
+            stack += [(mid, cm, b, cb), (a, ca, mid, cm)]
+    found.sort()
+    return found
+
+
+def _mass_form(asm: Assembly, w: float) -> np.ndarray:
+    """``-dD/d(omega^2)`` at w (dimensionless units of D per omega_ref^2), by a fourth-order
+    central difference in omega^2."""
+    w2 = w * w
+    h = MASS_STEP * w2 if w2 > 0 else MASS_STEP * asm.omega_ref**2
+    D = [asm.matrix(math.sqrt(max(w2 + j * h, 0.0)))[0] for j in (-2, -1, 1, 2)]
+    return -(D[0] - 8 * D[1] + 8 * D[2] - D[3]) / (12 * h)
+
+
+def _null_space(asm: Assembly, w: float, k: int) -> np.ndarray:
+    """The k eigenvectors of D(w) of the smallest eigenvalues in magnitude."""
+    D, _ = asm.matrix(w)
+    e, V = np.linalg.eigh(D)
+    return V[:, np.argsort(np.abs(e))[:k]]
+
+
+def polish(asm: Assembly, w: float, k: int) -> float:
+    """A root of multiplicity k refined by Newton's method on the Rayleigh quotient
+    ``t(omega) = tr(X^T D(omega) X)`` of its null space X, ``t' = -2 omega tr(X^T M X)``
+    (M = -dD/d(omega^2)).
+
+    Brent's method on an eigenvalue of D stops where that eigenvalue is as small as the
+    eigensolver's normwise error, ``eps |D|``: where members are much stiffer axially than
+    in bending (EA L^2 / EI = 7e5 in the tests) that leaves 5e-12 of the root. ``X^T D X``
+    formed from D's entries errs by ``eps |D| |X|`` entrywise, and the bending modes' X
+    barely move the stiff axial freedoms: two steps bring the root to round-off. A step
+    longer than :data:`POLISH_REACH` (relative) is not taken (a polish, not a search)."""
+    for _ in range(3):
+        X = _null_space(asm, w, k)
+        D, _ = asm.matrix(w)
+        t = float(np.trace(X.T @ D @ X))
+        slope = -2.0 * w * float(np.trace(X.T @ _mass_form(asm, w) @ X))
+        if slope == 0.0 or not math.isfinite(t / slope):
+            break
+        step = t / slope
+        if abs(step) > POLISH_REACH * w:
+            break
+        w -= step
+        if abs(step) <= ROOT_GUARD * w:
+            break
+    return w
+
+
+def _shapes(asm: Assembly, w: float, multiplicity: int) -> list[FrameMode]:
+    """Mass-orthonormal modes spanning the null space of D(w)."""
+    X = _null_space(asm, w, multiplicity)
+    M = _mass_form(asm, w)
+    G = X.T @ M @ X
+    G = 0.5 * (G + G.T)
+    Lc = np.linalg.cholesky(G)
+    X = np.linalg.solve(Lc, X.T).T  # X^T M X = I
+    # back to SI: D_dimless = (L_ref/EI_ref) S D S, so x_SI = S x / sqrt(mass units)
+    units = asm.L_ref / asm.EI_ref  # M_dimless = units * S M_SI S
+    out = []
+    for j in range(multiplicity):
+        x = asm.scale * X[:, j] * math.sqrt(units)
+        out.append(FrameMode(w, multiplicity, _joints(asm, x), x))
+    return out
+
+
+def _joints(asm: Assembly, x: np.ndarray) -> dict[str, tuple[float, float, float]]:
+    out = {}
+    for name, index in asm.node_freedoms.items():
+        v = np.zeros(3)
+        for g in index:
+            v += x[g] * np.asarray(asm.freedoms[g].vector)
+        out[name] = (float(v[0]), float(v[1]), float(v[2]))
+    return out
+
+
+def member_fields(asm: Assembly, mode: FrameMode, member: str, points: int = 21) -> dict:
+    """``x, u, w, psi, N, Q, M`` along a member in a mode (SI, its local axes) at
+    ``points`` equally spaced points."""
+    mm = next(m for m in asm.members if m.member.name == member)
+    return fields_at(mm, mode, np.linspace(0.0, mm.L, points))
+
+
+def fields_at(mm: MemberMap, mode: FrameMode, x: np.ndarray) -> dict:
+    """``x, u, w, psi, N, Q, M`` of member ``mm`` in a mode at the points x (m from its
+    start, ascending): the bending state marched from the start (its end forces from the
+    member's stiffness), the rod's closed form."""
+    d = mm.T @ mode.vector[mm.index]  # [u_a, w_a, psi_a, u_b, w_b, psi_b]
+    L, EI0 = mm.L, mm.p[1]
+    w = mode.omega
+    beta = L * (mm.p[2] * w * w / EI0) ** 0.25
+    K4 = np.empty((4, 4))
+    member_bending(mm.p, beta, K4)
+    nodal = K4 @ np.array([d[1] / L, d[2], d[4] / L, d[5]])  # member units: [F, M_t] at a
+    Z0 = np.array([d[1] / L, d[2], -nodal[1], nodal[0]])
+    Z = np.empty((len(x), 4))
+    member_march(mm.p, beta, Z0, np.asarray(x, dtype=float) / L, Z)
+    K2 = np.empty((2, 2))
+    member_rod(mm.EA, mm.mbar, mm.h, w, K2)
+    N_a = -(K2[0, 0] * d[0] + K2[0, 1] * d[3])  # the start's nodal force is -N
+    u, N = _rod_fields(mm, w, d[0], N_a, np.asarray(x, dtype=float))
+    return {
+        "x": np.asarray(x, dtype=float),
+        "u": u,
+        "w": Z[:, 0] * L,
+        "psi": Z[:, 1],
+        "M": Z[:, 2] * EI0 / L,
+        "Q": Z[:, 3] * EI0 / L**2,
+        "N": N,
+    }
+
+
+def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
+    """``(Gamma_X, Gamma_Y)`` of a mode of unit modal mass: the mass-weighted integral of
+    its displacement along X and Y (members by Gauss-Legendre on each segment, node
+    masses and absorbers); ``Gamma^2`` is the mode's effective mass (kg) in that direction."""
+    gx = gy = 0.0
+    for mm in asm.members:
+        L, c, s = asm.frame.geometry(mm.member)
+        start = 0.0
+        for j, h in enumerate(mm.h):
+            waves = h * (mode.omega * mode.omega * mm.mbar[j] / mm.member.segments[j].EI) ** 0.25
+            waves += h * mode.omega * math.sqrt(mm.mbar[j] / mm.EA[j])
+            n = GAUSS_POINTS * (1 + int(waves))
+            t, weight = np.polynomial.legendre.leggauss(n)
+            x = start + 0.5 * h * (t + 1.0)
+            f = fields_at(mm, mode, x)
+            wt = 0.5 * h * weight * mm.mbar[j]
+            gx += float(np.sum(wt * (c * f["u"] - s * f["w"])))
+            gy += float(np.sum(wt * (s * f["u"] + c * f["w"])))
+            start += h
+    for name, node in asm.frame.nodes.items():
+        X, Y, _ = mode.nodes[name]
+        gx += node.mass * X
+        gy += node.mass * Y
+    for i, ab in enumerate(asm.frame.absorbers):
+        q = mode.vector[asm.absorber_freedoms[i]]
+        gx += ab.m * q * ab.direction[0]
+        gy += ab.m * q * ab.direction[1]
+    return gx, gy
+
+
+def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
+    """u and N along the rod's segments from (u, N) at its start."""
+    u = np.empty_like(xs)
+    N = np.empty_like(xs)
+    start = 0.0
+    for j, h in enumerate(mm.h):
+        EA, mbar = mm.EA[j], mm.mbar[j]
+        kappa = w * math.sqrt(mbar / EA)
+        last = j == len(mm.h) - 1
+        inside = (xs >= start) & ((xs <= start + h) if last else (xs < start + h))
+        t = xs[inside] - start
+        if kappa:
+            u[inside] = u0 * np.cos(kappa * t) + N0 / (EA * kappa) * np.sin(kappa * t)
+            N[inside] = -EA * kappa * u0 * np.sin(kappa * t) + N0 * np.cos(kappa * t)
+            u0, N0 = (
+                u0 * math.cos(kappa * h) + N0 / (EA * kappa) * math.sin(kappa * h),
+                -EA * kappa * u0 * math.sin(kappa * h) + N0 * math.cos(kappa * h),
+            )
+        else:
+            u[inside] = u0 + N0 / EA * t
+            N[inside] = N0
+            u0 = u0 + N0 / EA * h
+        start += h
+    return u, N
+
+
+def solve_frame(
+    frame: Frame,
+    modes: int | None = None,
+    band: tuple[float, float] | None = None,
+    *,
+    shapes: bool = True,
+) -> FrameSolution:
+    """The lowest ``modes`` natural frequencies of ``frame`` (default 10), or all in
+    ``band`` (rad/s), each with its exact multiplicity, and their mode shapes."""
+    if modes is None and band is None:
+        modes = 10
+    asm = Assembly(frame)
+    found = [(polish(asm, w, m), m) for w, m in roots(asm, modes, band)]
+    omega = np.array([w for w, m in found for _ in range(m)])
+    mult = np.array([m for _, m in found for _ in range(m)], dtype=np.int64)
+    modes_out: list[FrameMode] = []
+    if shapes:
+        for w, m in found:
+            modes_out += _shapes(asm, w, m)
+        for mode in modes_out:
+            mode.participation = participation(asm, mode)
+    return FrameSolution(frame, omega, mult, modes_out, True, asm)

@@ -1,0 +1,315 @@
+"""Plane frames (issue 43): the frame solver against independent references.
+
+* the mpmath plane-frame model (``tests/reference_frame.py``: exact member dynamic
+  stiffness assembled, its own Wittrick-Williams count in 30 digits): each root the
+  solver reports is bracketed by that model's count within 1e-13 (relative), with the
+  count's jump equal to the reported multiplicity and the count below it equal to the
+  roots reported below it (none missed, none spurious);
+* NAFEMS FV2's published values (centre held) with its two seven-fold roots;
+* today's single-beam solver (``mstmm.solve``): a straight structure of members is the
+  beam, with its attachments, segments and segment terms, plus its rod modes (closed form);
+* errors that name the field, and the CLI on the bundled example.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from mpmath import mp
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from reference_frame import Frame as RFrame  # noqa: E402
+from reference_frame import count_below, nafems_fv2, sample_frames  # noqa: E402
+
+from mstmm import scene_from_dict, solve  # noqa: E402
+from mstmm.frame import frame_from_dict, load_frame, solve_frame  # noqa: E402
+from mstmm.frame.assembly import Assembly  # noqa: E402
+from mstmm.scene import SceneError  # noqa: E402
+
+EXAMPLES = HERE.parent / "examples"
+DPS = 30
+#: Relative half-width of the bracket the reference's count must jump across.
+BRACKET = 1e-13
+
+
+def as_table(rf: RFrame) -> dict:
+    """A reference frame as a frame scene table (what a user writes)."""
+    nodes = []
+    for name, (x, y) in rf.nodes.items():
+        node = {"name": name, "x": float(x), "y": float(y)}
+        held = rf.held.get(name, "")
+        if held:
+            node["support"] = {"xyt": "fixed", "xy": "pinned"}[held]
+        if name in rf.masses:
+            node["mass"], node["J"] = (float(v) for v in rf.masses[name])
+        nodes.append(node)
+    members = []
+    for m in rf.members:
+        member = {"start": m.a, "end": m.b, "EI": float(m.EI), "EA": float(m.EA)}
+        member["mass_per_length"] = float(m.mbar)
+        for end, key in enumerate(("start_joint", "end_joint")):
+            if m.pinned[end]:
+                member[key] = "pinned"
+        members.append(member)
+    return {"nodes": nodes, "members": members}
+
+
+def check_against_reference(rf: RFrame, sol) -> None:
+    """Every distinct root of ``sol`` is where the reference's count jumps by its
+    multiplicity, and nothing lies below it but the roots reported below it."""
+    distinct = []
+    for w, m in zip(sol.omega, sol.multiplicity):
+        if not distinct or w != distinct[-1][0]:
+            distinct.append((w, int(m)))
+    below_sum = 0
+    with mp.workdps(DPS):
+        for w, m in distinct:
+            lo = count_below(rf, mpmath.mpf(w) * (1 - BRACKET), DPS)
+            hi = count_below(rf, mpmath.mpf(w) * (1 + BRACKET), DPS)
+            assert (lo, hi) == (below_sum, below_sum + m), (w, m, lo, hi)
+            below_sum += m
+
+
+def _fv2_exact_hz() -> list[float]:
+    """FV2 with its centre held, from closed forms (tests/test_reference_frame.py): the
+    arms pinned-pinned (b = pi, 2 pi) and clamped-pinned (tan b = tanh b)."""
+    E, rho, side, arm = 200e9, 8000.0, 0.125, 5.0
+    c = math.sqrt(E * side**4 / 12 / (rho * side * side)) / arm**2 / (2 * math.pi)
+    cp = [float(mpmath.findroot(lambda b: mpmath.tan(b) - mpmath.tanh(b), x)) for x in (3.9, 7.07)]
+    return [math.pi**2 * c, cp[0] ** 2 * c, (2 * math.pi) ** 2 * c, cp[1] ** 2 * c]
+
+
+def test_fv2_centre_held_has_the_published_values_and_two_sevenfold_roots():
+    sol = solve_frame(frame_from_dict(as_table(nafems_fv2(held_centre=True))), 16)
+    distinct = sorted(set(zip(sol.f.tolist(), sol.multiplicity.tolist())))
+    assert [m for _, m in distinct] == [1, 7, 1, 7]
+    assert [round(f, 3) for f, _ in distinct] == [11.336, 17.709, 45.345, 57.390]
+    for (f, _), exact in zip(distinct, _fv2_exact_hz()):
+        assert abs(f / exact - 1) < 1e-13
+    assert len(sol.modes) == 16
+    check_against_reference(nafems_fv2(held_centre=True), sol)
+
+
+def test_fv2_free_centre_against_the_reference_model():
+    """Axially elastic arms, the centre free: five of each seven stay, the two doubles
+    fall (17.681 and 57.075 Hz), every multiplicity as the reference counts it."""
+    rf = nafems_fv2()
+    sol = solve_frame(frame_from_dict(as_table(rf)), 16)
+    distinct = sorted(set(zip(sol.f.tolist(), sol.multiplicity.tolist())))
+    assert [m for _, m in distinct] == [1, 2, 5, 1, 2, 5]
+    assert [round(f, 3) for f, _ in distinct] == [11.336, 17.681, 17.709, 45.345, 57.075, 57.39]
+    check_against_reference(rf, sol)
+
+
+@pytest.mark.parametrize("name", ["L", "portal", "tree", "two_bay_two_storey"])
+def test_frames_against_the_reference_model(name):
+    rf = sample_frames()[name]
+    sol = solve_frame(frame_from_dict(as_table(rf)), 12)
+    assert sol.omega.size >= 12
+    check_against_reference(rf, sol)
+
+
+def _mode_residual(sol) -> float:
+    """The largest |D x| of a solution's modes, relative to |D| |x| (x the freedom vector
+    in D's dimensionless units)."""
+    asm = sol.assembly
+    worst = 0.0
+    for mode in sol.modes:
+        D, _ = asm.matrix(mode.omega)
+        x = mode.vector / asm.scale
+        worst = max(worst, np.linalg.norm(D @ x) / (np.linalg.norm(D, 2) * np.linalg.norm(x)))
+    return worst
+
+
+def test_modes_are_null_vectors_mass_orthonormal_and_continuous_along_members():
+    rf = sample_frames()["portal"]
+    sol = solve_frame(frame_from_dict(as_table(rf)), 6)
+    assert _mode_residual(sol) < 1e-12
+    for j, mode in enumerate(sol.modes):
+        for member in sol.assembly.members:
+            L, c, s = sol.frame.geometry(member.member)
+            fields = sol.member_fields(j, member.member.name, 41)
+            for end, node in ((0, member.member.start), (-1, member.member.end)):
+                X, Y, T = mode.nodes[node]
+                scale = max(1e-30, max(abs(v) for v in mode.nodes[node][:2]))
+                # the member's ends move with its nodes (the end marched from the start)
+                assert abs(fields["u"][end] - (c * X + s * Y)) < 1e-9 * scale + 1e-12
+                assert abs(fields["w"][end] - (-s * X + c * Y)) < 1e-7 * scale + 1e-12
+                assert abs(fields["psi"][end] - T) < 1e-7 * (abs(T) + scale) + 1e-12
+    # unit modal mass: the kinetic energy sum of member integrals and the node mass
+    for j, mode in enumerate(sol.modes):
+        total = 0.0
+        for member in sol.assembly.members:
+            f = sol.member_fields(j, member.member.name, 2001)
+            mbar = member.member.segments[0].mass_per_length
+            total += mbar * np.trapezoid(f["u"] ** 2 + f["w"] ** 2, f["x"])
+        X, Y, T = mode.nodes["C"]
+        total += 5.0 * (X * X + Y * Y) + 0.7 * T * T
+        assert abs(total - 1.0) < 1e-5
+
+
+def _beam_and_members(beam: dict, attachments: list, cut: float) -> tuple:
+    """A clamped-free beam scene and the same structure as two horizontal members meeting
+    at x = cut (its attachments along the members)."""
+    L = beam["length"]
+    beam_scene = scene_from_dict({"beam": {**beam, "left": "clamped", "right": "free"},
+                                  "attachments": attachments})  # fmt: skip
+    props = {k: v for k, v in beam.items() if k != "length"}
+    members, atts = [], []
+    for name, start, end, x0, x1 in (("a", "A", "B", 0.0, cut), ("b", "B", "C", cut, L)):
+        members.append({"name": name, "start": start, "end": end, "EA": 3e7, **props})
+        for a in attachments:
+            if x0 < a["x"] < x1:
+                atts.append({**a, "member": name, "x": a["x"] - x0})
+    table = {
+        "nodes": [
+            {"name": "A", "x": 0.0, "y": 0.0, "support": "fixed"},
+            {"name": "B", "x": cut, "y": 0.0},
+            {"name": "C", "x": L, "y": 0.0},
+        ],
+        "members": members,
+        "attachments": atts,
+    }
+    return beam_scene, frame_from_dict(table)
+
+
+@pytest.mark.parametrize(
+    "beam, attachments",
+    [
+        ({"length": 2.0, "EI": 3.0e3, "mass_per_length": 4.0}, []),
+        (
+            {"length": 2.0, "EI": 3.0e3, "mass_per_length": 4.0, "kappa_GA": 2e5, "rho_I": 0.02},
+            [{"type": "spring_mass", "x": 1.3, "k": 4e4, "m": 1.5}],
+        ),
+        (
+            {"length": 2.0, "EI": 3.0e3, "mass_per_length": 4.0, "axial_force": 800.0},
+            [{"type": "mass", "x": 0.4, "m": 2.0, "J": 0.1}],
+        ),
+    ],
+    ids=["bare", "timoshenko_absorber", "tension_mass"],
+)
+def test_a_straight_structure_of_members_is_the_beam(beam, attachments):
+    """A straight frame of two members has the beam's bending frequencies (today's
+    solver) to round-off; its lowest rod frequency (2150 rad/s, EA L^2 / EI = 4e4, a
+    slender member's) lies above the five compared."""
+    scene, frame = _beam_and_members(beam, attachments, 0.7)
+    n = 5
+    expected = solve(scene, modes=n, shapes=False).omega
+    got = solve_frame(frame, n, shapes=False).omega[:n]
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+
+
+def test_rod_modes_of_a_collinear_structure_are_the_closed_form():
+    """A clamped-free bar of two members along a diagonal: its axial frequencies
+    ``(2k - 1) pi c / (2 L)`` among the bending ones, each simple."""
+    EA, mbar, L, EI = 2e6, 2.0, 3.0, 1.0e-3  # bending far below: its modes crowd low
+    c, s = math.cos(0.6), math.sin(0.6)
+    table = {
+        "nodes": [
+            {"name": "A", "x": 0.0, "y": 0.0, "support": "fixed"},
+            {"name": "B", "x": 1.2 * c, "y": 1.2 * s},
+            {"name": "C", "x": L * c, "y": L * s},
+        ],
+        "members": [
+            {"start": "A", "end": "B", "EI": EI, "EA": EA, "mass_per_length": mbar},
+            {"start": "B", "end": "C", "EI": EI, "EA": EA, "mass_per_length": mbar},
+        ],
+    }
+    frame = frame_from_dict(table)
+    wave = math.sqrt(EA / mbar)
+    for k in (1, 2):
+        w = (2 * k - 1) * math.pi / 2 * wave / L
+        sol = solve_frame(frame, band=(w * (1 - 1e-9), w * (1 + 1e-9)), shapes=False)
+        assert sol.omega.size == 1 and abs(sol.omega[0] / w - 1) < 1e-12
+
+
+@pytest.mark.parametrize(
+    "change, field, problem",
+    [
+        (lambda t: t["members"][0].update(end="A"), "members[0].end", "zero length"),
+        (lambda t: t["members"][1].update(start="Q"), "members[1].start", "no node"),
+        (lambda t: t["nodes"].append({"name": "Z", "x": 9.0, "y": 9.0}), "nodes[3].name",
+         "no member reaches"),
+        (lambda t: t["members"][0].update(EI=-1.0), "members[0].EI", "> 0"),
+        (lambda t: t["nodes"][0].update(support="glued"), "nodes[0].support", "one of"),
+        (lambda t: t["members"][0].update(colour="red"), "members[0]", "colour"),
+    ],
+)  # fmt: skip
+def test_bad_frames_name_the_field(change, field, problem):
+    table = as_table(sample_frames()["L"])
+    change(table)
+    with pytest.raises(SceneError) as err:
+        frame_from_dict(table, "f.toml")
+    assert f"f.toml: {field}" in str(err.value) and problem in str(err.value)
+
+
+def test_a_mechanism_is_refused():
+    table = as_table(sample_frames()["L"])
+    table["nodes"][0]["support"] = "pinned"  # the L turns about its pinned foot
+    with pytest.raises(SceneError, match="mechanism: 1 free rigid motion"):
+        solve_frame(frame_from_dict(table, "f.toml"), 3)
+
+
+def test_cli_solves_the_fv2_example_with_its_multiplicities(tmp_path):
+    out = subprocess.run(
+        [sys.executable, "-m", "mstmm", "solve", str(EXAMPLES / "frames" / "nafems_fv2.toml"),
+         "--modes", "16", "--format", "csv"],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    rows = [r.split(",") for r in out.stdout.splitlines()[1:] if r]
+    mult = [int(r[3]) for r in rows]
+    assert mult == [1, 2, 2, 5, 5, 5, 5, 5, 1, 2, 2, 5, 5, 5, 5, 5]
+    frame = load_frame(EXAMPLES / "frames" / "nafems_fv2.toml")
+    assert Assembly(frame).count(2 * math.pi * 60.0) == 16
+    bad = tmp_path / "bad.toml"
+    text = (EXAMPLES / "frames" / "nafems_fv2.toml").read_text()
+    bad.write_text(text.replace('end = "P3"', 'end = "P9"'))
+    out = subprocess.run([sys.executable, "-m", "mstmm", "solve", str(bad)], capture_output=True,
+                         text=True, timeout=600)  # fmt: skip
+    assert out.returncode == 2 and "members[3].end: no node of this name" in out.stderr
+
+
+def test_effective_masses_of_a_column_are_the_beams():
+    """A vertical cantilever column (clamped base) with a tip mass and an absorber at
+    mid-height: its effective masses along X are the beam solver's (another code path:
+    the beam's own shapes), along Y the rod's share only, and their sums approach the
+    mass that moves (all of it but nothing at the base)."""
+    EI, mbar, L, EA = 4.0e5, 30.0, 6.0, 8.0e9
+    beam = scene_from_dict(
+        {
+            "beam": {"length": L, "EI": EI, "mass_per_length": mbar, "left": "clamped",
+                     "right": "free"},
+            "attachments": [
+                {"type": "mass", "x": L, "m": 50.0},
+                {"type": "spring_mass", "x": 2.5, "k": 3.0e4, "m": 8.0},
+            ],
+        }
+    )  # fmt: skip
+    frame = frame_from_dict(
+        {
+            "nodes": [
+                {"name": "base", "x": 0.0, "y": 0.0, "support": "fixed"},
+                {"name": "top", "x": 0.0, "y": L, "mass": 50.0},
+            ],
+            "members": [{"name": "col", "start": "base", "end": "top", "EI": EI, "EA": EA,
+                         "mass_per_length": mbar}],
+            "attachments": [{"type": "spring_mass", "member": "col", "x": 2.5, "k": 3.0e4,
+                             "m": 8.0, "direction": [1.0, 0.0]}],
+        }
+    )  # fmt: skip
+    n = 5
+    ref = solve(beam, modes=n)
+    sol = solve_frame(frame, n)
+    np.testing.assert_allclose(sol.omega[:n], ref.omega, rtol=1e-12)
+    got = np.array([m.effective_mass[0] for m in sol.modes[:n]])
+    expected = np.array([s.effective_mass for s in ref.shapes])
+    np.testing.assert_allclose(got, expected, rtol=1e-9, atol=1e-9 * frame.mass)
+    assert max(m.effective_mass[1] for m in sol.modes[:n]) < 1e-9 * frame.mass
