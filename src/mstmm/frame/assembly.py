@@ -25,7 +25,7 @@ import numpy as np
 
 from mstmm.catalog import Topology, layout
 
-from .member import member_bending, member_rod
+from .member import assemble_members
 from .model import Frame, Member
 
 __all__ = ["Assembly", "Freedom"]
@@ -81,6 +81,12 @@ class Assembly:
         self.n = len(self.freedoms)
         self.scale = np.array([self.L_ref if f.translation else 1.0 for f in self.freedoms])
         self.members = [self._member(m) for m in frame.members]
+        self.packed = self._packed()
+        S = self.scale * math.sqrt(self.L_ref / self.EI_ref)
+        K, M = self._lumped()
+        self.K_lumped = S[:, None] * K * S[None, :]
+        self.M_lumped = S[:, None] * M * S[None, :]
+        self.perm, self.bandwidth = _band_order(self)
 
     def _add(self, freedom: Freedom) -> int:
         self.freedoms.append(freedom)
@@ -121,72 +127,150 @@ class Assembly:
         h = np.array([sg.length for sg in m.segments])
         return MemberMap(m, L, p, np.asarray(index, dtype=np.int64), T, EA, mbar, h)
 
-    def matrix(self, omega: float) -> tuple[np.ndarray, int]:
-        """``(D, J0)``: the dimensionless dynamic stiffness at omega (rad/s) over the free
-        freedoms, and the members' clamped-clamped frequencies below omega."""
-        D = np.zeros((self.n, self.n))
-        J0 = 0
-        K4 = np.empty((4, 4))
-        K2 = np.empty((2, 2))
-        k = np.zeros((6, 6))
-        for mm in self.members:
-            beta = mm.L * (mm.p[2] * omega * omega / mm.p[1]) ** 0.25
-            J0 += member_bending(mm.p, beta, K4)
-            J0 += member_rod(mm.EA, mm.mbar, mm.h, omega, K2)
-            EI0, L = mm.p[1], mm.L
-            d = np.array([1.0, L, 1.0, L])
-            k[:] = 0.0
-            k[np.ix_(_BEND, _BEND)] = (EI0 / L**3) * d[:, None] * K4 * d[None, :]
-            k[np.ix_(_ROD, _ROD)] = K2
-            D[np.ix_(mm.index, mm.index)] += mm.T.T @ k @ mm.T
-        w2 = omega * omega
+    def _lumped(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(K, M)`` of everything but the members, over the free freedoms (SI): node
+        springs and masses, hinge springs, absorbers (``D = members + K - omega^2 M``)."""
+        K = np.zeros((self.n, self.n))
+        M = np.zeros((self.n, self.n))
         for name, node in self.frame.nodes.items():
+            kxx, kxy, kyy = node.springs
             for g in self.node_freedoms[name]:
                 for h in self.node_freedoms[name]:
                     a, b = self.freedoms[g].vector, self.freedoms[h].vector
-                    kxx, kxy, kyy = node.springs
-                    D[g, h] += a[0] * (kxx * b[0] + kxy * b[1]) + a[1] * (kxy * b[0] + kyy * b[1])
-                    D[g, h] += a[2] * node.k_t * b[2]
-                    D[g, h] -= w2 * (node.mass * (a[0] * b[0] + a[1] * b[1]) + node.J * a[2] * b[2])
+                    K[g, h] += a[0] * (kxx * b[0] + kxy * b[1]) + a[1] * (kxy * b[0] + kyy * b[1])
+                    K[g, h] += a[2] * node.k_t * b[2]
+                    M[g, h] += node.mass * (a[0] * b[0] + a[1] * b[1]) + node.J * a[2] * b[2]
         for m in self.frame.members:
             for end in (0, 1):
                 k_h = m.hinge_k[end]
                 if k_h:
-                    node = m.end if end else m.start
                     own = self.hinges[(m.name, end)]
-                    for g in self.node_freedoms[node]:
+                    for g in self.node_freedoms[m.end if end else m.start]:
                         if not self.freedoms[g].translation:
-                            D[own, own] += k_h
-                            D[g, g] += k_h
-                            D[own, g] -= k_h
-                            D[g, own] -= k_h
+                            K[np.ix_([own, g], [own, g])] += k_h * np.array([[1, -1], [-1, 1]])
         for i, ab in enumerate(self.frame.absorbers):
             q = self.absorber_freedoms[i]
-            D[q, q] += ab.k - w2 * ab.m
+            # k (q - d . U)^2 / 2: the row [1, -d . v_g] on (q, g)
+            row = {q: 1.0}
             for g in self.node_freedoms[ab.node]:
                 v = self.freedoms[g].vector
                 dv = ab.direction[0] * v[0] + ab.direction[1] * v[1]
                 if dv:
-                    D[q, g] -= ab.k * dv
-                    D[g, q] -= ab.k * dv
-                    for h in self.node_freedoms[ab.node]:
-                        u = self.freedoms[h].vector
-                        D[g, h] += ab.k * dv * (ab.direction[0] * u[0] + ab.direction[1] * u[1])
-        S = self.scale
-        return (self.L_ref / self.EI_ref) * (S[:, None] * D * S[None, :]), J0
+                    row[g] = -dv
+            for g, a in row.items():
+                for h, b in row.items():
+                    K[g, h] += ab.k * a * b
+            M[q, q] += ab.m
+        return K, M
+
+    def _packed(self) -> tuple:
+        """The members as :func:`member.assemble_members` reads them, D's units in T."""
+        units = self.L_ref / self.EI_ref
+        P = np.concatenate([mm.p for mm in self.members])
+        p_off = np.cumsum([0] + [len(mm.p) for mm in self.members]).astype(np.int64)
+        EA = np.concatenate([mm.EA for mm in self.members])
+        mbar = np.concatenate([mm.mbar for mm in self.members])
+        h = np.concatenate([mm.h for mm in self.members])
+        r_off = np.cumsum([0] + [len(mm.h) for mm in self.members]).astype(np.int64)
+        L = np.array([mm.L for mm in self.members])
+        T = np.zeros((len(self.members), 6, 6))
+        idx = np.full((len(self.members), 6), -1, dtype=np.int64)
+        for i, mm in enumerate(self.members):
+            n = len(mm.index)
+            idx[i, :n] = mm.index
+            T[i, :, :n] = mm.T * self.scale[mm.index][None, :] * math.sqrt(units)
+        return P, p_off, EA, mbar, h, r_off, L, T, idx
+
+    def matrix(self, omega: float) -> tuple[np.ndarray, int]:
+        """``(D, J0)``: the dimensionless dynamic stiffness at omega (rad/s) over the free
+        freedoms, and the members' clamped-clamped frequencies below omega."""
+        D = self.K_lumped - (omega * omega) * self.M_lumped
+        J0 = assemble_members(*self.packed, omega, D)
+        return D, J0
 
     def count(self, omega: float) -> int:
         """Natural frequencies below omega (rad/s), with their multiplicities."""
+        return self.state(omega)[0]
+
+    def state(self, omega: float) -> tuple[int, int]:
+        """``(count, J0)`` at omega (rad/s): the count and the members' part of it."""
         D, J0 = self.matrix(omega)
-        return J0 + int(np.count_nonzero(np.linalg.eigvalsh(D) < 0.0))
+        return J0 + self.eigenvalues_in(D, -np.inf, 0.0), J0
 
     def sure_count(self, omega: float) -> tuple[int, int]:
         """``(count, unsure)``: the count, and how many eigenvalues of D lie within its
-        round-off (:data:`ROUNDOFF` times its largest) of 0, whose sign it cannot tell."""
+        round-off (:data:`ROUNDOFF` times its norm) of 0, whose sign it cannot tell."""
         D, J0 = self.matrix(omega)
-        e = np.linalg.eigvalsh(D)
-        tau = ROUNDOFF * np.max(np.abs(e))
-        return J0 + int(np.count_nonzero(e < 0.0)), int(np.count_nonzero(np.abs(e) <= tau))
+        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max()) if self.n else 0.0
+        negative = self.eigenvalues_in(D, -np.inf, 0.0)
+        return J0 + negative, self.eigenvalues_in(D, -tau, tau)
+
+    def band(self, D: np.ndarray) -> np.ndarray:
+        """D in the reordering :attr:`perm` as LAPACK's upper band storage."""
+        b, n = self.bandwidth, self.n
+        Dp = D[np.ix_(self.perm, self.perm)]
+        ab = np.zeros((b + 1, n))
+        for k in range(b + 1):
+            ab[b - k, k:] = np.diagonal(Dp, k)
+        return ab
+
+    def eigenvalues_in(self, D: np.ndarray, lo: float, hi: float) -> int:
+        """How many eigenvalues of D lie in [lo, hi) (``hi = 0``: its negative ones), by
+        the band reduction to a tridiagonal and bisection (orthogonal: stable at any
+        inertia), from LAPACK's half-open (lo, hi] by the ends' closest floats."""
+        from scipy.linalg import eig_banded
+
+        if self.n == 0:
+            return 0
+        big = np.finfo(float).max
+        lo = -big if lo <= -big else float(np.nextafter(lo, -np.inf))
+        e = eig_banded(
+            self.band(D), eigvals_only=True, select="v",
+            select_range=(lo, float(np.nextafter(hi, -np.inf))),
+            check_finite=False,
+        )  # fmt: skip
+        return int(len(e))
+
+    def eigenvalue(self, D: np.ndarray, index: int) -> float:
+        """The ``index``-th eigenvalue of D in ascending order."""
+        from scipy.linalg import eig_banded
+
+        e = eig_banded(
+            self.band(D), eigvals_only=True, select="i", select_range=(index, index),
+            check_finite=False,
+        )  # fmt: skip
+        return float(e[0])
+
+    def near_zero(self, D: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """The k eigenvalues of D of least magnitude and their eigenvectors (columns)."""
+        from scipy.linalg import eig_banded
+
+        neg = self.eigenvalues_in(D, -np.inf, 0.0)
+        first, last = max(0, neg - k), min(self.n - 1, neg + k - 1)
+        e, V = eig_banded(self.band(D), select="i", select_range=(first, last), check_finite=False)
+        keep = np.argsort(np.abs(e))[:k]
+        X = np.empty((self.n, len(keep)))
+        X[self.perm] = V[:, keep]
+        return e[keep], X
+
+
+def _band_order(asm: Assembly) -> tuple[np.ndarray, int]:
+    """A reordering of the freedoms that makes D banded (reverse Cuthill-McKee on the
+    freedoms' couplings: members, springs, absorbers), and its half-bandwidth."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    n = asm.n
+    if n == 0:
+        return np.zeros(0, dtype=np.int64), 0
+    A = (np.abs(asm.K_lumped) + np.abs(asm.M_lumped)) > 0.0
+    for idx in asm.packed[-1]:
+        g = idx[idx >= 0]
+        A[np.ix_(g, g)] = True
+    A[np.arange(n), np.arange(n)] = True
+    perm = np.asarray(reverse_cuthill_mckee(csr_matrix(A), symmetric_mode=True), dtype=np.int64)
+    i, j = np.nonzero(A[np.ix_(perm, perm)])
+    return perm, int(np.max(np.abs(i - j)))
 
 
 @dataclass
@@ -207,9 +291,6 @@ class MemberMap:
 #: An eigenvalue of D within this fraction of its largest is round-off (``sure_count``):
 #: D is formed to about 100 ulp (each member's pieces eliminated, turned and added).
 ROUNDOFF = 1e3 * np.finfo(float).eps
-#: The local freedoms of the bending block and of the rod.
-_BEND = np.array([1, 2, 4, 5])
-_ROD = np.array([0, 3])
 
 
 def _physics(physics: tuple[tuple[str, float], ...]) -> list[float]:

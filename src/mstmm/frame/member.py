@@ -214,3 +214,52 @@ def member_march(p, beta, Z0, xs, out):
             j += 1
         else:
             seg += 1
+
+
+@njit(cache=True)
+def assemble_members(P, p_off, EA, mbar, h, r_off, L, T, idx, omega, D):
+    """D += every member's exact dynamic stiffness at omega (rad/s), turned to the global
+    freedoms: member i's beam is ``P[p_off[i]:p_off[i + 1]]``, its rod segments
+    ``EA, mbar, h[r_off[i]:r_off[i + 1]]``, its length L[i]; ``T[i]`` (6 x 6) maps the
+    global freedoms ``idx[i]`` (-1: none) to its local ``[u_a, w_a, psi_a, u_b, w_b,
+    psi_b]`` and carries D's units. Returns the members' J0."""
+    K4 = np.empty((4, 4))
+    K2 = np.empty((2, 2))
+    k = np.zeros((6, 6))
+    bend = (1, 2, 4, 5)
+    J0 = 0
+    for i in range(len(p_off) - 1):
+        p = P[p_off[i] : p_off[i + 1]]
+        Li = L[i]
+        beta = Li * (p[2] * omega * omega / p[1]) ** 0.25
+        J0 += member_bending(p, beta, K4)
+        r0, r1 = r_off[i], r_off[i + 1]
+        J0 += member_rod(EA[r0:r1], mbar[r0:r1], h[r0:r1], omega, K2)
+        scale = p[1] / Li**3
+        for r in range(6):
+            for c in range(6):
+                k[r, c] = 0.0
+        for r in range(4):
+            dr = Li if r % 2 == 1 else 1.0
+            for c in range(4):
+                dc = Li if c % 2 == 1 else 1.0
+                k[bend[r], bend[c]] = scale * dr * K4[r, c] * dc
+        k[0, 0] = K2[0, 0]
+        k[0, 3] = K2[0, 1]
+        k[3, 0] = K2[1, 0]
+        k[3, 3] = K2[1, 1]
+        Ti = T[i]
+        kT = k @ Ti
+        for a in range(6):
+            ga = idx[i, a]
+            if ga < 0:
+                continue
+            for b in range(6):
+                gb = idx[i, b]
+                if gb < 0:
+                    continue
+                acc = 0.0
+                for r in range(6):
+                    acc += Ti[r, a] * kT[r, b]
+                D[ga, gb] += acc
+    return J0

@@ -8,7 +8,8 @@ missed and a repeated root's multiplicity is the count's jump across it:
    there);
 2. then ``g(omega)``, the ``(count(a) - J0)``-th eigenvalue of D in ascending order, is
    >= 0 at a and < 0 from the bracket's first root on (D's negative eigenvalues never
-   fall between poles, as the count never does): Brent's method finds that root;
+   fall between poles, as the count never does): Brent's method finds that root to
+   1e-11 and :func:`polish` to round-off;
 3. the counts just below and above it say how many roots lie there: the narrowest
    window (:data:`SETTLE`, 4 ulp to 1e-9) at whose edges no eigenvalue of D lies within
    its round-off (:meth:`Assembly.sure_count`), with the bracket's count below, gives the
@@ -49,8 +50,13 @@ SETTLE = (ROOT_GUARD, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9)
 MECHANISM = 1e-11
 #: Relative step of the central difference in omega^2 for the modal mass.
 MASS_STEP = 1e-4
-#: The longest step ``polish`` takes (relative): Brent's root is good to about 1e-10 in
-#: the worst conditioning it meets.
+#: Brent's relative tolerance: ``polish`` takes the root from there to round-off.
+BRENT_RTOL = 1e-11
+#: Eigenvalues of D within this factor of the least belong to the same root
+#: (``local_multiplicity``): at Brent's 1e-11 a root's own eigenvalues are 1e-11 of their
+#: slope, another root's 1e-8 away already 1e-8.
+SAME_ROOT = 1e2
+#: The longest step ``polish`` takes (relative to the root).
 POLISH_REACH = 1e-8
 #: Gauss-Legendre points per segment and per wave in it (a field's wavelength / 2 pi)
 #: for the participation integrals.
@@ -152,24 +158,25 @@ def roots(
         return sum(m for _, m in found)
 
     def g(w: float, idx: int) -> float:
-        D, _ = asm.matrix(w)
-        return float(np.linalg.eigvalsh(D)[idx])
+        return asm.eigenvalue(asm.matrix(w)[0], idx)
 
-    stack = [(lo, asm.count(lo) if lo > 0 else 0, hi, asm.count(hi))]
+    stack = [(lo, *(asm.state(lo) if lo > 0 else (0, 0)), hi, *asm.state(hi))]
     while stack:
-        a, ca, b, cb = stack.pop()
+        a, ca, ja, b, cb, jb = stack.pop()
         if cb == ca or (modes is not None and total() >= modes):
             continue
-        J0a, J0b = asm.matrix(a)[1], asm.matrix(b)[1]
-        if J0a != J0b and b - a > ROOT_GUARD * b:
+        if ja != jb and b - a > ROOT_GUARD * b:
             mid = 0.5 * (a + b)
-            cm = asm.count(mid)
-            stack += [(mid, cm, b, cb), (a, ca, mid, cm)]
+            cm, jm = asm.state(mid)
+            stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
             continue
-        idx = ca - J0a
+        idx = ca - ja
         ga, gb = g(a, idx), g(b, idx)
         if ga >= 0.0 and gb < 0.0 and ga != 0.0:
-            w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=ROOT_GUARD, maxiter=200)
+            w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=BRENT_RTOL, maxiter=200)
+            w = min(
+                max(polish(asm, w, local_multiplicity(asm, w, cb - ca), w * POLISH_REACH), a), b
+            )
         else:
             w = 0.5 * (a + b)
         if b - a <= 2 * SETTLE[-1] * b:  # float64 separates nothing inside: one cluster
@@ -186,12 +193,12 @@ def roots(
                 continue
             found.append((w, c_above - ca))
             if above < b:
-                stack.append((above, c_above, b, cb))
+                stack.append((above, *asm.state(above), b, cb, jb))
             break
         else:  # no window settles: the bracket is cut in two and searched again
             mid = 0.5 * (a + b)
-            cm = asm.count(mid)
-            stack += [(mid, cm, b, cb), (a, ca, mid, cm)]
+            cm, jm = asm.state(mid)
+            stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
     found.sort()
     return found
 
@@ -207,12 +214,19 @@ def _mass_form(asm: Assembly, w: float) -> np.ndarray:
 
 def _null_space(asm: Assembly, w: float, k: int) -> np.ndarray:
     """The k eigenvectors of D(w) of the smallest eigenvalues in magnitude."""
-    D, _ = asm.matrix(w)
-    e, V = np.linalg.eigh(D)
-    return V[:, np.argsort(np.abs(e))[:k]]
+    return asm.near_zero(asm.matrix(w)[0], k)[1]
 
 
-def polish(asm: Assembly, w: float, k: int) -> float:
+def local_multiplicity(asm: Assembly, w: float, most: int) -> int:
+    """How many of D(w)'s ``most`` eigenvalues of least magnitude belong to the root near
+    w: those within :data:`SAME_ROOT` times the least (the others belong to roots farther
+    off, as far as their eigenvalues are larger)."""
+    e, _ = asm.near_zero(asm.matrix(w)[0], most)
+    e = np.sort(np.abs(e))
+    return max(1, int(np.count_nonzero(e <= SAME_ROOT * e[0] + 1e-300)))
+
+
+def polish(asm: Assembly, w: float, k: int, reach: float) -> float:
     """A root of multiplicity k refined by Newton's method on the Rayleigh quotient
     ``t(omega) = tr(X^T D(omega) X)`` of its null space X, ``t' = -2 omega tr(X^T M X)``
     (M = -dD/d(omega^2)).
@@ -222,7 +236,8 @@ def polish(asm: Assembly, w: float, k: int) -> float:
     in bending (EA L^2 / EI = 7e5 in the tests) that leaves 5e-12 of the root. ``X^T D X``
     formed from D's entries errs by ``eps |D| |X|`` entrywise, and the bending modes' X
     barely move the stiff axial freedoms: two steps bring the root to round-off. A step
-    longer than :data:`POLISH_REACH` (relative) is not taken (a polish, not a search)."""
+    longer than ``reach`` is not taken (a polish, not a search); k is the multiplicity the
+    bracket allows (at most the root's: X then holds the nearest eigenvectors)."""
     for _ in range(3):
         X = _null_space(asm, w, k)
         D, _ = asm.matrix(w)
@@ -231,7 +246,7 @@ def polish(asm: Assembly, w: float, k: int) -> float:
         if slope == 0.0 or not math.isfinite(t / slope):
             break
         step = t / slope
-        if abs(step) > POLISH_REACH * w:
+        if abs(step) > reach:
             break
         w -= step
         if abs(step) <= ROOT_GUARD * w:
@@ -370,7 +385,7 @@ def solve_frame(
     if modes is None and band is None:
         modes = 10
     asm = Assembly(frame)
-    found = [(polish(asm, w, m), m) for w, m in roots(asm, modes, band)]
+    found = roots(asm, modes, band)
     omega = np.array([w for w, m in found for _ in range(m)])
     mult = np.array([m for _, m in found for _ in range(m)], dtype=np.int64)
     modes_out: list[FrameMode] = []
