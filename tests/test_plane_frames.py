@@ -313,3 +313,128 @@ def test_effective_masses_of_a_column_are_the_beams():
     expected = np.array([s.effective_mass for s in ref.shapes])
     np.testing.assert_allclose(got, expected, rtol=1e-9, atol=1e-9 * frame.mass)
     assert max(m.effective_mass[1] for m in sol.modes[:n]) < 1e-9 * frame.mass
+
+
+def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
+    """The receptance at the top of a vertical cantilever column carrying a damped
+    absorber (force and displacement along X there) equals the mpmath reference model's
+    (``reference_model.frf``: a direct solve of the beam's global system) at frequencies
+    across the first three modes."""
+    from reference_model import frf as reference_frf
+
+    from mstmm.frame import frf
+
+    EI, mbar, L, EA = 4.0e5, 30.0, 6.0, 8.0e9
+    absorber = {"type": "spring_mass", "k": 3.0e4, "m": 8.0, "c": 60.0}
+    beam = scene_from_dict(
+        {
+            "beam": {"length": L, "EI": EI, "mass_per_length": mbar, "left": "clamped",
+                     "right": "free"},
+            "attachments": [{**absorber, "x": 2.5}],
+        }
+    )  # fmt: skip
+    frame = frame_from_dict(
+        {
+            "nodes": [
+                {"name": "base", "x": 0.0, "y": 0.0, "support": "fixed"},
+                {"name": "top", "x": 0.0, "y": L},
+            ],
+            "members": [{"name": "col", "start": "base", "end": "top", "EI": EI, "EA": EA,
+                         "mass_per_length": mbar}],
+            "attachments": [{**absorber, "member": "col", "x": 2.5, "direction": [1.0, 0.0]}],
+        }
+    )  # fmt: skip
+    omega = np.array([20.0, 31.0, 150.0, 400.0])
+    point = ("force", "x", L)
+    expected = reference_frf(beam, point, ("displacement", "x", L), omega, dps=20)
+    expected = np.array([complex(h) for h in expected])
+    got = frf(frame, ("force", "top", (1.0, 0.0)), ("displacement", "top", (1.0, 0.0)), omega)
+    np.testing.assert_allclose(got, expected, rtol=1e-9)
+    with pytest.raises(SceneError, match="damped natural frequencies of frames"):
+        solve_frame(frame, 3)
+
+
+def test_the_building_example_splits_its_first_mode_with_the_roof_damper():
+    """examples/frames/building_tmd.toml: the roof damper, tuned by Den Hartog's rule to
+    the bare frame's first mode, splits it into two roots on either side, both swaying
+    the roof along X; with Den Hartog's dashpot the roof's receptance has two humps near
+    them, each lower than the bare frame's response 3 % off its resonance (Den
+    Hartog's peak for mu = 0.02 is about sqrt(1 + 2 / mu) = 10 times the static
+    response, the bare frame's 3 % off resonance 16 times)."""
+    from mstmm.frame import frf
+
+    path = EXAMPLES / "frames" / "building_tmd.toml"
+    table = _toml(path)
+    frame = load_frame(path)
+    bare = frame_from_dict({**table, "attachments": []}, str(path))
+    bare_sol = solve_frame(bare, 3)
+    f_bare = bare_sol.f
+    sol = solve_frame(frame, 4)
+    assert sol.f[0] < f_bare[0] < sol.f[1] < f_bare[1]
+    assert all(m.effective_mass[0] > 0.1 * frame.mass for m in sol.modes[:2])
+    assert sol.multiplicity[:4].tolist() == [1, 1, 1, 1]
+    damper = table["attachments"][0]
+    roof = damper["node"]
+    modal_mass = 1.0 / bare_sol.modes[0].nodes[roof][0] ** 2  # the mode scaled to 1 at the roof
+    mu = damper["m"] / modal_mass
+    assert 0.01 < mu < 0.05  # as the example's comment says it was chosen
+    zeta = math.sqrt(3 * mu / (8 * (1 + mu) ** 3))
+    damper["c"] = 2 * zeta * math.sqrt(damper["k"] * damper["m"])
+    damped = frame_from_dict(table, str(path))
+    push, look = ("force", roof, (1.0, 0.0)), ("displacement", roof, (1.0, 0.0))
+    w = 2 * math.pi * f_bare[0] * np.linspace(0.7, 1.3, 241)
+    H = np.abs(frf(damped, push, look, w))
+    peaks = [j for j in range(1, len(w) - 1) if H[j] >= H[j - 1] and H[j] >= H[j + 1]]
+    assert len(peaks) == 2
+    assert w[peaks[0]] < 2 * math.pi * f_bare[0] < w[peaks[1]]
+    off = np.abs(frf(bare, push, look, [2 * math.pi * 1.03 * f_bare[0]]))
+    assert H.max() < off[0]
+
+
+def _toml(path) -> dict:
+    import tomllib
+
+    with open(path, "rb") as f:
+        return tomllib.load(f)
+
+
+def test_the_mode_shape_plot_draws_the_structure_on_equal_axes(tmp_path):
+    """``mstmm plot`` of a frame (the path a user calls): a PNG of its modes; through the
+    API each panel is on equal axes, titled with its frequency (and multiplicity), and
+    its deformed members end where the joints' displacements put them."""
+    from mstmm.frame.plot import AMPLITUDE, mode_shapes
+
+    out = tmp_path / "fv2.png"
+    run = subprocess.run(
+        [sys.executable, "-m", "mstmm", "plot", str(EXAMPLES / "frames" / "nafems_fv2.toml"),
+         "--modes", "4", "-o", str(out)],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    sol = solve_frame(frame_from_dict(as_table(sample_frames()["portal"])), 3)
+    fig = mode_shapes(sol, None, 3)
+    panels = [ax for ax in fig.axes if ax.get_title()]
+    assert len(panels) == 3
+    for j, ax in enumerate(panels):
+        assert ax.get_aspect() == 1.0
+        assert f"{sol.f[j]:.5g} Hz" in ax.get_title()
+        lines = ax.get_lines()
+        deformed = [ln for ln in lines if ln.get_color() == "C0"]
+        assert len(deformed) == len(sol.frame.members)
+        # the portal's beam (member 1, B to C) ends at C displaced by the scaled joint motion
+        X, Y = deformed[1].get_xdata()[-1], deformed[1].get_ydata()[-1]
+        dX, dY, _ = sol.modes[j].nodes["C"]
+        biggest = max(
+            float(np.max(np.hypot(*_xy(sol, j, m.member.name)))) for m in sol.assembly.members
+        )
+        scale = AMPLITUDE * 4.0 / biggest
+        assert abs(X - (4.0 + scale * dX)) < 1e-9 and abs(Y - (3.0 + scale * dY)) < 1e-9
+
+
+def _xy(sol, j: int, member: str) -> tuple:
+    """The displacement along X and Y of a member's drawn points in mode j."""
+    m = next(mm for mm in sol.assembly.members if mm.member.name == member)
+    L, c, s = sol.frame.geometry(m.member)
+    f = sol.member_fields(j, member, 21)
+    return c * f["u"] - s * f["w"], s * f["u"] + c * f["w"]

@@ -33,6 +33,7 @@ def _load() -> None:
     from .output import CannotWrite
     from .scene import SceneError, check_band, load_scene
 
+
 EXIT_FAILURE = 1
 EXIT_BAD_INPUT = 2
 EXIT_UNTRUSTED = 3
@@ -599,6 +600,8 @@ def _plot(args) -> int:
         return EXIT_FAILURE
     _check_image_format(plot, args.out, "--out")
     target = _check_out_dir(args.out)  # a symbolic link: its target
+    if _is_frame_file(args.scene):
+        return _plot_frame(args, target)
     scene = _scene(args.scene)
     if args.frf:
         if args.band is None or args.sweep is not None:
@@ -626,6 +629,21 @@ def _plot(args) -> int:
         except plot.Buckled as exc:  # as solve says it
             print(f"{scene.name}: {exc}")
             return EXIT_UNTRUSTED
+    print(args.out)
+    return 0
+
+
+def _plot_frame(args, target: Path) -> int:
+    """``mstmm plot`` of a frame: its lowest mode shapes drawn on the structure."""
+    from .frame import load_frame, solve_frame
+    from .frame.plot import mode_shapes
+
+    for option in ("frf", "sweep", "band", "input"):
+        if getattr(args, option, None):
+            raise SceneError(COMMAND_LINE, f"--{option}", "a frame plots its mode shapes only")
+    frame = load_frame(args.scene)
+    modes = args.modes or 6
+    mode_shapes(solve_frame(frame, modes), target, modes)
     print(args.out)
     return 0
 

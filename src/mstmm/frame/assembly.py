@@ -83,8 +83,9 @@ class Assembly:
         self.members = [self._member(m) for m in frame.members]
         self.packed = self._packed()
         S = self.scale * math.sqrt(self.L_ref / self.EI_ref)
-        K, M = self._lumped()
+        K, C, M = self._lumped()
         self.K_lumped = S[:, None] * K * S[None, :]
+        self.C_lumped = S[:, None] * C * S[None, :]
         self.M_lumped = S[:, None] * M * S[None, :]
         self.perm, self.bandwidth = _band_order(self)
 
@@ -127,10 +128,12 @@ class Assembly:
         h = np.array([sg.length for sg in m.segments])
         return MemberMap(m, L, p, np.asarray(index, dtype=np.int64), T, EA, mbar, h)
 
-    def _lumped(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(K, M)`` of everything but the members, over the free freedoms (SI): node
-        springs and masses, hinge springs, absorbers (``D = members + K - omega^2 M``)."""
+    def _lumped(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(K, C, M)`` of everything but the members, over the free freedoms (SI): node
+        springs and masses, hinge springs, absorbers (``D = members + K - omega^2 M``; the
+        absorbers' dashpots C enter the frequency response only)."""
         K = np.zeros((self.n, self.n))
+        C = np.zeros((self.n, self.n))
         M = np.zeros((self.n, self.n))
         for name, node in self.frame.nodes.items():
             kxx, kxy, kyy = node.springs
@@ -160,8 +163,9 @@ class Assembly:
             for g, a in row.items():
                 for h, b in row.items():
                     K[g, h] += ab.k * a * b
+                    C[g, h] += ab.c * a * b
             M[q, q] += ab.m
-        return K, M
+        return K, C, M
 
     def _packed(self) -> tuple:
         """The members as :func:`member.assemble_members` reads them, D's units in T."""

@@ -44,13 +44,15 @@ class Member:
 
 @dataclass(frozen=True)
 class Absorber:
-    """A mass ``m`` on a spring ``k`` hung at ``node``, moving along the unit vector
-    ``direction`` (a tuned mass damper on a roof acts horizontally)."""
+    """A mass ``m`` on a spring ``k`` (and a parallel dashpot ``c``, N s/m) hung at
+    ``node``, moving along the unit vector ``direction`` (a tuned mass damper on a roof
+    acts horizontally)."""
 
     node: str
     k: float
     m: float
     direction: tuple[float, float]
+    c: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@
     # start_joint = "pinned"   # rigid (default) | pinned; start_k: a spring at the pin
     [[attachments]]            # at a node, or along a member (x from its start)
     type = "spring_mass"       # mass (m, J), spring (k), rotational_spring (k), spring_mass
+                               # (k, m and a dashpot c: frequency responses only)
     node = "B"                 # or member = "column" and x = 1.5
     direction = [1.0, 0.0]     # spring, spring_mass: along (default: the member's local y)
     k = 1e4
@@ -59,8 +60,10 @@ _ATTACHMENT_KEYS = {
     "mass": ("m", "J"),
     "spring": ("k",),
     "rotational_spring": ("k",),
-    "spring_mass": ("k", "m"),
+    "spring_mass": ("k", "m", "c"),
 }
+#: Keys that may be left out (default 0).
+_OPTIONAL_ATTACHMENT_KEYS = ("J", "c")
 #: Relative mismatch allowed between a member's length and the sum of its segments'.
 LENGTH_MATCH = 1e-9
 
@@ -266,11 +269,9 @@ def _attachments(items: Any, nodes: dict[str, Node], members: list[Member], sour
         keys = _ATTACHMENT_KEYS[kind]
         _reject_unknown(table, ("type", "node", "member", "x", "direction", *keys), prefix, source)
         values = {
-            k: _checked(
-                table[k] if k != "J" else table.get(k, 0.0), "nonnegative", f"{prefix}.{k}", source
-            )  # fmt: skip
+            k: _checked(table.get(k, 0.0), "nonnegative", f"{prefix}.{k}", source)
             for k in keys
-            if k in table or k == "J"
+            if k in table or k in _OPTIONAL_ATTACHMENT_KEYS
         }
         for k in keys:
             if k not in values:
@@ -318,7 +319,7 @@ def _attachments(items: Any, nodes: dict[str, Node], members: list[Member], sour
                 n, springs=(kxx + k * dx * dx, kxy + k * dx * dy, kyy + k * dy * dy)
             )
         else:
-            absorbers.append(Absorber(node, values["k"], values["m"], direction))
+            absorbers.append(Absorber(node, values["k"], values["m"], direction, values["c"]))
     return nodes, members, absorbers
 
 

@@ -384,6 +384,13 @@ def solve_frame(
     ``band`` (rad/s), each with its exact multiplicity, and their mode shapes."""
     if modes is None and band is None:
         modes = 10
+    for ab in frame.absorbers:
+        if ab.c:
+            raise SceneError(
+                frame.source, f"absorber at {ab.node!r}: c",
+                "damped natural frequencies of frames are not built yet (mstmm.frame.frf"
+                " takes the dashpot; set c = 0 to solve)", ab.c,
+            )  # fmt: skip
     asm = Assembly(frame)
     found = roots(asm, modes, band)
     omega = np.array([w for w, m in found for _ in range(m)])
