@@ -201,13 +201,22 @@ class Assembly:
         D, J0 = self.matrix(omega)
         return J0 + self.eigenvalues_in(D, -np.inf, 0.0), J0
 
-    def sure_count(self, omega: float) -> tuple[int, int]:
-        """``(count, unsure)``: the count, and how many eigenvalues of D lie within its
-        round-off (:data:`ROUNDOFF` times its norm) of 0, whose sign it cannot tell."""
+    def sure_count(self, omega: float) -> tuple[int, int, int]:
+        """``(count, J0, unsure)``: the count, its members' part, and how many eigenvalues
+        of D lie within its round-off (:data:`ROUNDOFF` times its norm) of 0, whose sign
+        it cannot tell (one band reduction: the eigenvalues up to the round-off)."""
+        from scipy.linalg import eig_banded
+
         D, J0 = self.matrix(omega)
-        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max()) if self.n else 0.0
-        negative = self.eigenvalues_in(D, -np.inf, 0.0)
-        return J0 + negative, self.eigenvalues_in(D, -tau, tau)
+        if self.n == 0:
+            return J0, J0, 0
+        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max())
+        e = eig_banded(
+            self.band(D), eigvals_only=True, select="v",
+            select_range=(-np.finfo(float).max, tau), check_finite=False,
+        )  # fmt: skip
+        negative = int(np.count_nonzero(e < 0.0))
+        return J0 + negative, J0, int(np.count_nonzero(np.abs(e) <= tau))
 
     def band(self, D: np.ndarray) -> np.ndarray:
         """D in the reordering :attr:`perm` as LAPACK's upper band storage."""

@@ -11,10 +11,10 @@ missed and a repeated root's multiplicity is the count's jump across it:
    fall between poles, as the count never does): Brent's method finds that root to
    1e-11 and :func:`polish` to round-off;
 3. the counts just below and above it say how many roots lie there: the narrowest
-   window (:data:`SETTLE`, 4 ulp to 1e-9) at whose edges no eigenvalue of D lies within
-   its round-off (:meth:`Assembly.sure_count`), with the bracket's count below, gives the
-   root's multiplicity, and the bracket's rest is searched again. Roots closer than that
-   window are one root of their joint multiplicity.
+   window (from the root's own, ``polish``, up to 1e-6) at whose edges no eigenvalue
+   of D lies within its round-off (:meth:`Assembly.sure_count`), with the bracket's
+   count below, gives the root's multiplicity, and the bracket's rest is searched
+   again. Roots closer than that window are one root of their joint multiplicity.
 
 Mode shapes: the null space of D at the root (one independent shape per multiplicity),
 the joints' displacements, and along each member the fields ``u, w, psi, N, Q, M``
@@ -32,7 +32,7 @@ import numpy as np
 
 from mstmm.scene import SceneError
 
-from .assembly import Assembly, MemberMap
+from .assembly import ROUNDOFF, Assembly, MemberMap
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
@@ -45,7 +45,10 @@ ROOT_GUARD = 4 * np.finfo(float).eps
 #: multiplicity. Near a root the count is decided by eigenvalues of D as small as its
 #: round-off: with members EA L^2 / EI = 2e4 times stiffer axially (FV2), its sign
 #: wavers within about 1e-12 of a five-fold root.
-SETTLE = (ROOT_GUARD, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9)
+SETTLE = (ROOT_GUARD, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6)
+#: A bracket narrower than this (relative) whose windows never settle is one root of its
+#: count's jump (a cluster float64 cannot separate).
+CLUSTER = 1e-9
 #: Relative size of the smallest eigenvalue of the static D (0) that means a mechanism.
 MECHANISM = 1e-11
 #: Relative step of the central difference in omega^2 for the modal mass.
@@ -174,26 +177,27 @@ def roots(
         ga, gb = g(a, idx), g(b, idx)
         if ga >= 0.0 and gb < 0.0 and ga != 0.0:
             w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=BRENT_RTOL, maxiter=200)
-            w = min(
-                max(polish(asm, w, local_multiplicity(asm, w, cb - ca), w * POLISH_REACH), a), b
-            )
+            k = local_multiplicity(asm, w, cb - ca)
+            w, window = polish(asm, w, k, w * POLISH_REACH)
+            w = min(max(w, a), b)
         else:
             w = 0.5 * (a + b)
-        if b - a <= 2 * SETTLE[-1] * b:  # float64 separates nothing inside: one cluster
+            window = ROOT_GUARD
+        if b - a <= 2 * CLUSTER * b:  # float64 separates nothing inside: one cluster
             found.append((w, cb - ca))
             continue
-        for delta in SETTLE:
+        for delta in _ladder(window):
             below = max(a, w * (1 - delta))
-            c_below, unsure_below = asm.sure_count(below)
+            c_below, _, unsure_below = asm.sure_count(below)
             if unsure_below or c_below != ca:
                 continue
             above = min(b, w * (1 + delta))
-            c_above, unsure_above = asm.sure_count(above)
+            c_above, j_above, unsure_above = asm.sure_count(above)
             if unsure_above or c_above == ca:
                 continue
             found.append((w, c_above - ca))
             if above < b:
-                stack.append((above, *asm.state(above), b, cb, jb))
+                stack.append((above, c_above, j_above, b, cb, jb))
             break
         else:  # no window settles: the bracket is cut in two and searched again
             mid = 0.5 * (a + b)
@@ -217,6 +221,11 @@ def _null_space(asm: Assembly, w: float, k: int) -> np.ndarray:
     return asm.near_zero(asm.matrix(w)[0], k)[1]
 
 
+def _ladder(window: float) -> list[float]:
+    """The windows tried: from the root's own (``polish``) up to :data:`SETTLE`'s widest."""
+    return [window] + [d for d in SETTLE if d > window]
+
+
 def local_multiplicity(asm: Assembly, w: float, most: int) -> int:
     """How many of D(w)'s ``most`` eigenvalues of least magnitude belong to the root near
     w: those within :data:`SAME_ROOT` times the least (the others belong to roots farther
@@ -226,7 +235,7 @@ def local_multiplicity(asm: Assembly, w: float, most: int) -> int:
     return max(1, int(np.count_nonzero(e <= SAME_ROOT * e[0] + 1e-300)))
 
 
-def polish(asm: Assembly, w: float, k: int, reach: float) -> float:
+def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]:
     """A root of multiplicity k refined by Newton's method on the Rayleigh quotient
     ``t(omega) = tr(X^T D(omega) X)`` of its null space X, ``t' = -2 omega tr(X^T M X)``
     (M = -dD/d(omega^2)).
@@ -237,21 +246,30 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> float:
     formed from D's entries errs by ``eps |D| |X|`` entrywise, and the bending modes' X
     barely move the stiff axial freedoms: two steps bring the root to round-off. A step
     longer than ``reach`` is not taken (a polish, not a search); k is the multiplicity the
-    bracket allows (at most the root's: X then holds the nearest eigenvectors)."""
+    bracket allows (at most the root's: X then holds the nearest eigenvectors).
+
+    Returns the root and the narrowest window (relative half-width) at whose edges its
+    eigenvalues of D lie beyond D's round-off (:meth:`Assembly.sure_count`): ``4 tau /
+    (omega |d lambda / d omega|)`` per eigenvalue, ``tau`` the round-off. A low sway mode
+    of a tall frame moves its eigenvalue slowly against D's axial norm: its window is
+    wide (1e-8 and more), a beam-like mode's 1e-14."""
+    window = ROOT_GUARD
     for _ in range(3):
-        X = _null_space(asm, w, k)
         D, _ = asm.matrix(w)
+        X = asm.near_zero(D, k)[1]
         t = float(np.trace(X.T @ D @ X))
         slope = -2.0 * w * float(np.trace(X.T @ _mass_form(asm, w) @ X))
         if slope == 0.0 or not math.isfinite(t / slope):
             break
+        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max())
+        window = max(ROOT_GUARD, 4.0 * tau * k / (w * abs(slope)))
         step = t / slope
         if abs(step) > reach:
             break
         w -= step
         if abs(step) <= ROOT_GUARD * w:
             break
-    return w
+    return w, window
 
 
 def _shapes(asm: Assembly, w: float, multiplicity: int) -> list[FrameMode]:
