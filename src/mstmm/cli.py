@@ -842,6 +842,13 @@ SHOW_PATTERN_MAX = 60
 def _show(args) -> int:
     import textwrap
 
+    if _is_frame_file(args.scene):
+        from .frame import load_frame
+        from .frame.show import describe
+
+        sys.stdout.write(describe(load_frame(args.scene)))
+        return 0
+
     import sympy as sp
 
     from mstmm.derive import MAX_DETERMINANT_SIZE, component_matrices, symbolic
