@@ -379,24 +379,25 @@ def _warn(message: str) -> None:
     print(f"mstmm: warning: {_plain_numbers(message)}", file=sys.stderr)
 
 
-def _is_frame_file(path: str | None) -> bool:
-    """Whether the scene file holds a frame (``[[members]]``); an unreadable file is left
-    to the beam reader's message."""
+def _scene_or_frame(path: str | None):
+    """The beam :class:`Scene` or the frame (``[[members]]``) at ``path``, its file read
+    and parsed once (``mstmm.frame`` imported for a frame only); the bundled paper example
+    without a path."""
     if path is None:
-        return False
-    import tomllib
+        return _scene(None)
+    from .scene import scene_from_dict
+    from .scene.reading import is_frame, read_table
 
-    from .frame import is_frame
+    data, source = read_table(path)
+    if is_frame(data):
+        from .frame import frame_from_file
 
-    try:
-        with open(path, "rb") as f:
-            return is_frame(tomllib.load(f))
-    except (OSError, tomllib.TOMLDecodeError):
-        return False
+        return frame_from_file(data, source)
+    return scene_from_dict(data, source=source)
 
 
-def _solve_frame(args) -> int:
-    from .frame import load_frame, solve_frame
+def _solve_frame(args, frame) -> int:
+    from .frame import solve_frame
     from .frame.report import frame_text
 
     if args.formulation != "stable":
@@ -404,7 +405,6 @@ def _solve_frame(args) -> int:
             COMMAND_LINE, "--formulation", "a frame is solved by its dynamic stiffness only",
             args.formulation,
         )  # fmt: skip
-    frame = load_frame(args.scene)
     band = tuple(args.band) if args.band else None
     if band is not None and band[1] <= band[0]:
         raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(band))
@@ -420,13 +420,14 @@ def _solve_frame(args) -> int:
 
 def _solve(args) -> int:
     from . import output
+    from .scene import Scene
     from .solve import solve
     from .topology import topology_of
 
     _out_format(args)
-    if _is_frame_file(args.scene):
-        return _solve_frame(args)
-    scene = _scene(args.scene)
+    scene = _scene_or_frame(args.scene)
+    if not isinstance(scene, Scene):
+        return _solve_frame(args, scene)
     band = _checked_band(args, scene)
     damped = topology_of(scene).damped
     if damped and args.formulation != "stable":
@@ -600,9 +601,11 @@ def _plot(args) -> int:
         return EXIT_FAILURE
     _check_image_format(plot, args.out, "--out")
     target = _check_out_dir(args.out)  # a symbolic link: its target
-    if _is_frame_file(args.scene):
-        return _plot_frame(args, target)
-    scene = _scene(args.scene)
+    from .scene import Scene
+
+    scene = _scene_or_frame(args.scene)
+    if not isinstance(scene, Scene):
+        return _plot_frame(args, target, scene)
     if args.frf:
         if args.band is None or args.sweep is not None:
             raise SceneError(COMMAND_LINE, "--frf", "needs --band LO HI (and no --sweep)", None)
@@ -633,15 +636,14 @@ def _plot(args) -> int:
     return 0
 
 
-def _plot_frame(args, target: Path) -> int:
+def _plot_frame(args, target: Path, frame) -> int:
     """``mstmm plot`` of a frame: its lowest mode shapes drawn on the structure."""
-    from .frame import load_frame, solve_frame
+    from .frame import solve_frame
     from .frame.plot import mode_shapes
 
     for option in ("frf", "sweep", "band", "input"):
         if getattr(args, option, None):
             raise SceneError(COMMAND_LINE, f"--{option}", "a frame plots its mode shapes only")
-    frame = load_frame(args.scene)
     modes = args.modes or 6
     mode_shapes(solve_frame(frame, modes), target, modes)
     print(args.out)
@@ -842,11 +844,13 @@ SHOW_PATTERN_MAX = 60
 def _show(args) -> int:
     import textwrap
 
-    if _is_frame_file(args.scene):
-        from .frame import load_frame
+    from .scene import Scene
+
+    scene = _scene_or_frame(args.scene)
+    if not isinstance(scene, Scene):
         from .frame.show import describe
 
-        sys.stdout.write(describe(load_frame(args.scene)))
+        sys.stdout.write(describe(scene))
         return 0
 
     import sympy as sp
@@ -855,7 +859,6 @@ def _show(args) -> int:
 
     from .structure import structure_of
 
-    scene = _scene(args.scene)
     render = sp.latex if args.latex else (lambda e: sp.pretty(e, wrap_line=False))
     beam = scene.beam
     n = len(scene.attachments)

@@ -9,7 +9,7 @@ no root is missed and each repeated root has its exact multiplicity
 """
 
 from .model import Absorber, Frame, FrameSegment, Member, Node
-from .reading import frame_from_dict, is_frame, load_frame
+from .reading import frame_from_dict, frame_from_file, is_frame, load_frame
 from .response import frf
 from .solve import FrameSolution, solve_frame
 
@@ -21,6 +21,7 @@ __all__ = [
     "Member",
     "Node",
     "frame_from_dict",
+    "frame_from_file",
     "frf",
     "is_frame",
     "load_frame",

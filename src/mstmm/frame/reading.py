@@ -35,17 +35,17 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
 from collections.abc import Mapping
 from typing import Any
 
 from mstmm.scene import SceneError
 from mstmm.scene.fields import _checked, _choice, _number, _reject_unknown, _require, _table
+from mstmm.scene.reading import is_frame, read_table
 from mstmm.scene.segments import _OPTIONAL_KEYS, _optional
 
 from .model import Absorber, Frame, FrameSegment, Member, Node
 
-__all__ = ["frame_from_dict", "is_frame", "load_frame"]
+__all__ = ["frame_from_dict", "frame_from_file", "is_frame", "load_frame"]
 
 #: What each support holds: global freedoms x, y, t (Theta), n (along ``normal``).
 SUPPORTS = {"free": "", "fixed": "xyt", "pinned": "xy", "roller": "n", "sliding": "nt"}
@@ -68,22 +68,15 @@ _OPTIONAL_ATTACHMENT_KEYS = ("J", "c")
 LENGTH_MATCH = 1e-9
 
 
-def is_frame(data: Mapping[str, Any]) -> bool:
-    """Whether a scene table describes a frame (it has ``members``) rather than a beam."""
-    return "members" in data or "nodes" in data
-
-
 def load_frame(path: str | os.PathLike[str]) -> Frame:
     """Read a frame scene file (one clear :class:`SceneError` for any problem)."""
-    source = os.fspath(path)
-    try:
-        with open(source, "rb") as f:
-            data = tomllib.load(f)
-    except OSError as exc:
-        raise SceneError(source, "-", f"cannot read the file: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(source, "-", f"not valid TOML: {exc}") from None
-    name = data.get("name", os.path.splitext(os.path.basename(source))[0])
+    return frame_from_file(*read_table(path))
+
+
+def frame_from_file(data: Any, source: str) -> Frame:
+    """The frame of a file's TOML document (``scene.reading.read_table``): its name, else
+    the file's stem."""
+    name = os.path.splitext(os.path.basename(source))[0]
     return frame_from_dict(data, source, name)
 
 

@@ -17,8 +17,16 @@ from .repeat import _repeat, _repeated
 _TOML_LINE_RE = re.compile(r"at line (\d+)")
 
 
-def load_scene(path: str | os.PathLike[str]) -> Scene:
-    """Read and validate the scene file at ``path``.  Raises :class:`SceneError`."""
+def is_frame(data: Any) -> bool:
+    """Whether a scene table describes a frame (``[[members]]``, ``[[nodes]]``: read by
+    ``mstmm.frame``) rather than a beam."""
+    return isinstance(data, Mapping) and ("members" in data or "nodes" in data)
+
+
+def read_table(path: str | os.PathLike[str]) -> tuple[Any, str]:
+    """The TOML document of the file at ``path`` and the source its messages name: a
+    beam's or a frame's (``mstmm.frame.reading``). Raises :class:`SceneError` (unreadable,
+    not UTF-8, malformed TOML, with the offending line)."""
     source = os.fsdecode(path)
     try:
         with open(path, "rb") as fh:
@@ -51,6 +59,12 @@ def load_scene(path: str | os.PathLike[str]) -> Scene:
             if 1 <= lineno <= len(lines):
                 value = lines[lineno - 1].rstrip("\r")
         raise SceneError(source, "-", f"malformed TOML: {message}", value) from None
+    return data, source
+
+
+def load_scene(path: str | os.PathLike[str]) -> Scene:
+    """Read and validate the scene file at ``path``.  Raises :class:`SceneError`."""
+    data, source = read_table(path)
     return scene_from_dict(data, source=source)
 
 
@@ -60,7 +74,7 @@ def scene_from_dict(data: Mapping[str, Any], source: str = _DICT_SOURCE) -> Scen
     ``source`` names the origin in error messages and, when ``data`` has no
     ``name``, gives the default name (the file stem).  Raises :class:`SceneError`.
     """
-    if isinstance(data, Mapping) and ("members" in data or "nodes" in data):
+    if is_frame(data):
         raise SceneError(
             source, "members", "a frame scene: read it with mstmm.frame.load_frame"
             " (mstmm solve reads both; docs/frames.md)",
