@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mstmm.catalog import Topology, layout
+from mstmm.catalog import SEGMENT_PHYSICS, Topology, layout
 
 from .member import assemble_members
 from .model import Frame, Member
@@ -87,7 +87,8 @@ class Assembly:
         self.K_lumped = S[:, None] * K * S[None, :]
         self.C_lumped = S[:, None] * C * S[None, :]
         self.M_lumped = S[:, None] * M * S[None, :]
-        self.perm, self.bandwidth = _band_order(self)
+        self.pattern = _pattern(self)
+        self.perm, self.bandwidth = _band_order(self.pattern)
 
     def _add(self, freedom: Freedom) -> int:
         self.freedoms.append(freedom)
@@ -210,13 +211,19 @@ class Assembly:
         D, J0 = self.matrix(omega)
         if self.n == 0:
             return J0, J0, 0
-        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max())
+        tau = self.roundoff(D)
         e = eig_banded(
             self.band(D), eigvals_only=True, select="v",
             select_range=(-np.finfo(float).max, tau), check_finite=False,
         )  # fmt: skip
         negative = int(np.count_nonzero(e < 0.0))
         return J0 + negative, J0, int(np.count_nonzero(np.abs(e) <= tau))
+
+    @staticmethod
+    def roundoff(D: np.ndarray) -> float:
+        """The size below which an eigenvalue of D is round-off: :data:`ROUNDOFF` times
+        its norm (the largest row sum, a bound on the largest eigenvalue)."""
+        return ROUNDOFF * float(np.abs(D).sum(axis=1).max())
 
     def band(self, D: np.ndarray) -> np.ndarray:
         """D in the reordering :attr:`perm` as LAPACK's upper band storage."""
@@ -267,20 +274,24 @@ class Assembly:
         return e[keep], X
 
 
-def _band_order(asm: Assembly) -> tuple[np.ndarray, int]:
-    """A reordering of the freedoms that makes D banded (reverse Cuthill-McKee on the
-    freedoms' couplings: members, springs, absorbers), and its half-bandwidth."""
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import reverse_cuthill_mckee
-
-    n = asm.n
-    if n == 0:
-        return np.zeros(0, dtype=np.int64), 0
+def _pattern(asm: Assembly) -> np.ndarray:
+    """Which freedoms D couples (n x n booleans): members, springs, masses, absorbers."""
     A = (np.abs(asm.K_lumped) + np.abs(asm.M_lumped)) > 0.0
     for idx in asm.packed[-1]:
         g = idx[idx >= 0]
         A[np.ix_(g, g)] = True
-    A[np.arange(n), np.arange(n)] = True
+    A[np.arange(asm.n), np.arange(asm.n)] = True
+    return A
+
+
+def _band_order(A: np.ndarray) -> tuple[np.ndarray, int]:
+    """A reordering of the freedoms that makes a pattern A banded (reverse Cuthill-McKee),
+    and its half-bandwidth."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    if len(A) == 0:
+        return np.zeros(0, dtype=np.int64), 0
     perm = np.asarray(reverse_cuthill_mckee(csr_matrix(A), symmetric_mode=True), dtype=np.int64)
     i, j = np.nonzero(A[np.ix_(perm, perm)])
     return perm, int(np.max(np.abs(i - j)))
@@ -308,8 +319,6 @@ ROUNDOFF = 1e3 * np.finfo(float).eps
 
 def _physics(physics: tuple[tuple[str, float], ...]) -> list[float]:
     """A segment's term values in the order of ``catalog.SEGMENT_KEYS`` after the loss factor."""
-    from mstmm.catalog import SEGMENT_PHYSICS
-
     values = dict(physics)
     return [values.get(key, 0.0) for key, _, _ in SEGMENT_PHYSICS]
 

@@ -84,10 +84,7 @@ def describe(frame: Frame) -> str:
         "count: J(omega) = sum of the members' clamped-clamped counts J0 + negative"
         " eigenvalues of D(omega) (Wittrick-Williams)"
     )
-    A = (np.abs(asm.K_lumped) + np.abs(asm.M_lumped)) > 0.0
-    for idx in asm.packed[-1]:
-        g = idx[idx >= 0]
-        A[np.ix_(g, g)] = True
+    A = asm.pattern
     out.append(
         f"pattern of D ({asm.n}x{asm.n}, {int(A.sum())} entries nonzero), in the count's banded"
         f" order (half-bandwidth {asm.bandwidth}):"

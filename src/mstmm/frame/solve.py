@@ -32,7 +32,7 @@ import numpy as np
 
 from mstmm.scene import SceneError
 
-from .assembly import ROUNDOFF, Assembly, MemberMap
+from .assembly import Assembly, MemberMap
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
@@ -274,8 +274,7 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]
         slope = -2.0 * w * float(np.trace(X.T @ _mass_form(asm, w) @ X))
         if slope == 0.0 or not math.isfinite(t / slope):
             break
-        tau = ROUNDOFF * float(np.abs(D).sum(axis=1).max())
-        window = max(ROOT_GUARD, 4.0 * tau * k / (w * abs(slope)))
+        window = max(ROOT_GUARD, 4.0 * asm.roundoff(D) * k / (w * abs(slope)))
         step = t / slope
         if abs(step) > reach:
             break
