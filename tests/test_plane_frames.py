@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -483,7 +484,11 @@ def random_frames(draw) -> RFrame:
     return RFrame(nodes, tuple(members), held, masses)
 
 
-@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(
+    max_examples=int(os.environ.get("FRAME_EXAMPLES", "6")),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 @given(random_frames())
 def test_random_frames_match_the_reference_count(rf):
     """Random frames, trees and loops: every root the solver reports is where the

@@ -25,6 +25,7 @@ import numpy as np
 
 from mstmm.catalog import SEGMENT_PHYSICS, Topology, layout
 
+from .banded import backward, ldl, reverse_band, row_norm
 from .member import assemble_members
 from .model import Frame, Member
 
@@ -80,8 +81,8 @@ class Assembly:
         ]
         self.n = len(self.freedoms)
         self.scale = np.array([self.L_ref if f.translation else 1.0 for f in self.freedoms])
+        self._layouts: dict[tuple, np.ndarray] = {}
         self.members = [self._member(m) for m in frame.members]
-        self.packed = self._packed()
         S = self.scale * math.sqrt(self.L_ref / self.EI_ref)
         K, C, M = self._lumped()
         self.K_lumped = S[:, None] * K * S[None, :]
@@ -89,6 +90,16 @@ class Assembly:
         self.M_lumped = S[:, None] * M * S[None, :]
         self.pattern = _pattern(self)
         self.perm, self.bandwidth = _band_order(self.pattern)
+        self.pos = np.empty(self.n, dtype=np.int64)
+        self.pos[self.perm] = np.arange(self.n)
+        self.packed = self._packed()
+        #: log|det D(omega)| where a factorization found it (its pivots' backward error
+        #: below D's round-off), by omega: the root finder's determinant reuses it.
+        self.logdets: dict[float, float] = {}
+        #: :meth:`factor`'s results by omega (a bracket's ends are counted once).
+        self.factors: dict[float, tuple[int, int, float]] = {}
+        self.K_band = self.to_band(self.K_lumped)
+        self.M_band = self.to_band(self.M_lumped)
 
     def _add(self, freedom: Freedom) -> int:
         self.freedoms.append(freedom)
@@ -101,7 +112,10 @@ class Assembly:
         segments = [
             (sg.length, sg.EI, sg.mass_per_length, 0.0, *_physics(sg.physics)) for sg in m.segments
         ]
-        p = layout(segments, [], Topology("clamped", "clamped", (), False))[0]
+        key = tuple(segments)
+        if key not in self._layouts:  # members of one section share their beam
+            self._layouts[key] = layout(segments, [], Topology("clamped", "clamped", (), False))[0]
+        p = self._layouts[key]
         index: list[int] = []
         rows: list[list[tuple[int, float]]] = []
         for end, node in ((0, m.start), (1, m.end)):
@@ -169,29 +183,68 @@ class Assembly:
         return K, C, M
 
     def _packed(self) -> tuple:
-        """The members as :func:`member.assemble_members` reads them, D's units in T."""
+        """The members as :func:`member.assemble_members` reads them: each distinct member
+        type (beam parameters, rod segments and length) once, each member's type, its map
+        T with D's units, and its freedoms by their band positions."""
         units = self.L_ref / self.EI_ref
-        P = np.concatenate([mm.p for mm in self.members])
-        p_off = np.cumsum([0] + [len(mm.p) for mm in self.members]).astype(np.int64)
-        EA = np.concatenate([mm.EA for mm in self.members])
-        mbar = np.concatenate([mm.mbar for mm in self.members])
-        h = np.concatenate([mm.h for mm in self.members])
-        r_off = np.cumsum([0] + [len(mm.h) for mm in self.members]).astype(np.int64)
-        L = np.array([mm.L for mm in self.members])
+        types: dict[tuple, int] = {}
+        kind = np.empty(len(self.members), dtype=np.int64)
+        first: list[MemberMap] = []
+        for i, mm in enumerate(self.members):
+            key = (mm.L, mm.p.tobytes(), mm.EA.tobytes(), mm.mbar.tobytes(), mm.h.tobytes())
+            if key not in types:
+                types[key] = len(first)
+                first.append(mm)
+            kind[i] = types[key]
+        P = np.concatenate([mm.p for mm in first])
+        p_off = np.cumsum([0] + [len(mm.p) for mm in first]).astype(np.int64)
+        EA = np.concatenate([mm.EA for mm in first])
+        mbar = np.concatenate([mm.mbar for mm in first])
+        h = np.concatenate([mm.h for mm in first])
+        r_off = np.cumsum([0] + [len(mm.h) for mm in first]).astype(np.int64)
+        L = np.array([mm.L for mm in first])
         T = np.zeros((len(self.members), 6, 6))
         idx = np.full((len(self.members), 6), -1, dtype=np.int64)
         for i, mm in enumerate(self.members):
             n = len(mm.index)
-            idx[i, :n] = mm.index
+            idx[i, :n] = self.pos[mm.index]
             T[i, :, :n] = mm.T * self.scale[mm.index][None, :] * math.sqrt(units)
-        return P, p_off, EA, mbar, h, r_off, L, T, idx
+        return P, p_off, EA, mbar, h, r_off, L, kind, T, idx
+
+    def to_band(self, A: np.ndarray) -> np.ndarray:
+        """A dense symmetric A over the freedoms as upper band rows in :attr:`perm`'s order
+        (``B[i, k] = A_p[i, i + k]``, :mod:`.banded`)."""
+        b, n = self.bandwidth, self.n
+        Ap = A[np.ix_(self.perm, self.perm)]
+        B = np.zeros((n, b + 1))
+        for k in range(min(b + 1, n)):
+            B[: n - k, k] = np.diagonal(Ap, k)
+        return B
+
+    def dense(self, B: np.ndarray) -> np.ndarray:
+        """Band rows B back to the dense symmetric matrix over the freedoms."""
+        n = self.n
+        Ap = np.zeros((n, n))
+        for k in range(min(self.bandwidth + 1, n)):
+            i = np.arange(n - k)
+            Ap[i, i + k] = B[: n - k, k]
+            Ap[i + k, i] = B[: n - k, k]
+        A = np.empty((n, n))
+        A[np.ix_(self.perm, self.perm)] = Ap
+        return A
+
+    def banded(self, omega: float) -> tuple[np.ndarray, int]:
+        """``(B, J0)``: the dimensionless dynamic stiffness at omega (rad/s) as upper band
+        rows in :attr:`perm`'s order, and the members' clamped-clamped frequencies below
+        omega."""
+        B = self.K_band - (omega * omega) * self.M_band
+        J0 = assemble_members(*self.packed, omega, B)
+        return B, J0
 
     def matrix(self, omega: float) -> tuple[np.ndarray, int]:
-        """``(D, J0)``: the dimensionless dynamic stiffness at omega (rad/s) over the free
-        freedoms, and the members' clamped-clamped frequencies below omega."""
-        D = self.K_lumped - (omega * omega) * self.M_lumped
-        J0 = assemble_members(*self.packed, omega, D)
-        return D, J0
+        """``(D, J0)``: :meth:`banded` as a dense matrix over the freedoms."""
+        B, J0 = self.banded(omega)
+        return self.dense(B), J0
 
     def count(self, omega: float) -> int:
         """Natural frequencies below omega (rad/s), with their multiplicities."""
@@ -199,45 +252,94 @@ class Assembly:
 
     def state(self, omega: float) -> tuple[int, int]:
         """``(count, J0)`` at omega (rad/s): the count and the members' part of it."""
-        D, J0 = self.matrix(omega)
-        return J0 + self.eigenvalues_in(D, -np.inf, 0.0), J0
+        return self.factor(omega)[:2]
+
+    def factor(self, omega: float) -> tuple[int, int, float]:
+        """``(count, J0, log|det D|)`` at omega (rad/s): the count from the pivots of
+        :func:`.banded.ldl` where their backward error is below D's round-off (the
+        freedoms in band order, or else in reverse), else from an orthogonal band
+        reduction (``log|det D|`` is then nan)."""
+        if omega in self.factors:
+            return self.factors[omega]
+        B, J0 = self.banded(omega)
+        if self.n == 0:
+            return J0, J0, 0.0
+        W = self._work()
+        tau = self.roundoff(B)
+        negatives, G, logdet = ldl(B, 0.0, W)
+        if backward(G, self.bandwidth) > tau:  # eliminated from the other end
+            negatives, G, logdet = ldl(reverse_band(B, np.empty_like(B)), 0.0, W)
+        if backward(G, self.bandwidth) <= tau:
+            self.logdets[omega] = logdet
+            out = (J0 + negatives, J0, logdet)
+        else:
+            out = (J0 + self.eigenvalues_in(B, -np.inf, 0.0), J0, math.nan)
+        self.factors[omega] = out
+        return out
 
     def sure_count(self, omega: float) -> tuple[int, int, int]:
         """``(count, J0, unsure)``: the count, its members' part, and how many eigenvalues
-        of D lie within its round-off (:data:`ROUNDOFF` times its norm) of 0, whose sign
-        it cannot tell (one band reduction: the eigenvalues up to the round-off)."""
-        from scipy.linalg import eig_banded
+        of D lie within its round-off tau (:data:`ROUNDOFF` times its norm, or the
+        factors' own backward error where that is larger), whose sign it cannot tell.
 
-        D, J0 = self.matrix(omega)
+        Three factorizations (:func:`.banded.ldl`) of ``D - s I``, ``s = -tau, 0, tau``,
+        each exact for a D within tau / 4 (tau at least 8 times the middle one's
+        backward error): the eigenvalues in ``[-tau, tau)`` are the
+        difference of the outer two's counts. Where a factorization's pivots grow past
+        that (or make tau more than :data:`SURE_GROWTH` times the round-off), the same in
+        the reverse order, and then an orthogonal band reduction (LAPACK ``dsbevx``)."""
+        B, J0 = self.banded(omega)
         if self.n == 0:
             return J0, J0, 0
-        tau = self.roundoff(D)
+        W = self._work()
+        roundoff = self.roundoff(B)
+        for order in (B, reverse_band(B, np.empty_like(B))):
+            negatives, G, logdet = ldl(order, 0.0, W)
+            tau = max(roundoff, 8.0 * backward(G, self.bandwidth))
+            if tau > SURE_GROWTH * roundoff:
+                continue
+            below, G_below, _ = ldl(order, -tau, W)
+            above, G_above, _ = ldl(order, tau, W)
+            if 4.0 * backward(max(G_below, G_above), self.bandwidth) <= tau:
+                self.logdets[omega] = logdet
+                return J0 + negatives, J0, above - below
+        return self._sure_count_orthogonal(B, J0)
+
+    def _sure_count_orthogonal(self, B: np.ndarray, J0: int) -> tuple[int, int, int]:
+        """:meth:`sure_count` by one band reduction: the eigenvalues up to the round-off."""
+        from scipy.linalg import eig_banded
+
+        tau = self.roundoff(B)
         e = eig_banded(
-            self.band(D), eigvals_only=True, select="v",
+            self.lapack(B), eigvals_only=True, select="v",
             select_range=(-np.finfo(float).max, tau), check_finite=False,
         )  # fmt: skip
         negative = int(np.count_nonzero(e < 0.0))
         return J0 + negative, J0, int(np.count_nonzero(np.abs(e) <= tau))
 
-    @staticmethod
-    def roundoff(D: np.ndarray) -> float:
-        """The size below which an eigenvalue of D is round-off: :data:`ROUNDOFF` times
-        its norm (the largest row sum, a bound on the largest eigenvalue)."""
-        return ROUNDOFF * float(np.abs(D).sum(axis=1).max())
+    def _work(self) -> np.ndarray:
+        return np.empty((self.n, self.bandwidth + 1))
 
-    def band(self, D: np.ndarray) -> np.ndarray:
-        """D in the reordering :attr:`perm` as LAPACK's upper band storage."""
+    @staticmethod
+    def roundoff(B: np.ndarray) -> float:
+        """The size below which an eigenvalue of D (band rows B) is round-off:
+        :data:`ROUNDOFF` times its norm (the largest row sum, a bound on the largest
+        eigenvalue)."""
+        return ROUNDOFF * float(row_norm(B))
+
+    def lapack(self, B: np.ndarray) -> np.ndarray:
+        """Band rows B as LAPACK's upper band storage."""
         b, n = self.bandwidth, self.n
-        Dp = D[np.ix_(self.perm, self.perm)]
         ab = np.zeros((b + 1, n))
-        for k in range(b + 1):
-            ab[b - k, k:] = np.diagonal(Dp, k)
+        for k in range(min(b + 1, n)):
+            ab[b - k, k:] = B[: n - k, k]
         return ab
 
-    def eigenvalues_in(self, D: np.ndarray, lo: float, hi: float) -> int:
-        """How many eigenvalues of D lie in [lo, hi) (``hi = 0``: its negative ones), by
-        the band reduction to a tridiagonal and bisection (orthogonal: stable at any
-        inertia), from LAPACK's half-open (lo, hi] by the ends' closest floats."""
+    def eigenvalues_in(self, B: np.ndarray, lo: float, hi: float) -> int:
+        """How many eigenvalues of D (band rows B) lie in [lo, hi) (``hi = 0``: its
+        negative ones), by the band reduction to a tridiagonal and bisection (orthogonal:
+        stable at any inertia), from LAPACK's half-open (lo, hi] by the ends' closest
+        floats."""
         from scipy.linalg import eig_banded
 
         if self.n == 0:
@@ -245,29 +347,32 @@ class Assembly:
         big = np.finfo(float).max
         lo = -big if lo <= -big else float(np.nextafter(lo, -np.inf))
         e = eig_banded(
-            self.band(D), eigvals_only=True, select="v",
+            self.lapack(B), eigvals_only=True, select="v",
             select_range=(lo, float(np.nextafter(hi, -np.inf))),
             check_finite=False,
         )  # fmt: skip
         return int(len(e))
 
-    def eigenvalue(self, D: np.ndarray, index: int) -> float:
-        """The ``index``-th eigenvalue of D in ascending order."""
+    def eigenvalue(self, B: np.ndarray, index: int) -> float:
+        """The ``index``-th eigenvalue of D (band rows B) in ascending order."""
         from scipy.linalg import eig_banded
 
         e = eig_banded(
-            self.band(D), eigvals_only=True, select="i", select_range=(index, index),
+            self.lapack(B), eigvals_only=True, select="i", select_range=(index, index),
             check_finite=False,
         )  # fmt: skip
         return float(e[0])
 
-    def near_zero(self, D: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
-        """The k eigenvalues of D of least magnitude and their eigenvectors (columns)."""
+    def near_zero(self, B: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """The k eigenvalues of D (band rows B) of least magnitude and their eigenvectors
+        (columns, over the freedoms)."""
         from scipy.linalg import eig_banded
 
-        neg = self.eigenvalues_in(D, -np.inf, 0.0)
+        neg = self.eigenvalues_in(B, -np.inf, 0.0)
         first, last = max(0, neg - k), min(self.n - 1, neg + k - 1)
-        e, V = eig_banded(self.band(D), select="i", select_range=(first, last), check_finite=False)
+        e, V = eig_banded(
+            self.lapack(B), select="i", select_range=(first, last), check_finite=False
+        )
         keep = np.argsort(np.abs(e))[:k]
         X = np.empty((self.n, len(keep)))
         X[self.perm] = V[:, keep]
@@ -277,9 +382,8 @@ class Assembly:
 def _pattern(asm: Assembly) -> np.ndarray:
     """Which freedoms D couples (n x n booleans): members, springs, masses, absorbers."""
     A = (np.abs(asm.K_lumped) + np.abs(asm.M_lumped)) > 0.0
-    for idx in asm.packed[-1]:
-        g = idx[idx >= 0]
-        A[np.ix_(g, g)] = True
+    for mm in asm.members:
+        A[np.ix_(mm.index, mm.index)] = True
     A[np.arange(asm.n), np.arange(asm.n)] = True
     return A
 
@@ -315,6 +419,9 @@ class MemberMap:
 #: An eigenvalue of D within this fraction of its largest is round-off (``sure_count``):
 #: D is formed to about 100 ulp (each member's pieces eliminated, turned and added).
 ROUNDOFF = 1e3 * np.finfo(float).eps
+#: :meth:`Assembly.sure_count` takes the factors' own backward error as its tau up to
+#: this many times the round-off (a wider tau makes the root's windows wider).
+SURE_GROWTH = 4.0
 
 
 def _physics(physics: tuple[tuple[str, float], ...]) -> list[float]:

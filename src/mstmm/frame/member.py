@@ -245,49 +245,72 @@ def member_march(p, beta, Z0, xs, out):
 
 
 @njit(cache=True)
-def assemble_members(P, p_off, EA, mbar, h, r_off, L, T, idx, omega, D):
-    """D += every member's exact dynamic stiffness at omega (rad/s), turned to the global
-    freedoms: member i's beam is ``P[p_off[i]:p_off[i + 1]]``, its rod segments
-    ``EA, mbar, h[r_off[i]:r_off[i + 1]]``, its length L[i]; ``T[i]`` (6 x 6) maps the
-    global freedoms ``idx[i]`` (-1: none) to its local ``[u_a, w_a, psi_a, u_b, w_b,
-    psi_b]`` and carries D's units. Returns the members' J0."""
+def member_stiffnesses(P, p_off, EA, mbar, h, r_off, L, omega, K, J0):
+    """K[t] (6 x 6 over the local ``[u_a, w_a, psi_a, u_b, w_b, psi_b]``, SI) <- the exact
+    dynamic stiffness at omega (rad/s) of member type t, J0[t] <- its clamped-clamped
+    frequencies below omega: type t's beam is ``P[p_off[t]:p_off[t + 1]]``, its rod
+    segments ``EA, mbar, h[r_off[t]:r_off[t + 1]]``, its length ``L[t]``."""
     K4 = np.empty((4, 4))
     K2 = np.empty((2, 2))
-    k = np.zeros((6, 6))
-    bend = (1, 2, 4, 5)
-    J0 = 0
-    for i in range(len(p_off) - 1):
-        p = P[p_off[i] : p_off[i + 1]]
-        Li = L[i]
-        beta = Li * (p[2] * omega * omega / p[1]) ** 0.25
-        J0 += member_bending(p, beta, K4)
-        r0, r1 = r_off[i], r_off[i + 1]
-        J0 += member_rod(EA[r0:r1], mbar[r0:r1], h[r0:r1], omega, K2)
-        scale = p[1] / Li**3
-        for r in range(6):
-            for c in range(6):
-                k[r, c] = 0.0
+    for t in range(len(p_off) - 1):
+        p = P[p_off[t] : p_off[t + 1]]
+        Lt = L[t]
+        beta = Lt * (p[2] * omega * omega / p[1]) ** 0.25
+        count = member_bending(p, beta, K4)
+        r0, r1 = r_off[t], r_off[t + 1]
+        count += member_rod(EA[r0:r1], mbar[r0:r1], h[r0:r1], omega, K2)
+        J0[t] = count
+        scale = p[1] / Lt**3
+        k = K[t]
+        k[:, :] = 0.0
         for r in range(4):
-            dr = Li if r % 2 == 1 else 1.0
+            br = 1 + r + r // 2  # (1, 2, 4, 5): w_a, psi_a, w_b, psi_b
+            dr = Lt if r % 2 == 1 else 1.0
             for c in range(4):
-                dc = Li if c % 2 == 1 else 1.0
-                k[bend[r], bend[c]] = scale * dr * K4[r, c] * dc
+                dc = Lt if c % 2 == 1 else 1.0
+                k[br, 1 + c + c // 2] = scale * dr * K4[r, c] * dc
         k[0, 0] = K2[0, 0]
         k[0, 3] = K2[0, 1]
         k[3, 0] = K2[1, 0]
         k[3, 3] = K2[1, 1]
+
+
+@njit(cache=True)
+def assemble_members(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, omega, B):
+    """D += every member's exact dynamic stiffness at omega (rad/s), turned to the global
+    freedoms, D in upper band rows B (``B[i, k] = D[i, i + k]``, :mod:`.banded`).
+
+    Members of one type (the same beam, rod and length: a building's columns) share
+    their local stiffness: :func:`member_stiffnesses` computes each type once; member i
+    is of type ``kind[i]``, and ``T[i]`` (6 x 6) maps the freedoms at band positions
+    ``idx[i]`` (-1: none) to its local ``[u_a, w_a, psi_a, u_b, w_b, psi_b]`` and carries
+    D's units. Returns the members' J0."""
+    n_types = len(p_off) - 1
+    K = np.empty((n_types, 6, 6))
+    J = np.zeros(n_types, dtype=np.int64)
+    member_stiffnesses(P, p_off, EA, mbar, h, r_off, L, omega, K, J)
+    kT = np.empty((6, 6))
+    J0 = 0
+    for i in range(len(kind)):
+        k = K[kind[i]]
+        J0 += J[kind[i]]
         Ti = T[i]
-        kT = k @ Ti
+        for r in range(6):  # kT <- k Ti (loops: BLAS costs more than the 6 x 6 product)
+            for c in range(6):
+                acc = 0.0
+                for j in range(6):
+                    acc += k[r, j] * Ti[j, c]
+                kT[r, c] = acc
         for a in range(6):
             ga = idx[i, a]
             if ga < 0:
                 continue
             for b in range(6):
                 gb = idx[i, b]
-                if gb < 0:
+                if gb < ga:
                     continue
                 acc = 0.0
                 for r in range(6):
                     acc += Ti[r, a] * kT[r, b]
-                D[ga, gb] += acc
+                B[ga, gb - ga] += acc
     return J0

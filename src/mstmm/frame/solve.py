@@ -5,12 +5,16 @@ missed and a repeated root's multiplicity is the count's jump across it:
 
 1. a bracket ``[a, b]`` whose count rises is cut in two until the members' own count J0
    is the same at both ends (no member's clamped frequency inside: D(omega) has no pole
-   there);
-2. then ``g(omega)``, the ``(count(a) - J0)``-th eigenvalue of D in ascending order, is
+   there) and, while it is wider than :data:`SEPARATE`, until it holds one root;
+2. a bracket of one root: ``det D`` changes sign once in it; :func:`refine_simple`
+   finds the root from the band factors' determinant and the Rayleigh quotient of its
+   null vector (compiled, no eigensolver: about seven evaluations of D a root);
+3. any other bracket (a repeated root, a cluster, or where the factors' pivots grew):
+   ``g(omega)``, the ``(count(a) - J0)``-th eigenvalue of D in ascending order, is
    >= 0 at a and < 0 from the bracket's first root on (D's negative eigenvalues never
    fall between poles, as the count never does): Brent's method finds that root to
    1e-11 and :func:`polish` to round-off;
-3. the counts just below and above it say how many roots lie there: the narrowest
+4. the counts just below and above it say how many roots lie there: the narrowest
    window (from the root's own, ``polish``, up to 1e-6) at whose edges no eigenvalue
    of D lies within its round-off (:meth:`Assembly.sure_count`), with the bracket's
    count below, gives the root's multiplicity, and the bracket's rest is searched
@@ -33,6 +37,7 @@ import numpy as np
 from mstmm.scene import SceneError
 
 from .assembly import Assembly, MemberMap
+from .banded import backward, band_matvec, ldl, ldl_solve
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
@@ -64,6 +69,23 @@ BRENT_RTOL = 1e-11
 SAME_ROOT = 1e2
 #: The longest step ``polish`` takes (relative to the root).
 POLISH_REACH = 1e-8
+#: A bracket holding several roots is cut in two by counts until it is this narrow
+#: (relative) before the orthogonal route takes it as one (a repeated root or a cluster).
+SEPARATE = 1e-4
+#: The determinant's secant stops at this relative step (``refine_simple``): the
+#: Rayleigh quotient's secant takes the root from there to round-off.
+SIMPLE_RTOL = 1e-6
+#: Secant steps on the Rayleigh quotient after it (each but the last evaluates D once)
+#: and the step that ends them (relative): the error after a step is about the
+#: product of the last two.
+SECANT_STEPS = 3
+SECANT_DONE = 1e-9
+#: Relative step of the one-sided difference that gives ``refine_simple`` its slope.
+SLOPE_STEP = 1e-7
+#: ``refine_simple`` gives the bracket to the orthogonal route where a factorization's
+#: backward error exceeds D's round-off by this factor (its determinant's sign is then
+#: not sure).
+SIMPLE_GROWTH = 1e3
 #: Gauss-Legendre points per segment and per wave in it (a field's wavelength / 2 pi)
 #: for the participation integrals.
 GAUSS_POINTS = 16
@@ -164,21 +186,28 @@ def roots(
         return sum(m for _, m in found)
 
     def g(w: float, idx: int) -> float:
-        return asm.eigenvalue(asm.matrix(w)[0], idx)
+        return asm.eigenvalue(asm.banded(w)[0], idx)
 
-    stack = [(lo, *(asm.state(lo) if lo > 0 else (0, 0)), hi, *asm.state(hi))]
+    def state(w: float) -> tuple[int, int]:
+        return asm.factor(w)[:2]
+
+    stack = [(lo, *(state(lo) if lo > 0 else (0, 0)), hi, *state(hi))]
     while stack:
         a, ca, ja, b, cb, jb = stack.pop()
         if cb == ca or (modes is not None and total() >= modes):
             continue
-        if ja != jb and b - a > ROOT_GUARD * b:
+        if (ja != jb and b - a > ROOT_GUARD * b) or (cb - ca > 1 and b - a > SEPARATE * b):
             mid = 0.5 * (a + b)
-            cm, jm = asm.state(mid)
+            cm, jm = state(mid)
             stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
             continue
         idx = ca - ja
-        ga, gb = g(a, idx), g(b, idx)
-        if ga >= 0.0 and gb < 0.0 and ga != 0.0:
+        simple = None
+        if cb - ca == 1:
+            simple = refine_simple(asm, a, b, idx)
+        if simple is not None:
+            w, window = simple
+        elif (ga := g(a, idx)) >= 0.0 and g(b, idx) < 0.0 and ga != 0.0:
             w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=BRENT_RTOL, maxiter=200)
             k = local_multiplicity(asm, w, cb - ca)
             w, window = polish(asm, w, k, w * POLISH_REACH)
@@ -204,10 +233,99 @@ def roots(
             break
         else:  # no window settles: the bracket is cut in two and searched again
             mid = 0.5 * (a + b)
-            cm, jm = asm.state(mid)
+            cm, jm = state(mid)
             stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
     found.sort()
     return found
+
+
+def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[float, float] | None:
+    """The one root in a bracket ``[a, b]`` where D has no pole and one more negative
+    eigenvalue at b than its ``negatives`` at a, with its window (as :func:`polish`), or
+    None where the fast route cannot vouch for it (the caller then takes the orthogonal
+    one).
+
+    ``det D(omega)`` changes sign once there, at the root, and is smooth: the
+    Anderson-Bjorck bracketing secant on it, from the pivots of :func:`.banded.ldl`
+    (``(-1)^(negatives) exp(log|det| - log|det D(a)|)``), until its step is below
+    :data:`SIMPLE_RTOL`. Then one secant step on the Rayleigh quotient ``t = x^T D x`` of
+    the null vector x (two inverse iterations with the last factors) through the last
+    two points: t is smooth where det is, and its root is accurate where det's sign is
+    not (D's stiff axial entries set det's round-off, the bending mode's x barely moves
+    them). No evaluation of D beyond the secant's."""
+    W = asm._work()
+    seen: list[tuple[float, np.ndarray]] = []
+    grown = False
+
+    def f(w: float) -> float:
+        nonlocal grown
+        B, _ = asm.banded(w)
+        seen.append((w, B))
+        neg, G, logabs = ldl(B, 0.0, W)
+        grown |= backward(G, asm.bandwidth) > SIMPLE_GROWTH * asm.roundoff(B)
+        if not math.isfinite(logabs):
+            return 0.0
+        return (-1.0) ** (neg - negatives) * math.exp(min(max(logabs - log_a, -700.0), 700.0))
+
+    log_a = asm.logdets.get(a)
+    if log_a is None:
+        log_a = ldl(asm.banded(a)[0], 0.0, W)[2]
+    log_b = asm.logdets.get(b)
+    fa = 1.0
+    fb = -math.exp(min(max(log_b - log_a, -700.0), 700.0)) if log_b is not None else f(b)
+    if not (math.isfinite(log_a) and fb < 0.0) or grown:
+        return None
+    wa, wb, w = a, b, b
+    for _ in range(100):
+        c = wb - fb * (wb - wa) / (fb - fa)
+        lo, hi = min(wa, wb), max(wa, wb)
+        if not lo < c < hi:
+            c = 0.5 * (lo + hi)
+        fc = f(c)
+        step, w = abs(c - w), c
+        if fc == 0.0 or step <= SIMPLE_RTOL * c:
+            break
+        if (fc > 0.0) == (fb > 0.0):
+            m = 1.0 - fc / fb
+            fa *= m if m > 0.0 else 0.5
+        else:
+            wa, fa = wb, fb
+        wb, fb = c, fc
+    else:
+        return None
+    if grown:
+        return None
+    w2, B2 = seen[-1]
+    ldl(B2, 0.0, W)
+    x = np.cos(np.arange(asm.n) * 1.618)
+    for _ in range(2):
+        ldl_solve(W, x)
+        x /= np.linalg.norm(x)
+    y = np.empty_like(x)
+
+    def t(B: np.ndarray) -> float:
+        band_matvec(B, x, y)
+        return float(x @ y)
+
+    # the slope through the nearest earlier point at least SLOPE_STEP away (round-off)
+    far = [(abs(w1 - w2), w1, B1) for w1, B1 in seen[:-1] if abs(w1 - w2) > SLOPE_STEP * w2]
+    _, w1, B1 = min(far, default=(0.0, w2 * (1.0 - SLOPE_STEP), None))
+    t1 = t(asm.banded(w1)[0] if B1 is None else B1)
+    t2 = t(B2)
+    for _ in range(SECANT_STEPS):
+        slope = (t2 - t1) / (w2 - w1)
+        if not slope < 0.0 or abs(t2 / slope) > POLISH_REACH * w2:
+            return None
+        step = t2 / slope
+        w = min(max(w2 - step, a), b)
+        if abs(step) <= SECANT_DONE * w2:
+            break
+        w1, t1 = w2, t2
+        w2, B2 = w, asm.banded(w)[0]
+        t2 = t(B2)
+    else:
+        return None
+    return w, max(ROOT_GUARD, 4.0 * asm.roundoff(B2) / (w * abs(slope)))
 
 
 def _mass_form(asm: Assembly, w: float) -> np.ndarray:
@@ -231,7 +349,7 @@ def _mass_form(asm: Assembly, w: float) -> np.ndarray:
 
 def _null_space(asm: Assembly, w: float, k: int) -> np.ndarray:
     """The k eigenvectors of D(w) of the smallest eigenvalues in magnitude."""
-    return asm.near_zero(asm.matrix(w)[0], k)[1]
+    return asm.near_zero(asm.banded(w)[0], k)[1]
 
 
 def _ladder(window: float) -> list[float]:
@@ -243,7 +361,7 @@ def local_multiplicity(asm: Assembly, w: float, most: int) -> int:
     """How many of D(w)'s ``most`` eigenvalues of least magnitude belong to the root near
     w: those within :data:`SAME_ROOT` times the least (the others belong to roots farther
     off, as far as their eigenvalues are larger)."""
-    e, _ = asm.near_zero(asm.matrix(w)[0], most)
+    e, _ = asm.near_zero(asm.banded(w)[0], most)
     e = np.sort(np.abs(e))
     return max(1, int(np.count_nonzero(e <= SAME_ROOT * e[0] + 1e-300)))
 
@@ -268,13 +386,13 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]
     wide (1e-8 and more), a beam-like mode's 1e-14."""
     window = ROOT_GUARD
     for _ in range(3):
-        D, _ = asm.matrix(w)
-        X = asm.near_zero(D, k)[1]
-        t = float(np.trace(X.T @ D @ X))
+        B, _ = asm.banded(w)
+        X = asm.near_zero(B, k)[1]
+        t = float(np.trace(X.T @ asm.dense(B) @ X))
         slope = -2.0 * w * float(np.trace(X.T @ _mass_form(asm, w) @ X))
         if slope == 0.0 or not math.isfinite(t / slope):
             break
-        window = max(ROOT_GUARD, 4.0 * asm.roundoff(D) * k / (w * abs(slope)))
+        window = max(ROOT_GUARD, 4.0 * asm.roundoff(B) * k / (w * abs(slope)))
         step = t / slope
         if abs(step) > reach:
             break
