@@ -25,7 +25,7 @@ import numpy as np
 
 from mstmm.catalog import SEGMENT_PHYSICS, Topology, layout
 
-from .banded import backward, ldl, reverse_band, row_norm
+from .banded import backward, band_matvec, ldl, ldl_solve, reverse_band, row_norm
 from .member import assemble_members
 from .model import Frame, Member
 
@@ -246,6 +246,16 @@ class Assembly:
         B, J0 = self.banded(omega)
         return self.dense(B), J0
 
+    def quadratic(self, B: np.ndarray, X: np.ndarray) -> np.ndarray:
+        """``X^T D X`` (k x k) for D in band rows B and the columns of X over the freedoms."""
+        Xp = np.ascontiguousarray(X[self.perm])
+        Y = np.empty_like(Xp)
+        y = np.empty(self.n)
+        for j in range(Xp.shape[1]):
+            band_matvec(B, np.ascontiguousarray(Xp[:, j]), y)
+            Y[:, j] = y
+        return Xp.T @ Y
+
     def count(self, omega: float) -> int:
         """Natural frequencies below omega (rad/s), with their multiplicities."""
         return self.state(omega)[0]
@@ -363,6 +373,31 @@ class Assembly:
         )  # fmt: skip
         return float(e[0])
 
+    def null_vector(self, B: np.ndarray) -> np.ndarray | None:
+        """The unit eigenvector of D's eigenvalue nearest 0 (D in band rows B, at a simple
+        root), over the freedoms, by inverse iteration with :func:`.banded.ldl`'s factors
+        (in band order, or else in reverse); None where both factors' pivots grew or the
+        iteration leaves a residual above D's round-off (:meth:`near_zero` then)."""
+        W = self._work()
+        tau = self.roundoff(B)
+        for order in (B, reverse_band(B, np.empty_like(B))):
+            _, G, _ = ldl(order, 0.0, W)
+            if not backward(G, self.bandwidth) <= tau:
+                continue
+            x = np.cos(np.arange(self.n) * 1.618)
+            for _ in range(3):
+                ldl_solve(W, x)
+                x /= np.linalg.norm(x)
+            if order is not B:
+                x = x[::-1].copy()
+            y = np.empty_like(x)
+            band_matvec(B, x, y)
+            if np.linalg.norm(y - (x @ y) * x) <= NULL_RESIDUAL * tau:
+                X = np.empty(self.n)
+                X[self.perm] = x
+                return X
+        return None
+
     def near_zero(self, B: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
         """The k eigenvalues of D (band rows B) of least magnitude and their eigenvectors
         (columns, over the freedoms)."""
@@ -419,6 +454,9 @@ class MemberMap:
 #: An eigenvalue of D within this fraction of its largest is round-off (``sure_count``):
 #: D is formed to about 100 ulp (each member's pieces eliminated, turned and added).
 ROUNDOFF = 1e3 * np.finfo(float).eps
+#: :meth:`Assembly.null_vector` accepts a vector whose residual is this many times D's
+#: round-off at most (inverse iteration at a root: the residual is the round-off's size).
+NULL_RESIDUAL = 10.0
 #: :meth:`Assembly.sure_count` takes the factors' own backward error as its tau up to
 #: this many times the round-off (a wider tau makes the root's windows wider).
 SURE_GROWTH = 4.0

@@ -29,6 +29,7 @@ Each shape is normalised to unit modal mass, the kinetic energy form ``-dD/d(ome
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -329,7 +330,8 @@ def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[fl
 
 
 def _mass_form(asm: Assembly, w: float) -> np.ndarray:
-    """``-dD/d(omega^2)`` at w (dimensionless units of D per omega_ref^2), by a fourth-order
+    """``-dD/d(omega^2)`` at w (dimensionless units of D per omega_ref^2; band rows, as
+    :meth:`Assembly.banded`), by a fourth-order
     central difference in omega^2 whose step keeps :data:`POLE_CLEARANCE` steps from any
     pole of D (a member's clamped-clamped frequency: J0 is the same at both ends of the
     clearance, and J0 never falls). A cantilever's fourth root lies 1.2e-5 below its
@@ -337,19 +339,24 @@ def _mass_form(asm: Assembly, w: float) -> np.ndarray:
     polished root, 4e-9 off."""
     w2 = w * w
     h = MASS_STEP * w2 if w2 > 0 else MASS_STEP * asm.omega_ref**2
-    J0 = asm.matrix(w)[1]
+    J0 = asm.banded(w)[1]
     for _ in range(40):
         lo, hi = max(w2 - POLE_CLEARANCE * h, 0.0), w2 + POLE_CLEARANCE * h
-        if asm.matrix(math.sqrt(lo))[1] == J0 == asm.matrix(math.sqrt(hi))[1]:
+        if asm.banded(math.sqrt(lo))[1] == J0 == asm.banded(math.sqrt(hi))[1]:
             break
         h /= 4.0
-    D = [asm.matrix(math.sqrt(max(w2 + j * h, 0.0)))[0] for j in (-2, -1, 1, 2)]
+    D = [asm.banded(math.sqrt(max(w2 + j * h, 0.0)))[0] for j in (-2, -1, 1, 2)]
     return -(D[0] - 8 * D[1] + 8 * D[2] - D[3]) / (12 * h)
 
 
 def _null_space(asm: Assembly, w: float, k: int) -> np.ndarray:
     """The k eigenvectors of D(w) of the smallest eigenvalues in magnitude."""
-    return asm.near_zero(asm.banded(w)[0], k)[1]
+    B = asm.banded(w)[0]
+    if k == 1:
+        x = asm.null_vector(B)
+        if x is not None:
+            return x[:, None]
+    return asm.near_zero(B, k)[1]
 
 
 def _ladder(window: float) -> list[float]:
@@ -388,8 +395,8 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]
     for _ in range(3):
         B, _ = asm.banded(w)
         X = asm.near_zero(B, k)[1]
-        t = float(np.trace(X.T @ asm.dense(B) @ X))
-        slope = -2.0 * w * float(np.trace(X.T @ _mass_form(asm, w) @ X))
+        t = float(np.trace(asm.quadratic(B, X)))
+        slope = -2.0 * w * float(np.trace(asm.quadratic(_mass_form(asm, w), X)))
         if slope == 0.0 or not math.isfinite(t / slope):
             break
         window = max(ROOT_GUARD, 4.0 * asm.roundoff(B) * k / (w * abs(slope)))
@@ -405,8 +412,7 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]
 def _shapes(asm: Assembly, w: float, multiplicity: int) -> list[FrameMode]:
     """Mass-orthonormal modes spanning the null space of D(w)."""
     X = _null_space(asm, w, multiplicity)
-    M = _mass_form(asm, w)
-    G = X.T @ M @ X
+    G = asm.quadratic(_mass_form(asm, w), X)
     G = 0.5 * (G + G.T)
     Lc = np.linalg.cholesky(G)
     X = np.linalg.solve(Lc, X.T).T  # X^T M X = I
@@ -477,7 +483,7 @@ def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
             waves = h * (mode.omega * mode.omega * mm.mbar[j] / mm.member.segments[j].EI) ** 0.25
             waves += h * mode.omega * math.sqrt(mm.mbar[j] / mm.EA[j])
             n = GAUSS_POINTS * (1 + int(waves))
-            t, weight = np.polynomial.legendre.leggauss(n)
+            t, weight = _gauss(n)
             x = start + 0.5 * h * (t + 1.0)
             f = fields_at(mm, mode, x)
             wt = 0.5 * h * weight * mm.mbar[j]
@@ -493,6 +499,12 @@ def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
         gx += ab.m * q * ab.direction[0]
         gy += ab.m * q * ab.direction[1]
     return gx, gy
+
+
+@functools.lru_cache(maxsize=64)
+def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre points and weights on [-1, 1] (computed once per n)."""
+    return np.polynomial.legendre.leggauss(n)
 
 
 def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
