@@ -295,3 +295,25 @@ def sample_frames() -> dict:
             masses={"R1": (10.0, 1.0)},
         ),
     }
+
+
+def as_table(rf: Frame) -> dict:
+    """A reference frame as a frame scene table (what a user writes)."""
+    nodes = []
+    for name, (x, y) in rf.nodes.items():
+        node = {"name": name, "x": float(x), "y": float(y)}
+        held = rf.held.get(name, "")
+        if held:
+            node["support"] = {"xyt": "fixed", "xy": "pinned"}[held]
+        if name in rf.masses:
+            node["mass"], node["J"] = (float(v) for v in rf.masses[name])
+        nodes.append(node)
+    members = []
+    for m in rf.members:
+        member = {"start": m.a, "end": m.b, "EI": float(m.EI), "EA": float(m.EA)}
+        member["mass_per_length"] = float(m.mbar)
+        for end, key in enumerate(("start_joint", "end_joint")):
+            if m.pinned[end]:
+                member[key] = "pinned"
+        members.append(member)
+    return {"nodes": nodes, "members": members}

@@ -29,7 +29,7 @@ from mpmath import mp
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from reference_frame import Frame as RFrame  # noqa: E402
-from reference_frame import count_below, nafems_fv2, sample_frames  # noqa: E402
+from reference_frame import as_table, count_below, nafems_fv2, sample_frames  # noqa: E402
 
 from mstmm import scene_from_dict, solve  # noqa: E402
 from mstmm.frame import frame_from_dict, load_frame, solve_frame  # noqa: E402
@@ -40,28 +40,6 @@ EXAMPLES = HERE.parent / "examples"
 DPS = 30
 #: Relative half-width of the bracket the reference's count must jump across.
 BRACKET = 1e-12
-
-
-def as_table(rf: RFrame) -> dict:
-    """A reference frame as a frame scene table (what a user writes)."""
-    nodes = []
-    for name, (x, y) in rf.nodes.items():
-        node = {"name": name, "x": float(x), "y": float(y)}
-        held = rf.held.get(name, "")
-        if held:
-            node["support"] = {"xyt": "fixed", "xy": "pinned"}[held]
-        if name in rf.masses:
-            node["mass"], node["J"] = (float(v) for v in rf.masses[name])
-        nodes.append(node)
-    members = []
-    for m in rf.members:
-        member = {"start": m.a, "end": m.b, "EI": float(m.EI), "EA": float(m.EA)}
-        member["mass_per_length"] = float(m.mbar)
-        for end, key in enumerate(("start_joint", "end_joint")):
-            if m.pinned[end]:
-                member[key] = "pinned"
-        members.append(member)
-    return {"nodes": nodes, "members": members}
 
 
 def check_against_reference(rf: RFrame, sol, bracket: float = BRACKET) -> None:
@@ -394,6 +372,36 @@ def test_the_building_example_splits_its_first_mode_with_the_roof_damper():
     assert w[peaks[0]] < 2 * math.pi * f_bare[0] < w[peaks[1]]
     off = np.abs(frf(bare, push, look, [2 * math.pi * 1.03 * f_bare[0]]))
     assert H.max() < off[0]
+
+
+def test_the_tower_with_a_branch_example_against_the_reference_model(capsys):
+    """examples/frames/tower_branch.toml (a tree: mast, branch node, arm with a platform
+    mass), through the CLI's default path (shapes on) and the Python call: every root
+    where the 30-digit reference model's count jumps, the modes null vectors of D."""
+    from reference_frame import Frame as RF
+    from reference_frame import Member as RMember
+
+    from mstmm.cli import main
+
+    path = EXAMPLES / "frames" / "tower_branch.toml"
+    table = _toml(path)
+    rf = RF(
+        {n["name"]: (n["x"], n["y"]) for n in table["nodes"]},
+        tuple(
+            RMember(m["start"], m["end"], m["EI"], m["EA"], m["mass_per_length"])
+            for m in table["members"]
+        ),
+        held={n["name"]: "xyt" for n in table["nodes"] if n.get("support") == "fixed"},
+        masses={n["name"]: (n["mass"], n["J"]) for n in table["nodes"] if "mass" in n},
+    )
+    sol = solve_frame(load_frame(path), 8)
+    check_against_reference(rf, sol)
+    assert _mode_residual(sol) < 1e-12
+    assert main(["solve", str(path), "--modes", "8", "--format", "json"]) == 0
+    import json
+
+    shown = json.loads(capsys.readouterr().out)
+    np.testing.assert_allclose(shown["omega"], sol.omega, rtol=1e-15)
 
 
 def _toml(path) -> dict:
