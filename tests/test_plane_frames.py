@@ -333,6 +333,16 @@ def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
     expected = np.array([complex(h) for h in expected])
     got = frf(frame, ("force", "top", (1.0, 0.0)), ("displacement", "top", (1.0, 0.0)), omega)
     np.testing.assert_allclose(got, expected, rtol=1e-9)
+    # between points inside the member (cut there; the absorber's cut already splits it)
+    inside = [("displacement", "x", L), ("displacement", "x", 4.0)]
+    expected = np.array(
+        [[complex(h) for h in reference_frf(beam, ("force", "x", 1.0), d, omega, dps=20)]
+         for d in inside]
+    ).T  # fmt: skip
+    X = (1.0, 0.0)
+    got = frf(frame, ("force", ("col", 1.0), X),
+              [("displacement", "top", X), ("displacement", ("col", 4.0), X)], omega)  # fmt: skip
+    np.testing.assert_allclose(got, expected, rtol=1e-9)
     with pytest.raises(SceneError, match="damped natural frequencies of frames"):
         solve_frame(frame, 3)
 
@@ -402,6 +412,42 @@ def test_the_tower_with_a_branch_example_against_the_reference_model(capsys):
 
     shown = json.loads(capsys.readouterr().out)
     np.testing.assert_allclose(shown["omega"], sol.omega, rtol=1e-15)
+
+
+def test_cli_frf_of_a_frame_between_a_node_and_a_point_inside_a_member(capsys, tmp_path):
+    """``mstmm frf`` on the building example: a horizontal force at the roof, responses at
+    the roof and at mid-span of the first floor beam (``m3@3``), as JSON: the numbers of
+    the Python call (checked against the reference model in the column test above) times
+    i omega for mobility; a point off its member or a force without a direction: one line
+    naming the option, exit 2, nothing written."""
+    import json
+
+    from mstmm.cli import main
+    from mstmm.frame import frf
+
+    path = EXAMPLES / "frames" / "building_tmd.toml"
+    args = ["frf", str(path), "--input", "force:N10_0=x", "--output", "displacement:N10_0=x",
+            "--output", "displacement:m3@3=y", "--band", "1", "5", "--points", "9",
+            "--format", "json", "--quantity", "mobility"]  # fmt: skip
+    assert main(args) == 0
+    shown = json.loads(capsys.readouterr().out)
+    w = np.linspace(1.0, 5.0, 9)
+    H = frf(load_frame(path), ("force", "N10_0", (1.0, 0.0)),
+            [("displacement", "N10_0", (1.0, 0.0)), ("displacement", ("m3", 3.0), (0.0, 1.0))],
+            w)  # fmt: skip
+    np.testing.assert_allclose(shown["omega"], w)
+    for j, label in enumerate(["displacement:N10_0=x", "displacement:m3@3=y"]):
+        got = np.array(shown["re"][j]) + 1j * np.array(shown["im"][j])
+        np.testing.assert_allclose(got, 1j * w * H[:, j], rtol=1e-12)
+        assert shown["outputs"][j] == label
+    out = tmp_path / "h.csv"
+    for bad, option in (("force:m3@9=x", "input"), ("force:N10_0", "--input")):
+        bad_args = ["frf", str(path), "--input", bad, "--output", "displacement:N10_0=x",
+                    "--band", "1", "5", "--out", str(out)]  # fmt: skip
+        assert main(bad_args) == 2
+        err = capsys.readouterr().err
+        assert option in err and len(err.strip().splitlines()) == 1
+        assert not out.exists()
 
 
 def _toml(path) -> dict:

@@ -739,10 +739,13 @@ def _frf(args) -> int:
 
     from . import output
     from .response import frf_chunks
+    from .scene import Scene
 
     if args.out is not None:
         _check_out_dir(args.out)
-    scene = _scene(args.scene)
+    scene = _scene_or_frame(args.scene)
+    if not isinstance(scene, Scene):
+        return _frf_frame(args, scene)
     omegas, src, dst = _frf_request(args, scene)
     labels, units = [str(d) for d in dst], output.frf_units(args.quantity, src, dst)
     t0 = time.perf_counter()
@@ -768,6 +771,54 @@ def _frf(args) -> int:
             fh.write(header)
             for at, part in chunks:  # computed and written chunk by chunk
                 fh.write(rows(omegas[at], part[:, 0, :]))
+    _phase(args, "frf", frf=time.perf_counter() - t0)
+    if args.out is not None:
+        print(args.out)
+    return 0
+
+
+def _frf_frame(args, frame) -> int:
+    """``mstmm frf`` of a frame: points ``QUANTITY:WHERE[=DIRECTION]`` at nodes or along
+    members (:func:`mstmm.frame.response.parse_point`), the whole band in one call."""
+    import contextlib
+
+    import numpy as np
+
+    from . import output
+    from .frame.response import frf, parse_point
+    from .response import MAX_RESPONSES
+    from .units import frf_unit
+
+    src = parse_point(args.input, "--input", COMMAND_LINE)
+    dst = [parse_point(o, "--output", COMMAND_LINE) for o in args.output]
+    lo, hi = float(args.band[0]), float(args.band[1])
+    if hi <= lo:
+        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", [lo, hi])
+    if args.spacing == "log" and lo <= 0.0:
+        raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
+    if args.points * len(dst) > MAX_RESPONSES:
+        raise SceneError(
+            COMMAND_LINE, "--points",
+            f"{args.points} frequencies x {len(dst)} output(s) is more than"
+            f" {MAX_RESPONSES:.0e} responses", args.points,
+        )  # fmt: skip
+    omegas = (np.geomspace if args.spacing == "log" else np.linspace)(lo, hi, args.points)
+    t0 = time.perf_counter()
+    H = frf(frame, src, dst, omegas)
+    rate = {"receptance": 1.0, "mobility": 1j * omegas, "accelerance": -(omegas**2)}
+    H = H * np.reshape(rate[args.quantity], (-1, 1))
+    labels = [o.strip() for o in args.output]
+    units = [frf_unit(args.quantity, d[0], src[0]) for d in dst]
+    with contextlib.ExitStack() as stack:
+        fh = sys.stdout if args.out is None else stack.enter_context(output.atomic_file(args.out))
+        if args.format == "json":
+            if _frf_json(fh, frame, args.quantity, args.input.strip(), labels, omegas, H):
+                _warn("non-finite values (natural frequencies) written as null in the JSON output")
+        elif args.format == "csv":
+            fh.write(output.frf_csv_header(labels, units) + output.frf_csv_rows(omegas, H))
+        else:
+            head = output.frf_table_header(frame.name, args.quantity, args.input.strip(), labels)
+            fh.write(head + output.frf_table_rows(omegas, H))
     _phase(args, "frf", frf=time.perf_counter() - t0)
     if args.out is not None:
         print(args.out)

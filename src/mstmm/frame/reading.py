@@ -45,7 +45,7 @@ from mstmm.scene.segments import _OPTIONAL_KEYS, _optional
 
 from .model import Absorber, Frame, FrameSegment, Member, Node
 
-__all__ = ["frame_from_dict", "frame_from_file", "is_frame", "load_frame"]
+__all__ = ["frame_from_dict", "frame_from_file", "is_frame", "load_frame", "with_points"]
 
 #: What each support holds: global freedoms x, y, t (Theta), n (along ``normal``).
 SUPPORTS = {"free": "", "fixed": "xyt", "pinned": "xy", "roller": "n", "sliding": "nt"}
@@ -354,3 +354,46 @@ def _split(m: Member, cuts: list[tuple[float, str]], nodes: dict[str, Node]) -> 
         name = m.name if len(stations) == 2 else f"{m.name}[{j}]"
         out.append(Member(name, names[j], names[j + 1], tuple(segments), pinned, hinge))
     return out
+
+
+def with_points(
+    frame: Frame, points: list[tuple[str, float]], roles: list[str] | None = None
+) -> tuple[Frame, list[str]]:
+    """The frame with a node at each ``(member, x)`` of ``points`` (x in m from the
+    member's start node), and the names of those nodes (``<member>@<x>``, or the end
+    node where x is an end). A member that attachments already cut is addressed by its
+    scene name, x along the whole of it. The members stay exact: a cut adds a joint.
+    Errors name the point's role (``roles``, aligned with ``points``)."""
+    nodes = dict(frame.nodes)
+    cuts: dict[str, list[tuple[float, str]]] = {}
+    names = []
+    for (member, x), role in zip(points, roles or ["point"] * len(points), strict=True):
+        pieces = [m for m in frame.members if m.name == member] or [
+            m for m in frame.members if m.name.startswith(f"{member}[") and m.name.endswith("]")
+        ]
+        if not pieces:
+            raise SceneError(frame.source, role, "no member of this name", member)
+        total = sum(_length(frame.nodes, m) for m in pieces)
+        if not (isinstance(x, (int, float)) and 0.0 <= x <= total):
+            raise SceneError(frame.source, role, f"x must lie on {member} (0 to {total:g} m)", x)
+        offset = 0.0
+        for m in pieces:
+            L = _length(frame.nodes, m)
+            if x <= offset + L or m is pieces[-1]:
+                local = x - offset
+                if local <= 0.0:
+                    names.append(m.start)
+                elif local >= L:
+                    names.append(m.end)
+                else:
+                    name = f"{member}@{float(x)!r}"
+                    cuts.setdefault(m.name, []).append((local, name))
+                    names.append(name)
+                break
+            offset += L
+    members = [
+        piece
+        for m in frame.members
+        for piece in _split(m, sorted(set(cuts.get(m.name, []))), nodes)
+    ]
+    return Frame(frame.name, nodes, tuple(members), frame.absorbers, frame.source), names
