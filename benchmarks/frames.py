@@ -22,6 +22,7 @@ import argparse
 import json
 import math
 import statistics
+import sys
 import time
 
 import numpy as np
@@ -29,10 +30,19 @@ import numpy as np
 from mstmm.frame import frame_from_dict, solve_frame
 
 
-def building(storeys: int, bays: int, h: float = 3.5, span: float = 6.0, tmd: dict | None = None):
+def building(
+    storeys: int,
+    bays: int,
+    h: float = 3.5,
+    span: float = 6.0,
+    tmd: dict | None = None,
+    distinct: bool = False,
+):
     """A frame scene table: columns (EI 5.25e7, EA 3.15e9, 120 kg/m) and floor beams (EI
     6.3e7, EA 2.52e9, 2000 kg/m with the slab), fixed feet; ``tmd`` (``k``, ``m``): a TMD
-    at each of the roof's end nodes, acting along X."""
+    at each of the roof's end nodes, acting along X. ``distinct``: every member its own
+    section (EI 0.1 % apart from one member to the next), so that none shares its
+    stiffness with another (the solver computes each distinct section once a frequency)."""
     nodes, members = [], []
     for i in range(storeys + 1):
         for j in range(bays + 1):
@@ -47,6 +57,8 @@ def building(storeys: int, bays: int, h: float = 3.5, span: float = 6.0, tmd: di
             members.append({"start": f"N{i}_{j}", "end": f"N{i + 1}_{j}", **column})
         for j in range(bays):
             members.append({"start": f"N{i + 1}_{j}", "end": f"N{i + 1}_{j + 1}", **beam})
+    if distinct:
+        members = [{**m, "EI": m["EI"] * (1 + 1e-3 * i)} for i, m in enumerate(members)]
     attachments = []
     for j in (0, bays) if tmd else ():
         node = f"N{storeys}_{j}"
@@ -55,16 +67,16 @@ def building(storeys: int, bays: int, h: float = 3.5, span: float = 6.0, tmd: di
             "attachments": attachments}  # fmt: skip
 
 
-def with_dampers(storeys: int, bays: int) -> dict:
+def with_dampers(storeys: int, bays: int, distinct: bool = False) -> dict:
     """The building with its two roof TMDs: each 1 % of the frame's mass, tuned to the
     bare frame's first frequency by Den Hartog's rule (``f = 1 / (1 + mu)``, mu the pair's
     mass over the first mode's effective mass)."""
-    bare = solve_frame(frame_from_dict(building(storeys, bays)), 1)
+    bare = solve_frame(frame_from_dict(building(storeys, bays, distinct=distinct)), 1)
     mass = bare.frame.mass
     m = 0.01 * mass
     mu = 2 * m / bare.modes[0].effective_mass[0]
     w = bare.omega[0] / (1 + mu)
-    return building(storeys, bays, tmd={"k": m * w * w, "m": m})
+    return building(storeys, bays, tmd={"k": m * w * w, "m": m}, distinct=distinct)
 
 
 def fem_frequencies(table: dict, modes: int, n: int) -> np.ndarray:
@@ -147,8 +159,34 @@ def fem_run(storeys: int, bays: int, modes: int, exact: np.ndarray, largest: int
     return out
 
 
-def run(storeys: int, bays: int, modes: int, rounds: int) -> dict:
-    frame = frame_from_dict(with_dampers(storeys, bays))
+def accuracy(modes: int = 12) -> list[dict]:
+    """The worst relative error of the lowest ``modes`` frequencies of the test frames
+    (``tests/reference_frame.py``: an L-frame, a portal, a tree, two bays and two storeys,
+    FV2 with its centre held and free) against the 30-digit reference model's roots, and
+    whether every multiplicity agrees."""
+    import mpmath
+    from reference_frame import as_table, frequencies, nafems_fv2, sample_frames
+
+    cases = {**sample_frames(), "FV2 held": nafems_fv2(True), "FV2 free": nafems_fv2()}
+    out = []
+    for name, rf in cases.items():
+        n = 16 if name.startswith("FV2") else modes
+        sol = solve_frame(frame_from_dict(as_table(rf)), n, shapes=False)
+        with mpmath.workdps(30):
+            ref = [(float(w), m) for w, m in frequencies(rf, n, 30)]
+        exact = np.array([w for w, m in ref for _ in range(m)])[:n]
+        mult = [m for _, m in ref for _ in range(m)][:n]
+        got = sol.omega[:n]
+        out.append({
+            "frame": name, "modes": n,
+            "worst": float(np.max(np.abs(got - exact) / exact)),
+            "multiplicities": sol.multiplicity[:n].tolist() == mult,
+        })  # fmt: skip
+    return out
+
+
+def run(storeys: int, bays: int, modes: int, rounds: int, distinct: bool = False) -> dict:
+    frame = frame_from_dict(with_dampers(storeys, bays, distinct))
     t = time.perf_counter()
     solve_frame(frame, modes, shapes=False)
     cold = time.perf_counter() - t
@@ -162,9 +200,20 @@ def run(storeys: int, bays: int, modes: int, rounds: int) -> dict:
         shaped.append(time.perf_counter() - t)
     return {
         "storeys": storeys, "bays": bays, "members": len(frame.members), "modes": modes,
+        "distinct": distinct,
         "first_hz": float(sol.f[0]), "cold_s": cold, "warm_s": statistics.median(warm),
         "with_shapes_s": statistics.median(shaped),
     }  # fmt: skip
+
+
+def _print(row: dict, modes: int) -> None:
+    each = ", every member its own section" if row["distinct"] else ""
+    print(
+        f"{row['storeys']:>3} storeys x {row['bays']} bays ({row['members']:>3} members{each}):"
+        f" lowest {modes} certified, cold {row['cold_s']:.3f} s, warm {row['warm_s']:.3f} s,"
+        f" with shapes {row['with_shapes_s']:.3f} s (f1 = {row['first_hz']:.6g} Hz)",
+        flush=True,
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -175,6 +224,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--modes", type=int, default=20)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--json")
+    parser.add_argument("--accuracy", action="store_true", help="also the accuracy report")
+    parser.add_argument(
+        "--record", action="store_true", help="record the results in docs/figures.json"
+    )
     parser.add_argument(
         "--fem", type=int, default=0, metavar="N",
         help="also the finite-element model of the last size, up to N elements a member",
@@ -185,12 +238,14 @@ def main(argv: list[str] | None = None) -> int:
         storeys, bays = (int(v) for v in size.split("x"))
         row = run(storeys, bays, args.modes, args.rounds)
         rows.append(row)
-        print(
-            f"{storeys:>3} storeys x {bays} bays ({row['members']:>3} members): lowest"
-            f" {args.modes} certified, cold {row['cold_s']:.3f} s, warm {row['warm_s']:.3f} s,"
-            f" with shapes {row['with_shapes_s']:.3f} s (f1 = {row['first_hz']:.6g} Hz)",
-            flush=True,
-        )
+        _print(row, args.modes)
+    distinct = run(*(rows[-1][k] for k in ("storeys", "bays")), args.modes, args.rounds, True)
+    _print(distinct, args.modes)
+    accurate = accuracy() if args.accuracy else []
+    for a in accurate:
+        print(f"  {a['frame']:<20} lowest {a['modes']}: worst relative error {a['worst']:.1e},"
+              f" multiplicities {'exact' if a['multiplicities'] else 'WRONG'}")  # fmt: skip
+
     if args.fem:
         storeys, bays = rows[-1]["storeys"], rows[-1]["bays"]
         exact = solve_frame(frame_from_dict(with_dampers(storeys, bays)), args.modes, shapes=False)
@@ -208,6 +263,12 @@ def main(argv: list[str] | None = None) -> int:
                     )
             print(line, flush=True)
             rows[-1].setdefault("fem", []).append(row)
+    if args.record:
+        from . import figures
+
+        result = {"sizes": rows, "distinct": distinct, "accuracy": accurate}
+        cmd = "python -m benchmarks.frames " + " ".join(argv if argv is not None else sys.argv[1:])
+        print(f"recorded in {figures.record('frames', result, command=cmd)}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)

@@ -55,6 +55,46 @@ def test_numerics_functions_are_cached_with_the_package_stamp():
         assert Path(impl.locator.get_cache_path()).is_relative_to(cache.numba_dir())
 
 
+_LOCATORS = """
+import importlib, pkgutil, sys
+import mstmm.frame  # first: what a frame's solve imports (the band factorization's module
+                    # once made its functions before the locator was installed)
+import mstmm
+from mstmm.numerics import cache
+from numba.core.dispatcher import Dispatcher
+checked, wrong = 0, []
+for info in pkgutil.walk_packages(mstmm.__path__, "mstmm."):
+    if info.name.startswith("mstmm.generated.") or info.name.endswith("__main__"):
+        continue
+    try:
+        module = importlib.import_module(info.name)
+    except ImportError:  # an optional dependency (dask) missing
+        continue
+    for value in vars(module).values():
+        if isinstance(value, Dispatcher) and getattr(value._cache, "_impl", None):
+            if getattr(value, "__module__", "") == module.__name__:
+                checked += 1
+                if not isinstance(value._cache._impl.locator, cache.UserCacheLocator):
+                    wrong.append(f"{info.name}.{value.__name__}")
+print(checked, wrong)
+"""
+
+
+def test_every_cached_function_of_the_package_goes_to_the_user_cache():
+    """Every module of mstmm, imported in a fresh process after ``mstmm.frame``: each numba
+    function with an on-disk cache is in the user cache (a module that makes its
+    functions before the user-cache locator is installed writes machine code beside the
+    installed sources)."""
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [sys.executable, "-c", _LOCATORS], capture_output=True, text=True, check=True
+    ).stdout.split(" ", 1)
+    assert int(out[0]) > 50
+    assert out[1].strip() == "[]"
+
+
 def test_a_kernel_module_sees_the_numerics_it_star_imports():
     scene = mstmm.load_scene(mstmm.example_path("wu_chou_1998"))
     module = mstmm.kernel_for(scene).module

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+import mstmm.numerics.cache  # noqa: F401  (numba's user-cache locator, before any njit below)
 from mstmm.jit import njit
 
 __all__ = ["backward", "band_matvec", "ldl", "ldl_solve", "reverse_band", "row_norm"]
