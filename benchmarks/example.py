@@ -36,6 +36,7 @@ FRONT_PAGE = {
         "bands": "bands examples/metamaterial.toml --band 0 6000",
         "sweep": "sweep examples/wu_chou_1998.toml --vary attachments[2].k=LOG:1e3:1e9:200"
         " --modes 5",
+        "frame": "solve examples/frames/nafems_fv2.toml --modes 16",
     }.items()
 }
 
