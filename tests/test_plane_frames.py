@@ -450,6 +450,46 @@ def test_cli_frf_of_a_frame_between_a_node_and_a_point_inside_a_member(capsys, t
         assert not out.exists()
 
 
+def test_cli_sweep_of_a_frame_against_the_reference_model(capsys, tmp_path):
+    """``mstmm sweep`` of a frame file: the L-frame's second member's EI over three values,
+    each row's frequencies where the reference model of that frame counts them (within
+    1e-12); a field the scene lacks and a refused value name the option and the point,
+    exit 2, nothing written."""
+    import csv
+    import io
+    import json
+    import types
+    from dataclasses import replace
+
+    from mstmm.cli import main
+
+    rf = sample_frames()["L"]
+    path = tmp_path / "L.toml"
+    lines = []
+    for array, items in as_table(rf).items():
+        for item in items:
+            lines.append(f"[[{array}]]")
+            lines += [f"{k} = {json.dumps(v)}" for k, v in item.items()]  # TOML's scalars
+    path.write_text("\n".join(lines) + "\n")
+    vary = "members[1].EI=LIN:1000:4000:3"
+    assert main(["sweep", str(path), "--vary", vary, "--modes", "4"]) == 0
+    rows = list(csv.reader(io.StringIO(capsys.readouterr().out)))
+    assert rows[0] == ["members[1].EI [N m^2]"] + [f"omega_{i} [rad/s]" for i in range(1, 5)]
+    assert [float(r[0]) for r in rows[1:]] == [1000.0, 2500.0, 4000.0]
+    for r in rows[1:]:
+        members = (rf.members[0], replace(rf.members[1], EI=float(r[0])))
+        omega = np.array([float(v) for v in r[1:]])
+        sol = types.SimpleNamespace(omega=omega, multiplicity=np.ones(4, dtype=int))
+        check_against_reference(replace(rf, members=members), sol)
+    out = tmp_path / "s.csv"
+    for vary, field in (("members[7].EI=1,2", "--vary members[7].EI"),
+                        ("members[0].EI=LIN:-1:1:3", "members[0].EI at point 0")):  # fmt: skip
+        assert main(["sweep", str(path), "--vary", vary, "--out", str(out)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert field in err and len(err.splitlines()) == 1, err
+        assert not out.exists()
+
+
 def _toml(path) -> dict:
     import tomllib
 

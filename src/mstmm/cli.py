@@ -542,13 +542,19 @@ def _sweep(args) -> int:
 
     if args.out is not None:
         _check_out_dir(args.out)
-    scene = _scene(args.scene)
     vary: dict[str, object] = {}
     for item in args.vary:
         path, values = _vary_item(item, "--vary")
         if path in vary:
             raise SceneError(COMMAND_LINE, f"--vary {path}", "the same field is varied twice", item)
         vary[path] = values
+    from .scene import scene_from_dict
+    from .scene.reading import is_frame, read_table
+
+    data, source = read_table(args.scene)
+    if is_frame(data):
+        return _sweep_frame(args, data, source, vary)
+    scene = scene_from_dict(data, source=source)
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -565,6 +571,29 @@ def _sweep(args) -> int:
     for w in caught:
         _warn(str(w.message))
     return EXIT_UNTRUSTED if _has_nan(omega) else 0
+
+
+def _sweep_frame(args, data, source: str, vary: dict) -> int:
+    """``mstmm sweep`` of a frame file (:func:`mstmm.frame.study.sweep_frame`)."""
+    from . import output
+    from .frame.study import field_unit, sweep_frame
+
+    if args.scheduler is not None:
+        raise SceneError(COMMAND_LINE, "--scheduler", "a frame's study runs on this machine")
+    t0 = time.perf_counter()
+    omega = sweep_frame(data, vary, modes=args.modes, source=source)
+    _phase(args, "sweep", sweep=time.perf_counter() - t0)
+    units = [field_unit(data, path) for path in vary]
+    text = output.sweep_csv(None, vary, omega, units=units)
+    if args.out is None:
+        sys.stdout.write(text)
+    else:
+        output.write_atomically(args.out, text)
+        print(args.out)
+    if _has_nan(omega):
+        _warn("some points' roots could not be confirmed by the count: set to NaN")
+        return EXIT_UNTRUSTED
+    return 0
 
 
 def _has_nan(values) -> bool:

@@ -838,9 +838,7 @@ def bands_table(b) -> str:
     return "\n".join(lines) + "\n"
 
 
-BANDS_HEADER = (
-    "omega [rad/s],f [Hz],propagating,re_k1 [1/m],im_k1 [1/m],re_k2 [1/m],im_k2 [1/m]"
-)
+BANDS_HEADER = "omega [rad/s],f [Hz],propagating,re_k1 [1/m],im_k1 [1/m],re_k2 [1/m],im_k2 [1/m]"
 
 
 def bands_csv(b) -> str:
@@ -889,12 +887,16 @@ def bands_dict(b) -> dict:
 # ------------------------------------------------------------------ parameter studies
 
 
-def sweep_csv(scene, vary: dict[str, np.ndarray], omega: np.ndarray) -> str:
-    """``mstmm sweep``: one row per point, the varied fields (each with its unit,
-    :func:`mstmm.units.field_unit`), then ``omega_<i> [rad/s]`` per mode, or for a damped
-    scene ``w_d_<i> [rad/s]``, ``sigma_<i> [1/s]``, ``zeta_<i> [-]``."""
+def sweep_csv(
+    scene, vary: dict[str, np.ndarray], omega: np.ndarray, units: Sequence[str] | None = None
+) -> str:
+    """``mstmm sweep``: one row per point, the varied fields (each with its unit: ``units``,
+    or :func:`mstmm.units.field_unit` of the scene), then ``omega_<i> [rad/s]`` per mode,
+    or for a damped scene ``w_d_<i> [rad/s]``, ``sigma_<i> [1/s]``, ``zeta_<i> [-]``."""
     modes = range(1, omega.shape[1] + 1)
-    fields = [header(path, field_unit(scene, path)) for path in vary]
+    if units is None:
+        units = [field_unit(scene, path) for path in vary]
+    fields = [header(path, unit) for path, unit in zip(vary, units, strict=True)]
     if np.iscomplexobj(omega):  # damped: per mode w_d, sigma and the damping ratio
         names = (("w_d", "rad/s"), ("sigma", "1/s"), ("zeta", "-"))
         heads = [header(f"{q}_{i}", unit) for i in modes for q, unit in names]
