@@ -21,6 +21,15 @@ matrices or ``mstmm``:
 
 Sign convention: a member from node a to node b has its local x from a to b, local y
 turned +90 degrees from it; Theta is counterclockwise, equal to dv/dx along a member.
+
+Out of the plane (``Frame.motion = "out_of_plane"``, a grillage): each node moves along Z
+(W) and turns about X and Y (ThetaX, ThetaY, right-handed); a member twists about its
+local x (torsion: the rod's stiffness with GJ for EA and rho_Ip for mbar) and bends in its
+local x-z plane. The textbook grillage transformation (e.g. Weaver and Gere, *Matrix
+Analysis of Framed Structures*, the grid member): the node's rotation vector in the
+member's axes is ``(c ThetaX + s ThetaY, -s ThetaX + c ThetaY)``, the first the twist,
+the second the rotation about local y, which turns +z towards +x: the bending slope is
+``dw/dx = -(-s ThetaX + c ThetaY)``.
 """
 
 from __future__ import annotations
@@ -43,6 +52,8 @@ class Member:
     EA: float
     mbar: float
     pinned: tuple[bool, bool] = (False, False)
+    GJ: float = 0.0
+    rhoIp: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -54,15 +65,17 @@ class Frame:
     members: tuple
     held: dict = field(default_factory=dict)
     masses: dict = field(default_factory=dict)
+    motion: str = "in_plane"
 
 
 def _freedoms(frame: Frame) -> tuple[dict, int]:
     """Index of each free global freedom: (node, 0..2) for X, Y, Theta and (member, end)
     for a pinned end's own rotation."""
     index: dict = {}
+    letters = "zab" if frame.motion == "out_of_plane" else "xyt"  # out: W, ThetaX, ThetaY
     for name in frame.nodes:
         held = frame.held.get(name, "")
-        for j, letter in enumerate("xyt"):
+        for j, letter in enumerate(letters):
             if letter not in held:
                 index[(name, j)] = len(index)
     for i, m in enumerate(frame.members):
@@ -103,12 +116,21 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
         dx, dy = mpf(xb) - xa, mpf(yb) - ya
         L = mpmath.sqrt(dx * dx + dy * dy)
         c, s = dx / L, dy / L
-        rod, ja = _rod(m, L, w)
+        out = frame.motion == "out_of_plane"
+        if out:  # the twist: a rod of GJ and rho_Ip
+            rod, ja = _rod(Member(m.a, m.b, m.EI, m.GJ, m.rhoIp), L, w)
+        else:
+            rod, ja = _rod(m, L, w)
         bend, jb = _bending(m, L, w)
         J0 += ja + jb
         # local freedoms (u_a, v_a, t_a, u_b, v_b, t_b) as global ones: (index, factor) pairs
         local = []
-        for end, node in ((0, m.a), (1, m.b)):
+        for node in (m.a, m.b) if out else ():
+            W, TX, TY = (index.get((node, j)) for j in range(3))
+            local.append([(TX, c), (TY, s)])  # the twist
+            local.append([(W, mpf(1))])  # w along Z
+            local.append([(TX, s), (TY, -c)])  # dw/dx = -(rotation about local y)
+        for end, node in ((0, m.a), (1, m.b)) if not out else ():
             X, Y = index.get((node, 0)), index.get((node, 1))
             local.append([(X, c), (Y, s)])  # u = c X + s Y
             local.append([(X, -s), (Y, c)])  # v = -s X + c Y
@@ -132,7 +154,8 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
                         if gj is not None:
                             K[gi, gj] += fi * k[p][q] * fj
     for name, (mass, inertia) in frame.masses.items():
-        for j, value in ((0, mass), (1, mass), (2, inertia)):
+        out = frame.motion == "out_of_plane"  # W; ThetaX and ThetaY
+        for j, value in ((0, mass), (1, inertia if out else mass), (2, inertia)):
             g = index.get((name, j))
             if g is not None:
                 K[g, g] -= w * w * value
@@ -304,16 +327,23 @@ def as_table(rf: Frame) -> dict:
         node = {"name": name, "x": float(x), "y": float(y)}
         held = rf.held.get(name, "")
         if held:
-            node["support"] = {"xyt": "fixed", "xy": "pinned"}[held]
+            node["support"] = {"xyt": "fixed", "xy": "pinned", "zab": "fixed", "z": "pinned"}[held]
         if name in rf.masses:
             node["mass"], node["J"] = (float(v) for v in rf.masses[name])
         nodes.append(node)
     members = []
     for m in rf.members:
-        member = {"start": m.a, "end": m.b, "EI": float(m.EI), "EA": float(m.EA)}
+        member = {"start": m.a, "end": m.b, "EI": float(m.EI)}
+        if rf.motion == "out_of_plane":
+            member["GJ"], member["rho_Ip"] = float(m.GJ), float(m.rhoIp)
+        else:
+            member["EA"] = float(m.EA)
         member["mass_per_length"] = float(m.mbar)
         for end, key in enumerate(("start_joint", "end_joint")):
             if m.pinned[end]:
                 member[key] = "pinned"
         members.append(member)
-    return {"nodes": nodes, "members": members}
+    table = {"nodes": nodes, "members": members}
+    if rf.motion == "out_of_plane":
+        table["motion"] = "out_of_plane"
+    return table

@@ -673,6 +673,11 @@ def _plot_frame(args, target: Path, frame) -> int:
     for option in ("frf", "sweep", "band", "input"):
         if getattr(args, option, None):
             raise SceneError(COMMAND_LINE, f"--{option}", "a frame plots its mode shapes only")
+    if frame.motion == "out_of_plane":
+        raise SceneError(
+            frame.source, "motion", "plots of a grillage's modes (out of the plane) are not"
+            " built yet: mstmm solve --shapes gives them", frame.motion,
+        )  # fmt: skip
     modes = args.modes or 6
     mode_shapes(solve_frame(frame, modes), target, modes)
     print(args.out)

@@ -57,9 +57,17 @@ class Assembly:
         self.freedoms: list[Freedom] = []
         self.node_freedoms: dict[str, list[int]] = {}
         rotating = _rotating_nodes(frame)
+        out_of_plane = frame.motion == "out_of_plane"
         for name, node in frame.nodes.items():
             index = []
-            if "n" in node.held:
+            if out_of_plane:  # W, ThetaX, ThetaY
+                if "z" not in node.held:
+                    index.append(self._add(Freedom("node", name, (1.0, 0.0, 0.0))))
+                for j, letter in ((1, "a"), (2, "b")):
+                    if letter not in node.held and name in rotating:
+                        v = (0.0, 1.0, 0.0) if j == 1 else (0.0, 0.0, 1.0)
+                        index.append(self._add(Freedom("node", name, v, translation=False)))
+            elif "n" in node.held:
                 nx, ny = node.normal
                 index.append(self._add(Freedom("node", name, (ny, -nx, 0.0))))
             else:
@@ -67,7 +75,7 @@ class Assembly:
                     if letter not in node.held:
                         v = (1.0, 0.0, 0.0) if j == 0 else (0.0, 1.0, 0.0)
                         index.append(self._add(Freedom("node", name, v)))
-            if "t" not in node.held and name in rotating:
+            if not out_of_plane and "t" not in node.held and name in rotating:
                 index.append(self._add(Freedom("node", name, (0.0, 0.0, 1.0), translation=False)))
             self.node_freedoms[name] = index
         self.hinges: dict[tuple[str, int], int] = {}
@@ -124,7 +132,13 @@ class Assembly:
             psi: list[tuple[int, float]] = []
             for g in self.node_freedoms[node]:
                 X, Y, T = self.freedoms[g].vector
-                if X or Y:
+                if self.frame.motion == "out_of_plane":  # (W, ThetaX, ThetaY)
+                    if X:
+                        w.append((g, X))
+                    else:  # the twist about local x, and psi = dw/dx = -(rotation about y)
+                        u.append((g, c * Y + s * T))
+                        psi.append((g, s * Y - c * T))
+                elif X or Y:
                     u.append((g, c * X + s * Y))
                     w.append((g, -s * X + c * Y))
                 elif not m.pinned[end]:
@@ -138,10 +152,15 @@ class Assembly:
         for r, row in enumerate(rows):
             for g, f in row:
                 T[r, index.index(g)] += f
-        EA = np.array([sg.EA for sg in m.segments])
-        mbar = np.array([sg.mass_per_length for sg in m.segments])
+        if self.frame.motion == "out_of_plane":  # the rod is the member's torsion
+            EA = np.array([sg.GJ for sg in m.segments])
+            mbar = np.array([sg.rho_Ip for sg in m.segments])
+        else:
+            EA = np.array([sg.EA for sg in m.segments])
+            mbar = np.array([sg.mass_per_length for sg in m.segments])
         h = np.array([sg.length for sg in m.segments])
-        return MemberMap(m, L, p, np.asarray(index, dtype=np.int64), T, EA, mbar, h)
+        torsion = self.frame.motion == "out_of_plane"
+        return MemberMap(m, L, p, np.asarray(index, dtype=np.int64), T, EA, mbar, h, torsion)
 
     def _lumped(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(K, C, M)`` of everything but the members, over the free freedoms (SI): node
@@ -150,14 +169,18 @@ class Assembly:
         K = np.zeros((self.n, self.n))
         C = np.zeros((self.n, self.n))
         M = np.zeros((self.n, self.n))
+        out_of_plane = self.frame.motion == "out_of_plane"
         for name, node in self.frame.nodes.items():
             kxx, kxy, kyy = node.springs
             for g in self.node_freedoms[name]:
                 for h in self.node_freedoms[name]:
                     a, b = self.freedoms[g].vector, self.freedoms[h].vector
                     K[g, h] += a[0] * (kxx * b[0] + kxy * b[1]) + a[1] * (kxy * b[0] + kyy * b[1])
-                    K[g, h] += a[2] * node.k_t * b[2]
-                    M[g, h] += node.mass * (a[0] * b[0] + a[1] * b[1]) + node.J * a[2] * b[2]
+                    if out_of_plane:  # mass on W, J about X and about Y
+                        M[g, h] += node.mass * a[0] * b[0] + node.J * (a[1] * b[1] + a[2] * b[2])
+                    else:
+                        K[g, h] += a[2] * node.k_t * b[2]
+                        M[g, h] += node.mass * (a[0] * b[0] + a[1] * b[1]) + node.J * a[2] * b[2]
         for m in self.frame.members:
             for end in (0, 1):
                 k_h = m.hinge_k[end]
@@ -439,7 +462,9 @@ def _band_order(A: np.ndarray) -> tuple[np.ndarray, int]:
 @dataclass
 class MemberMap:
     """A member as the assembly uses it: its length, beam parameter vector, the global
-    freedoms it touches and the map T from them to its local freedoms, its rod data."""
+    freedoms it touches and the map T from them to its local freedoms, its rod data
+    (``torsion``: out of the plane the rod is its torsion, EA its GJ and mbar its
+    rho_Ip)."""
 
     member: Member
     L: float
@@ -449,6 +474,7 @@ class MemberMap:
     EA: np.ndarray
     mbar: np.ndarray
     h: np.ndarray
+    torsion: bool = False
 
 
 #: An eigenvalue of D within this fraction of its largest is round-off (``sure_count``):

@@ -10,7 +10,7 @@ section's rotation (``dw/dx`` without shear deformation), as the beam's ``[Y, th
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 __all__ = ["Absorber", "Frame", "FrameSegment", "Member", "Node"]
 
@@ -19,13 +19,18 @@ __all__ = ["Absorber", "Frame", "FrameSegment", "Member", "Node"]
 class FrameSegment:
     """One stretch of a member with uniform properties (SI), from its start: the beam's
     segment keys (``EI``, ``mass_per_length`` and the declared terms of
-    ``catalog.SEGMENT_PHYSICS``, each 0 when absent) and the axial stiffness ``EA``."""
+    ``catalog.SEGMENT_PHYSICS``, each 0 when absent) and the axial stiffness ``EA``; out of
+    the plane (a grillage), ``EI`` is the bending stiffness about the member's in-plane
+    axis, ``GJ`` its torsional stiffness (N m^2) and ``rho_Ip`` its polar mass moment of
+    inertia per length (kg m)."""
 
     length: float
     EI: float
     EA: float
     mass_per_length: float
     physics: tuple[tuple[str, float], ...] = ()
+    GJ: float = 0.0
+    rho_Ip: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -76,14 +81,17 @@ class Node:
 @dataclass(frozen=True)
 class Frame:
     """A plane frame: its nodes (by name, in file order), its members and its absorbers.
-    ``source`` names the file it came from (messages name it)."""
+    ``source`` names the file it came from (messages name it). ``motion``: ``"in_plane"``
+    (axial and bending in the plane: X, Y, Theta at the nodes) or ``"out_of_plane"`` (a
+    grillage: torsion and bending out of the plane, W along Z and the rotations ThetaX,
+    ThetaY about X and Y at the nodes)."""
 
     name: str
     nodes: dict[str, Node]
     members: tuple[Member, ...]
     absorbers: tuple[Absorber, ...] = ()
     source: str = "<frame>"
-    origins: dict[str, str] = field(default_factory=dict, compare=False)
+    motion: str = "in_plane"
 
     def geometry(self, member: Member) -> tuple[float, float, float]:
         """``(L, c, s)``: the member's length and its local x as (cos, sin) in the global axes."""

@@ -16,7 +16,7 @@ import numpy as np
 
 from mstmm.plot import _figure, _finish
 
-from .solve import FrameSolution, fields_at
+from .solve import FrameSolution
 
 __all__ = ["mode_shapes"]
 
@@ -42,8 +42,8 @@ def _curves(
     for mm in sol.assembly.members:
         L, c, s = sol.frame.geometry(mm.member)
         a = sol.frame.nodes[mm.member.start]
-        x = np.linspace(0.0, L, POINTS)
-        f = fields_at(mm, sol.modes[j], x)
+        f = sol.member_fields(j, mm.member.name, POINTS)
+        x = f["x"]
         X, Y = a.x + c * x, a.y + s * x
         out.append((X, Y, c * f["u"] - s * f["w"], s * f["u"] + c * f["w"]))
     return out
@@ -54,6 +54,8 @@ def mode_shapes(
 ) -> object:
     """A figure of the lowest ``modes`` mode shapes (default: all of ``sol``'s, at most 6),
     saved to ``path`` when given; returns the matplotlib figure."""
+    if sol.frame.motion == "out_of_plane":
+        raise ValueError("plots of a grillage's modes (out of the plane) are not built yet")
     count = min(len(sol.modes), modes if modes is not None else 6)
     if count == 0:
         raise ValueError("no mode shapes to draw: solve with shapes=True")

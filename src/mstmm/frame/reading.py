@@ -36,6 +36,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 from mstmm.scene import SceneError
@@ -47,15 +48,21 @@ from .model import Absorber, Frame, FrameSegment, Member, Node
 
 __all__ = ["frame_from_dict", "frame_from_file", "is_frame", "load_frame", "with_points"]
 
-#: What each support holds: global freedoms x, y, t (Theta), n (along ``normal``).
+#: What each support holds: global freedoms x, y, t (Theta), n (along ``normal``); out of
+#: the plane z (W), a (ThetaX), b (ThetaY).
 SUPPORTS = {"free": "", "fixed": "xyt", "pinned": "xy", "roller": "n", "sliding": "nt"}
+SUPPORTS_OUT = {"free": "", "fixed": "zab", "pinned": "z"}
+MOTIONS = ("in_plane", "out_of_plane")
 _NODE_KEYS = ("name", "x", "y", "support", "normal", "k_x", "k_y", "k_t", "mass", "J")
+_NODE_KEYS_OUT = ("name", "x", "y", "support", "k_z", "mass", "J")
 _PROPERTY_KEYS = ("EI", "EA", "mass_per_length")
+#: A grillage member's properties: EI about its in-plane axis, torsion GJ and rho_Ip.
+_PROPERTY_KEYS_OUT = ("EI", "GJ", "rho_Ip", "mass_per_length")
 _MEMBER_KEYS = (
-    "name", "start", "end", *_PROPERTY_KEYS, "segments",
+    "name", "start", "end", *_PROPERTY_KEYS, "GJ", "rho_Ip", "segments",
     "start_joint", "end_joint", "start_k", "end_k", *_OPTIONAL_KEYS,
 )  # fmt: skip
-_SEGMENT_KEYS = ("length", *_PROPERTY_KEYS, *_OPTIONAL_KEYS)
+_SEGMENT_KEYS = ("length", *_PROPERTY_KEYS, "GJ", "rho_Ip", *_OPTIONAL_KEYS)
 _ATTACHMENT_KEYS = {
     "mass": ("m", "J"),
     "spring": ("k",),
@@ -82,17 +89,22 @@ def frame_from_file(data: Any, source: str) -> Frame:
 
 def frame_from_dict(data: Mapping[str, Any], source: str = "<dict>", name: str = "frame") -> Frame:
     """A :class:`Frame` from a table of the format above."""
-    _reject_unknown(data, ("name", "nodes", "members", "attachments"), "", source)
+    _reject_unknown(data, ("name", "motion", "nodes", "members", "attachments"), "", source)
     if not isinstance(data.get("name", name), str):
         raise SceneError(source, "name", "must be a string", data["name"])
-    nodes = _nodes(_array(data, "nodes", source), source)
-    members = _members(_array(data, "members", source), nodes, source)
+    motion = _choice(data.get("motion", "in_plane"), MOTIONS, "motion", source)
+    nodes = _nodes(_array(data, "nodes", source), source, motion)
+    members = _members(_array(data, "members", source), nodes, source, motion)
     reached = {n for m in members for n in (m.start, m.end)}
     for i, n in enumerate(nodes):
         if n not in reached:
             raise SceneError(source, f"nodes[{i}].name", "no member reaches this node", n)
-    nodes, members, absorbers = _attachments(data.get("attachments", []), nodes, members, source)
-    return Frame(str(data.get("name", name)), nodes, tuple(members), tuple(absorbers), source)
+    nodes, members, absorbers = _attachments(
+        data.get("attachments", []), nodes, members, source, motion
+    )
+    return Frame(
+        str(data.get("name", name)), nodes, tuple(members), tuple(absorbers), source, motion
+    )
 
 
 def _array(data: Mapping[str, Any], key: str, source: str) -> list:
@@ -118,13 +130,14 @@ def _direction(value: Any, path: str, source: str) -> tuple[float, float]:
     return x / norm, y / norm
 
 
-def _nodes(items: list, source: str) -> dict[str, Node]:
+def _nodes(items: list, source: str, motion: str = "in_plane") -> dict[str, Node]:
     nodes: dict[str, Node] = {}
     where: dict[tuple[float, float], str] = {}
     for i, item in enumerate(items):
         prefix = f"nodes[{i}]"
         table = _table(item, prefix, source)
-        _reject_unknown(table, _NODE_KEYS, prefix, source)
+        out = motion == "out_of_plane"
+        _reject_unknown(table, _NODE_KEYS_OUT if out else _NODE_KEYS, prefix, source)
         name = _name(_require(table, "name", prefix, source), f"{prefix}.name", source)
         if name in nodes:
             raise SceneError(source, f"{prefix}.name", "a second node of this name", name)
@@ -134,8 +147,9 @@ def _nodes(items: list, source: str) -> dict[str, Node]:
                 source, f"{prefix}.x", f"node {where[(x, y)]!r} is already at this point", x
             )
         where[(x, y)] = name
+        supports = SUPPORTS_OUT if out else SUPPORTS
         support = _choice(
-            table.get("support", "free"), tuple(SUPPORTS), f"{prefix}.support", source
+            table.get("support", "free"), tuple(supports), f"{prefix}.support", source
         )
         normal = (0.0, 1.0)
         if "normal" in table:
@@ -149,31 +163,50 @@ def _nodes(items: list, source: str) -> dict[str, Node]:
             normal = _direction(table["normal"], f"{prefix}.normal", source)
         optional = {
             k: _checked(table.get(k, 0.0), "nonnegative", f"{prefix}.{k}", source)
-            for k in ("k_x", "k_y", "k_t", "mass", "J")
+            for k in ("k_x", "k_y", "k_z", "k_t", "mass", "J")
         }
-        springs = (optional["k_x"], 0.0, optional["k_y"])
+        # out of the plane the springs' first slot is k_z on W (the freedoms' first)
+        springs = (optional["k_z"], 0.0, 0.0) if out else (optional["k_x"], 0.0, optional["k_y"])
         nodes[name] = Node(
-            name, x, y, SUPPORTS[support], normal, springs, optional["k_t"], optional["mass"],
+            name, x, y, supports[support], normal, springs, optional["k_t"], optional["mass"],
             optional["J"],
         )  # fmt: skip
     return nodes
 
 
-def _segment(table: Mapping[str, Any], prefix: str, length: float, source: str) -> FrameSegment:
-    values = [
-        _checked(_require(table, k, prefix, source), "positive", f"{prefix}.{k}", source)
-        for k in _PROPERTY_KEYS
-    ]
+def _segment(
+    table: Mapping[str, Any], prefix: str, length: float, source: str, motion: str
+) -> FrameSegment:
+    out = motion == "out_of_plane"
+    for key in ("EA",) if out else ("GJ", "rho_Ip"):
+        if key in table:
+            problem = (
+                "not used out of the plane (a grillage member takes GJ and rho_Ip)"
+                if out
+                else "torsion is out of the plane: set motion = 'out_of_plane' (docs/frames.md)"
+            )
+            raise SceneError(source, f"{prefix}.{key}", problem, table[key])
+    keys = _PROPERTY_KEYS_OUT if out else _PROPERTY_KEYS
+    got = {
+        k: _checked(_require(table, k, prefix, source), "nonnegative" if k == "rho_Ip" else
+                    "positive", f"{prefix}.{k}", source)
+        for k in keys
+    }  # fmt: skip
     physics = _optional(table, prefix, source)
     if physics.pop("loss_factor", 0.0) != 0.0:
         raise SceneError(
             source, f"{prefix}.loss_factor", "frames are undamped in this version (docs/frames.md)",
             table["loss_factor"],
         )  # fmt: skip
-    return FrameSegment(length, *values, tuple(physics.items()))
+    return FrameSegment(
+        length, got["EI"], got.get("EA", 0.0), got["mass_per_length"], tuple(physics.items()),
+        got.get("GJ", 0.0), got.get("rho_Ip", 0.0),
+    )  # fmt: skip
 
 
-def _members(items: list, nodes: dict[str, Node], source: str) -> list[Member]:
+def _members(
+    items: list, nodes: dict[str, Node], source: str, motion: str = "in_plane"
+) -> list[Member]:
     members: list[Member] = []
     names: set[str] = set()
     for i, item in enumerate(items):
@@ -194,7 +227,7 @@ def _members(items: list, nodes: dict[str, Node], source: str) -> list[Member]:
         length = math.hypot(b.x - a.x, b.y - a.y)
         if length == 0.0:
             raise SceneError(source, f"{prefix}.end", "a member of zero length", ends[1])
-        segments = _member_segments(table, prefix, length, source)
+        segments = _member_segments(table, prefix, length, source, motion)
         pinned, hinge = [], []
         for key in ("start", "end"):
             joint = _choice(
@@ -202,6 +235,11 @@ def _members(items: list, nodes: dict[str, Node], source: str) -> list[Member]:
                 source,
             )  # fmt: skip
             k = _checked(table.get(f"{key}_k", 0.0), "nonnegative", f"{prefix}.{key}_k", source)
+            if joint == "pinned" and motion == "out_of_plane":
+                raise SceneError(
+                    source, f"{prefix}.{key}_joint",
+                    "a released member end is in the plane only in this version", joint,
+                )  # fmt: skip
             if k and joint != "pinned":
                 raise SceneError(
                     source, f"{prefix}.{key}_k", f"a spring at a pin: set {key}_joint = 'pinned'", k
@@ -213,11 +251,11 @@ def _members(items: list, nodes: dict[str, Node], source: str) -> list[Member]:
 
 
 def _member_segments(
-    table: Mapping[str, Any], prefix: str, length: float, source: str
+    table: Mapping[str, Any], prefix: str, length: float, source: str, motion: str
 ) -> tuple[FrameSegment, ...]:
     if "segments" not in table:
-        return (_segment(table, prefix, length, source),)
-    for key in (*_PROPERTY_KEYS, *_OPTIONAL_KEYS):
+        return (_segment(table, prefix, length, source, motion),)
+    for key in (*_PROPERTY_KEYS, "GJ", "rho_Ip", *_OPTIONAL_KEYS):
         if key in table:
             raise SceneError(
                 source, f"{prefix}.{key}", "not with [[members.segments]]: give it per segment",
@@ -232,7 +270,7 @@ def _member_segments(
         st = _table(item, sp, source)
         _reject_unknown(st, _SEGMENT_KEYS, sp, source)
         h = _checked(_require(st, "length", sp, source), "positive", f"{sp}.length", source)
-        out.append(_segment(st, sp, h, source))
+        out.append(_segment(st, sp, h, source, motion))
     total = sum(s.length for s in out)
     if abs(total - length) > LENGTH_MATCH * length:
         raise SceneError(
@@ -241,12 +279,17 @@ def _member_segments(
         )  # fmt: skip
     last = out[-1]
     rest = length - sum(s.length for s in out[:-1])
-    return (*out[:-1], FrameSegment(rest, last.EI, last.EA, last.mass_per_length, last.physics))
+    return (*out[:-1], replace(last, length=rest))
 
 
-def _attachments(items: Any, nodes: dict[str, Node], members: list[Member], source: str):
+def _attachments(
+    items: Any, nodes: dict[str, Node], members: list[Member], source: str,
+    motion: str = "in_plane",
+):  # fmt: skip
     """Node attachments added to their nodes; member attachments split their member at a
-    new node. Returns (nodes, members, absorbers)."""
+    new node (out of the plane: springs and absorbers act along Z, no rotational spring).
+    Returns (nodes, members, absorbers)."""
+    out = motion == "out_of_plane"
     if not isinstance(items, list):
         raise SceneError(source, "attachments", "must be an array of tables", items)
     nodes = dict(nodes)
@@ -272,6 +315,15 @@ def _attachments(items: Any, nodes: dict[str, Node], members: list[Member], sour
         if ("node" in table) == ("member" in table):
             raise SceneError(source, prefix, "give either node or member (with x)")
         direction = None
+        if out and (kind == "rotational_spring" or "direction" in table):
+            what = "a rotational spring" if kind == "rotational_spring" else "a direction"
+            raise SceneError(
+                source, f"{prefix}.{'type' if kind == 'rotational_spring' else 'direction'}",
+                f"{what} out of the plane is not built in this version (springs and absorbers"
+                " act along Z)", table.get("direction", kind),
+            )  # fmt: skip
+        if out:
+            direction = (1.0, 0.0)  # W is each node's first freedom: along Z
         if "direction" in table:
             if kind in ("mass", "rotational_spring"):
                 raise SceneError(source, f"{prefix}.direction", f"a {kind} has no direction",
@@ -347,7 +399,7 @@ def _split(m: Member, cuts: list[tuple[float, str]], nodes: dict[str, Node]) -> 
             end = start + s.length
             piece = min(end, hi) - max(start, lo)
             if piece > 0.0:
-                segments.append(FrameSegment(piece, s.EI, s.EA, s.mass_per_length, s.physics))
+                segments.append(replace(s, length=piece))
             start = end
         pinned = (m.pinned[0] and j == 0, m.pinned[1] and j == len(stations) - 2)
         hinge = (m.hinge_k[0] if j == 0 else 0.0, m.hinge_k[1] if j == len(stations) - 2 else 0.0)
@@ -396,4 +448,6 @@ def with_points(
         for m in frame.members
         for piece in _split(m, sorted(set(cuts.get(m.name, []))), nodes)
     ]
-    return Frame(frame.name, nodes, tuple(members), frame.absorbers, frame.source), names
+    return Frame(
+        frame.name, nodes, tuple(members), frame.absorbers, frame.source, frame.motion
+    ), names

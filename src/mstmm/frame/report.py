@@ -9,6 +9,18 @@ from .solve import FrameSolution
 __all__ = ["frame_text"]
 
 
+def _axes(sol: FrameSolution) -> tuple[str, ...]:
+    """The directions of the effective masses: X and Y in the plane, Z out of it."""
+    return ("Z",) if sol.frame.motion == "out_of_plane" else ("X", "Y")
+
+
+def _components(sol: FrameSolution) -> tuple[str, ...]:
+    """A node's displacement components as the shapes list them."""
+    if sol.frame.motion == "out_of_plane":
+        return ("W (m)", "ThetaX (rad)", "ThetaY (rad)")
+    return ("X (m)", "Y (m)", "Theta (rad)")
+
+
 def frame_text(sol: FrameSolution, fmt: str, shapes: bool) -> str:
     """The solution as ``fmt`` (``table``, ``csv`` or ``json``); with ``shapes`` each
     mode's joint displacements (X, Y in m, Theta in rad; unit modal mass)."""
@@ -24,11 +36,12 @@ def frame_text(sol: FrameSolution, fmt: str, shapes: bool) -> str:
             for j, (w, f, m) in enumerate(zip(sol.omega, sol.f, sol.multiplicity))
         ]
         if shapes:
-            lines[0] += ",M_eff,X (kg),M_eff,Y (kg)"
+            axes = _axes(sol)
+            lines[0] += "".join(f",M_eff,{a} (kg)" for a in axes)
             for j, mode in enumerate(sol.modes):
-                lines[j + 1] += f",{mode.effective_mass[0]!r},{mode.effective_mass[1]!r}"
+                lines[j + 1] += "".join(f",{m!r}" for m in mode.effective_mass[: len(axes)])
             names = list(sol.frame.nodes)
-            head = ",".join(f"{n}.{c}" for n in names for c in ("X (m)", "Y (m)", "Theta (rad)"))
+            head = ",".join(f"{n}.{c}" for n in names for c in _components(sol))
             lines += ["", "mode," + head]
             for j, mode in enumerate(sol.modes):
                 row = ",".join(repr(v) for n in names for v in mode.nodes[n])
@@ -44,21 +57,27 @@ def frame_text(sol: FrameSolution, fmt: str, shapes: bool) -> str:
         lines.append(f"{j + 1:>4}  {f:>18.12g}  {w:>18.12g}  {m:>4}")
     if shapes and sol.modes:
         lines.append("")
+        axes = _axes(sol)
         lines.append(
-            f"{'mode':>4}  {'node moving most':<20}  {'M_eff,X (kg)':>14}  {'M_eff,Y (kg)':>14}"
+            f"{'mode':>4}  {'node moving most':<20}"
+            + "".join(f"  {'M_eff,' + a + ' (kg)':>14}" for a in axes)
         )
-        total = [0.0, 0.0]
+        total = [0.0] * len(axes)
+        moving = 1 if len(axes) == 1 else 2  # the translations among a node's components
         for j, mode in enumerate(sol.modes):
-            name, (X, Y, _) = max(mode.nodes.items(), key=lambda kv: kv[1][0] ** 2 + kv[1][1] ** 2)
-            if X * X + Y * Y <= 1e-24 * max(1.0, max(v[2] ** 2 for v in mode.nodes.values())):
+            name, v = max(mode.nodes.items(), key=lambda kv: sum(c * c for c in kv[1][:moving]))
+            rest = max(sum(c * c for c in u[moving:]) for u in mode.nodes.values())
+            if sum(c * c for c in v[:moving]) <= 1e-24 * max(1.0, rest):
                 name = "(joints do not move)"
-            mx, my = mode.effective_mass
-            total[0] += mx
-            total[1] += my
-            lines.append(f"{j + 1:>4}  {name:<20}  {mx:>14.6g}  {my:>14.6g}")
+            row = f"{j + 1:>4}  {name:<20}"
+            for k in range(len(axes)):
+                total[k] += mode.effective_mass[k]
+                row += f"  {mode.effective_mass[k]:>14.6g}"
+            lines.append(row)
         mass = sol.frame.mass
         lines.append(
-            f"sum of effective masses: X {total[0]:.6g} kg ({100 * total[0] / mass:.1f} %),"
-            f" Y {total[1]:.6g} kg ({100 * total[1] / mass:.1f} %) of {mass:.6g} kg"
+            "sum of effective masses: "
+            + ", ".join(f"{a} {t:.6g} kg ({100 * t / mass:.1f} %)" for a, t in zip(axes, total))
+            + f" of {mass:.6g} kg"
         )
     return "\n".join(lines) + "\n"

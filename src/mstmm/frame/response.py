@@ -12,7 +12,8 @@ adds a joint and leaves it exact. A component along a held freedom is 0.
 
 On the command line (``mstmm frf frame.toml``) a point is ``QUANTITY:WHERE[=DIRECTION]``:
 ``force:N10_0=x``, ``displacement:col3@1.5=y``, ``force:B=30`` (30 degrees from X),
-``rotation:arm@2``; :func:`parse_point` reads it.
+``rotation:arm@2``; on a grillage (out of the plane) ``force:C=z``, ``rotation:C=x``;
+:func:`parse_point` reads it.
 """
 
 from __future__ import annotations
@@ -38,7 +39,9 @@ _SPEC = re.compile(r"^(force|moment|displacement|rotation):([^=]+?)(?:=(.+))?$")
 def parse_point(spec: str, role: str, source: str = "<frf>") -> tuple:
     """A load or response from its command-line form (see the module): ``(quantity,
     where)`` or ``(quantity, where, (dx, dy))``; ``where`` a node name or ``(member,
-    x)``. Raises :class:`SceneError` naming ``role`` (``--input``, ``--output``)."""
+    x)``. Out of the plane (a grillage) a force or displacement is ``=z`` and a moment or
+    rotation ``=x`` or ``=y`` (about X or Y). Raises :class:`SceneError` naming ``role``
+    (``--input``, ``--output``)."""
     wanted = ("force", "moment") if role == "--input" else ("displacement", "rotation")
     m = _SPEC.match(spec.strip()) if isinstance(spec, str) else None
     if m is None or m.group(1) not in wanted:
@@ -54,10 +57,14 @@ def parse_point(spec: str, role: str, source: str = "<frf>") -> tuple:
             where = (member, float(x))
         except ValueError:
             raise SceneError(source, role, "MEMBER@X needs X in m", spec) from None
+    if direction == "z" and quantity in _TRANSLATIONS:  # a grillage's, along Z
+        return (quantity, where, (0.0, 0.0))
     if quantity in _ROTATIONS:
-        if direction is not None:
-            raise SceneError(source, role, f"a {quantity} has no direction", spec)
-        return (quantity, where)
+        if direction is None:
+            return (quantity, where)
+        if direction in ("x", "y"):  # a grillage's, about X or Y
+            return (quantity, where, (1.0, 0.0) if direction == "x" else (0.0, 1.0))
+        raise SceneError(source, role, f"a {quantity} is about x or y (a grillage) or none", spec)
     if direction is None:
         raise SceneError(source, role, f"a {quantity} needs =x, =y or =ANGLE (degrees)", spec)
     if direction in ("x", "y"):
@@ -74,16 +81,25 @@ def parse_point(spec: str, role: str, source: str = "<frf>") -> tuple:
 def _vector(asm: Assembly, spec: tuple, node: str, role: str) -> np.ndarray:
     """The freedoms' coefficients of a load or response spec at ``node`` (SI, unscaled)."""
     kind, _, *rest = spec
+    source = asm.frame.source
     if node not in asm.node_freedoms:
-        raise SceneError(asm.frame.source, role, "no node of this name", node)
-    if kind in _TRANSLATIONS:
+        raise SceneError(source, role, "no node of this name", node)
+    if kind not in _TRANSLATIONS + _ROTATIONS:
+        raise SceneError(source, role, "force, moment, displacement or rotation", kind)
+    if asm.frame.motion == "out_of_plane":  # over (W, ThetaX, ThetaY)
+        if kind in _ROTATIONS and not rest:
+            raise SceneError(source, role, f"a grillage's {kind} is about x or y (=x, =y)", kind)
+        d = (1.0, 0.0, 0.0) if kind in _TRANSLATIONS else (0.0, *rest[0])
+    elif kind in _TRANSLATIONS:
         dx, dy = rest[0]
         norm = math.hypot(dx, dy)
+        if norm == 0.0:
+            raise SceneError(source, role, "along Z is out of the plane (a grillage's)", spec)
         d = (dx / norm, dy / norm, 0.0)
-    elif kind in _ROTATIONS:
-        d = (0.0, 0.0, 1.0)
     else:
-        raise SceneError(asm.frame.source, role, "force, moment, displacement or rotation", kind)
+        if rest:
+            raise SceneError(source, role, f"a {kind} in the plane has no direction", spec)
+        d = (0.0, 0.0, 1.0)
     v = np.zeros(asm.n)
     for g in asm.node_freedoms[node]:
         v[g] = float(np.dot(asm.freedoms[g].vector, d))

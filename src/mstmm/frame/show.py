@@ -28,6 +28,8 @@ def _freedom_name(asm: Assembly, g: int) -> str:
     if f.kind == "absorber":
         return f"q(absorber {f.owner} at {asm.frame.absorbers[int(f.owner)].node})"
     X, Y, T = f.vector
+    if asm.frame.motion == "out_of_plane":
+        return f"{'W' if X else 'ThetaX' if Y else 'ThetaY'}({f.owner})"
     if T:
         return f"Theta({f.owner})"
     if (X, Y) == (1.0, 0.0):

@@ -87,6 +87,9 @@ SLOPE_STEP = 1e-7
 #: backward error exceeds D's round-off by this factor (its determinant's sign is then
 #: not sure).
 SIMPLE_GROWTH = 1e3
+#: Where ``_shapes`` cuts each member when a root sits on a member's pole (an
+#: irrational fraction: the pieces' clamped-clamped frequencies are not the member's).
+CUT = math.sqrt(2.0) - 1.0
 #: Gauss-Legendre points per segment and per wave in it (a field's wavelength / 2 pi)
 #: for the participation integrals.
 GAUSS_POINTS = 16
@@ -102,6 +105,10 @@ class FrameMode:
     nodes: dict[str, tuple[float, float, float]]
     vector: np.ndarray
     participation: tuple[float, float] = (0.0, 0.0)
+    #: The assembly ``vector`` is over where it is not the solution's: a root at one of a
+    #: member's own clamped-clamped frequencies is solved on the frame with its members cut
+    #: (:func:`_shapes`), its members then in pieces ``<name>[0]``, ``<name>[1]``.
+    assembly: Assembly | None = None
 
     @property
     def effective_mass(self) -> tuple[float, float]:
@@ -130,7 +137,8 @@ class FrameSolution:
     def member_fields(self, mode: int, member: str, points: int = 21) -> dict[str, np.ndarray]:
         """Along member ``member`` in mode ``mode``: ``x`` (m from its start) and ``u, w,
         psi, N, Q, M`` (SI, local axes; N tension positive)."""
-        return member_fields(self.assembly, self.modes[mode], member, points)
+        m = self.modes[mode]
+        return member_fields(m.assembly or self.assembly, m, member, points)
 
     def to_dict(self) -> dict:
         """Plain data: frequencies, multiplicities and each mode's joint displacements."""
@@ -140,6 +148,7 @@ class FrameSolution:
             "f": self.f.tolist(),
             "multiplicity": self.multiplicity.tolist(),
             "count_checked": self.count_checked,
+            "motion": self.frame.motion,
             "modes": [
                 {
                     "omega": m.omega,
@@ -204,11 +213,11 @@ def roots(
             continue
         idx = ca - ja
         simple = None
-        if cb - ca == 1:
+        if cb - ca == 1 and ja == jb:
             simple = refine_simple(asm, a, b, idx)
         if simple is not None:
             w, window = simple
-        elif (ga := g(a, idx)) >= 0.0 and g(b, idx) < 0.0 and ga != 0.0:
+        elif ja == jb and 0 <= idx < asm.n and g(a, idx) > 0.0 and g(b, idx) < 0.0:
             w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=BRENT_RTOL, maxiter=200)
             k = local_multiplicity(asm, w, cb - ca)
             w, window = polish(asm, w, k, w * POLISH_REACH)
@@ -410,7 +419,20 @@ def polish(asm: Assembly, w: float, k: int, reach: float) -> tuple[float, float]
 
 
 def _shapes(asm: Assembly, w: float, multiplicity: int) -> list[FrameMode]:
-    """Mass-orthonormal modes spanning the null space of D(w)."""
+    """Mass-orthonormal modes spanning the null space of D(w).
+
+    A root at one of a member's own clamped-clamped frequencies (a pole of D: the
+    members' J0 changes across it; a symmetric structure whose joints stand still while
+    its members vibrate) has modes D cannot show. They are solved on the frame with every
+    member cut at :data:`CUT` of its length, whose pieces' poles lie elsewhere: the
+    joints the cuts add carry those modes."""
+    near = POLISH_REACH * w
+    if asm.banded(w - near)[1] != asm.banded(w + near)[1]:
+        cut = Assembly(_cut(asm.frame))
+        modes = _shapes(cut, w, multiplicity)
+        for mode in modes:
+            mode.assembly = cut
+        return modes
     X = _null_space(asm, w, multiplicity)
     G = asm.quadratic(_mass_form(asm, w), X)
     G = 0.5 * (G + G.T)
@@ -425,6 +447,14 @@ def _shapes(asm: Assembly, w: float, multiplicity: int) -> list[FrameMode]:
     return out
 
 
+def _cut(frame: Frame) -> Frame:
+    """The frame with every member cut at :data:`CUT` of its length."""
+    from .reading import with_points
+
+    points = [(m.name, CUT * frame.geometry(m)[0]) for m in frame.members]
+    return with_points(frame, points)[0]
+
+
 def _joints(asm: Assembly, x: np.ndarray) -> dict[str, tuple[float, float, float]]:
     out = {}
     for name, index in asm.node_freedoms.items():
@@ -437,15 +467,30 @@ def _joints(asm: Assembly, x: np.ndarray) -> dict[str, tuple[float, float, float
 
 def member_fields(asm: Assembly, mode: FrameMode, member: str, points: int = 21) -> dict:
     """``x, u, w, psi, N, Q, M`` along a member in a mode (SI, its local axes) at
-    ``points`` equally spaced points."""
-    mm = next(m for m in asm.members if m.member.name == member)
-    return fields_at(mm, mode, np.linspace(0.0, mm.L, points))
+    ``points`` equally spaced points (a member cut in pieces in ``asm``: along them)."""
+    pieces = [m for m in asm.members if m.member.name == member] or [
+        m for m in asm.members if m.member.name.startswith(f"{member}[")
+    ]
+    if not pieces:
+        raise KeyError(f"no member {member!r}")
+    x = np.linspace(0.0, sum(m.L for m in pieces), points)
+    parts, start = [], 0.0
+    for j, mm in enumerate(pieces):
+        end = start + mm.L
+        inside = (x >= start) & ((x <= end) if j == len(pieces) - 1 else (x < end))
+        f = fields_at(mm, mode, x[inside] - start)
+        f["x"] = x[inside]
+        parts.append(f)
+        start = end
+    return {k: np.concatenate([f[k] for f in parts]) for k in parts[0]}
 
 
 def fields_at(mm: MemberMap, mode: FrameMode, x: np.ndarray) -> dict:
     """``x, u, w, psi, N, Q, M`` of member ``mm`` in a mode at the points x (m from its
     start, ascending): the bending state marched from the start (its end forces from the
-    member's stiffness), the rod's closed form."""
+    member's stiffness), the rod's closed form. Out of the plane the rod is the member's
+    torsion: ``phi`` (its twist, rad) and ``T`` (its torque, N m) instead of u and N, and
+    w is along Z."""
     d = mm.T @ mode.vector[mm.index]  # [u_a, w_a, psi_a, u_b, w_b, psi_b]
     L, EI0 = mm.L, mm.p[1]
     w = mode.omega
@@ -460,14 +505,15 @@ def fields_at(mm: MemberMap, mode: FrameMode, x: np.ndarray) -> dict:
     member_rod(mm.EA, mm.mbar, mm.h, w, K2)
     N_a = -(K2[0, 0] * d[0] + K2[0, 1] * d[3])  # the start's nodal force is -N
     u, N = _rod_fields(mm, w, d[0], N_a, np.asarray(x, dtype=float))
+    along, force = ("phi", "T") if mm.torsion else ("u", "N")
     return {
         "x": np.asarray(x, dtype=float),
-        "u": u,
+        along: u,
         "w": Z[:, 0] * L,
         "psi": Z[:, 1],
         "M": Z[:, 2] * EI0 / L,
         "Q": Z[:, 3] * EI0 / L**2,
-        "N": N,
+        force: N,
     }
 
 
@@ -475,6 +521,8 @@ def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
     """``(Gamma_X, Gamma_Y)`` of a mode of unit modal mass: the mass-weighted integral of
     its displacement along X and Y (members by Gauss-Legendre on each segment, node
     masses and absorbers); ``Gamma^2`` is the mode's effective mass (kg) in that direction."""
+    if asm.frame.motion == "out_of_plane":
+        return _participation_z(asm, mode), 0.0
     gx = gy = 0.0
     for mm in asm.members:
         L, c, s = asm.frame.geometry(mm.member)
@@ -505,6 +553,26 @@ def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
 def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss-Legendre points and weights on [-1, 1] (computed once per n)."""
     return np.polynomial.legendre.leggauss(n)
+
+
+def _participation_z(asm: Assembly, mode: FrameMode) -> float:
+    """``Gamma_Z`` of a grillage's mode of unit modal mass: the mass-weighted integral of
+    its displacement along Z (members by Gauss-Legendre, node masses, absorbers)."""
+    gz = 0.0
+    for mm in asm.members:
+        start = 0.0
+        for j, h in enumerate(mm.h):
+            seg = mm.member.segments[j]
+            waves = h * (mode.omega**2 * seg.mass_per_length / seg.EI) ** 0.25
+            n = GAUSS_POINTS * (1 + int(waves))
+            t, weight = _gauss(n)
+            f = fields_at(mm, mode, start + 0.5 * h * (t + 1.0))
+            gz += float(np.sum(0.5 * h * weight * seg.mass_per_length * f["w"]))
+            start += h
+    gz += sum(node.mass * mode.nodes[name][0] for name, node in asm.frame.nodes.items())
+    for i, ab in enumerate(asm.frame.absorbers):
+        gz += ab.m * mode.vector[asm.absorber_freedoms[i]]
+    return gz
 
 
 def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
@@ -560,5 +628,5 @@ def solve_frame(
         for w, m in found:
             modes_out += _shapes(asm, w, m)
         for mode in modes_out:
-            mode.participation = participation(asm, mode)
+            mode.participation = participation(mode.assembly or asm, mode)
     return FrameSolution(frame, omega, mult, modes_out, True, asm)
