@@ -805,3 +805,18 @@ def test_torsion_keys_in_the_plane_say_where_they_belong():
     table["members"][0]["GJ"] = 1.0
     with pytest.raises(SceneError, match=r"members\[0\]\.GJ: torsion is out of the plane"):
         frame_from_dict(table)
+
+
+def test_show_of_a_grillage_names_its_freedoms_and_its_torsion(capsys):
+    """``mstmm show`` of the floor grillage: W, ThetaX, ThetaY freedoms (a pinned corner
+    keeps its two rotations), each member's GJ and rho_Ip, the damper along Z, the
+    grid's transformation in the overall equation."""
+    from mstmm.cli import main
+
+    assert main(["show", str(EXAMPLES / "frames" / "floor_grillage.toml")]) == 0
+    text = capsys.readouterr().out
+    assert "q (24 freedoms) =" in text
+    assert "ThetaX(N00), ThetaY(N00), W(N01)" in text
+    assert "GJ 97200, rho_Ip 2.4335" in text and "EA" not in text.split("overall")[0]
+    assert "absorber 0: at N11 along Z" in text
+    assert "phi = c ThetaX + s ThetaY, w = W, psi = s ThetaX - c ThetaY" in text

@@ -42,6 +42,7 @@ def _freedom_name(asm: Assembly, g: int) -> str:
 def describe(frame: Frame) -> str:
     """The text ``mstmm show`` prints for a frame."""
     asm = Assembly(frame)
+    grid = frame.motion == "out_of_plane"
     out = [
         f"{frame.name}: {len(frame.nodes)} nodes, {len(frame.members)} members,"
         f" {len(frame.absorbers)} absorber(s); {frame.mass:.6g} kg",
@@ -51,7 +52,9 @@ def describe(frame: Frame) -> str:
         extra = []
         if n.held:
             extra.append(f"holds {n.held}" + (f" (normal {n.normal})" if "n" in n.held else ""))
-        if any(n.springs) or n.k_t:
+        if grid and n.springs[0]:
+            extra.append(f"spring k_z = {n.springs[0]:g}")
+        elif not grid and (any(n.springs) or n.k_t):
             extra.append(f"springs k_xx, k_xy, k_yy = {n.springs}, k_t = {n.k_t:g}")
         if n.mass or n.J:
             extra.append(f"mass {n.mass:g}, J {n.J:g}")
@@ -61,7 +64,9 @@ def describe(frame: Frame) -> str:
         L, c, s = frame.geometry(m)
         joints = "/".join("pinned" if p else "rigid" for p in m.pinned)
         segs = ", ".join(
-            f"{sg.length:g} m: EI {sg.EI:g}, EA {sg.EA:g}, mbar {sg.mass_per_length:g}"
+            f"{sg.length:g} m: EI {sg.EI:g}, "
+            + (f"GJ {sg.GJ:g}, rho_Ip {sg.rho_Ip:g}" if grid else f"EA {sg.EA:g}")
+            + f", mbar {sg.mass_per_length:g}"
             + "".join(f", {k} {v:g}" for k, v in sg.physics if v)
             for sg in m.segments
         )
@@ -70,18 +75,28 @@ def describe(frame: Frame) -> str:
             f" deg, joints {joints}; {segs}"
         )
     for i, ab in enumerate(frame.absorbers):
+        along = "Z" if grid else ab.direction
         out.append(
-            f"  absorber {i}: at {ab.node} along {ab.direction}, k {ab.k:g}, m {ab.m:g}, c {ab.c:g}"
+            f"  absorber {i}: at {ab.node} along {along}, k {ab.k:g}, m {ab.m:g}, c {ab.c:g}"
         )
     names = [_freedom_name(asm, g) for g in range(asm.n)]
     out.append(f"overall equation D(omega) q = 0, q ({asm.n} freedoms) =")
     out.append("  " + ", ".join(names))
-    out.append(
-        "D = sum over members of T_m^T k_m(omega) T_m + K - omega^2 M: k_m the member's exact"
-        " dynamic stiffness (rod EA mu / (h sin mu) [[cos mu, -1], [-1, cos mu]] on u; bending"
-        " from its beam's transfer on w, psi), T_m its turn to the global axes (u = c X + s Y,"
-        " w = -s X + c Y); K, M the springs, masses and absorbers"
-    )
+    if grid:
+        out.append(
+            "D = sum over members of T_m^T k_m(omega) T_m + K - omega^2 M: k_m the member's"
+            " exact dynamic stiffness (torsion GJ mu / (h sin mu) [[cos mu, -1], [-1, cos mu]]"
+            " on the twist phi, mu = omega h sqrt(rho_Ip / GJ); bending from its beam's transfer"
+            " on w, psi), T_m its turn to the global axes (phi = c ThetaX + s ThetaY, w = W,"
+            " psi = s ThetaX - c ThetaY); K, M the springs, masses and absorbers"
+        )
+    else:
+        out.append(
+            "D = sum over members of T_m^T k_m(omega) T_m + K - omega^2 M: k_m the member's"
+            " exact dynamic stiffness (rod EA mu / (h sin mu) [[cos mu, -1], [-1, cos mu]] on u;"
+            " bending from its beam's transfer on w, psi), T_m its turn to the global axes"
+            " (u = c X + s Y, w = -s X + c Y); K, M the springs, masses and absorbers"
+        )
     out.append(
         "count: J(omega) = sum of the members' clamped-clamped counts J0 + negative"
         " eigenvalues of D(omega) (Wittrick-Williams)"
