@@ -45,7 +45,7 @@ def band_matrices(draw):
     return B, shift
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=120, deadline=None)
 @given(band_matrices())
 def test_the_inertia_is_the_eigenvalues_wherever_the_bound_vouches(case):
     B, shift = case
@@ -75,7 +75,7 @@ def test_the_inertia_is_the_eigenvalues_wherever_the_bound_vouches(case):
     assert G >= (1 - 1e-12) * np.abs(A - shift * np.eye(n)).sum(axis=1).max() / (2 * b1)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(band_matrices())
 def test_solves_products_and_the_reverse_order(case):
     B, shift = case
