@@ -38,7 +38,7 @@ import numpy as np
 from mstmm.scene import SceneError
 
 from .assembly import Assembly, MemberMap
-from .banded import backward, band_matvec, ldl, ldl_solve
+from .banded import backward, band_matvec, ldl, ldl_solve, row_norm
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
@@ -165,9 +165,16 @@ def _mechanism(asm: Assembly) -> None:
     """Refuse a frame whose supports and joints leave a rigid motion free (D(0) singular)."""
     if asm.n == 0:
         return
-    D0, _ = asm.matrix(0.0)
-    e = np.linalg.eigvalsh(D0)
-    free = int(np.count_nonzero(np.abs(e) <= MECHANISM * np.max(np.abs(e))))
+    B, _ = asm.banded(0.0)
+    W = asm._work()
+    tau = MECHANISM * float(row_norm(B))
+    below, G_below, _ = ldl(B, -tau, W)  # the eigenvalues in [-tau, tau): two factorizations,
+    above, G_above, _ = ldl(B, tau, W)  # each exact for a D within tau / 4 (a stable one's)
+    if 4.0 * backward(max(G_below, G_above), asm.bandwidth) <= tau:
+        free = above - below
+    else:  # pivots grew (a mechanism's singular D(0), or near it): the dense eigenvalues
+        e = np.linalg.eigvalsh(asm.dense(B))
+        free = int(np.count_nonzero(np.abs(e) <= MECHANISM * np.max(np.abs(e))))
     if free:
         raise SceneError(
             asm.frame.source, "-",
