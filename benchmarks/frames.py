@@ -200,7 +200,7 @@ def run(storeys: int, bays: int, modes: int, rounds: int, distinct: bool = False
         shaped.append(time.perf_counter() - t)
     return {
         "storeys": storeys, "bays": bays, "members": len(frame.members), "modes": modes,
-        "distinct": distinct,
+        "distinct": distinct, "rounds": rounds,
         "first_hz": float(sol.f[0]), "cold_s": cold, "warm_s": statistics.median(warm),
         "with_shapes_s": statistics.median(shaped),
     }  # fmt: skip

@@ -463,6 +463,7 @@ def busy(figs: dict, cert: dict | None) -> str:
 def frames(figs: dict, cert: dict | None) -> str:
     g = _section(figs, "frames")
     rows = [*g["sizes"], g["distinct"]]
+    big_rounds = g["sizes"][-1].get("rounds", 5)
     lines = [
         "| frame | members | lowest | warm | with shapes | first call in the process |",
         "|---|---:|---:|---:|---:|---:|",
@@ -479,7 +480,7 @@ def frames(figs: dict, cert: dict | None) -> str:
     text = (
         "Regular building frames (steel columns and floor beams, fixed feet, two roof TMDs"
         " tuned by Den Hartog's rule), the lowest natural frequencies certified by the count,"
-        " the median of five runs, with shapes and without them in turn; the first call in"
+        f" the median of {big_rounds} runs, with shapes and without them in turn; the first call in"
         " a process loads the compiled member functions from the user cache (a frame has no"
         " kernel of its own to derive)."
     )
