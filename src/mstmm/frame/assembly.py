@@ -25,7 +25,7 @@ import numpy as np
 
 from mstmm.catalog import SEGMENT_PHYSICS, Topology, layout
 
-from .banded import backward, band_matvec, ldl, ldl_solve, reverse_band, row_norm
+from .banded import backward, band_matvec, inverse_iteration, ldl, reverse_band, row_norm
 from .member import assemble_members
 from .model import Frame, Member
 
@@ -101,10 +101,10 @@ class Assembly:
         self.pos = np.empty(self.n, dtype=np.int64)
         self.pos[self.perm] = np.arange(self.n)
         self.packed = self._packed()
-        #: log|det D(omega)| where a factorization found it (its pivots' backward error
-        #: below D's round-off), by omega: the root finder's determinant reuses it.
-        self.logdets: dict[float, float] = {}
-        #: :meth:`factor`'s results by omega (a bracket's ends are counted once).
+        #: ``(count, J0, log|det D|)`` by omega wherever a factorization found them
+        #: (:meth:`factor`, :meth:`sure_count`; log|det D| nan where an orthogonal
+        #: reduction counted): a bracket's ends are counted once, and the root finder's
+        #: determinant reuses them.
         self.factors: dict[float, tuple[int, int, float]] = {}
         self.K_band = self.to_band(self.K_lumped)
         self.M_band = self.to_band(self.M_lumped)
@@ -299,16 +299,31 @@ class Assembly:
             return J0, J0, 0.0
         W = self._work()
         tau = self.roundoff(B)
-        negatives, G, logdet = ldl(B, 0.0, W)
-        if backward(G, self.bandwidth) > tau:  # eliminated from the other end
-            negatives, G, logdet = ldl(reverse_band(B, np.empty_like(B)), 0.0, W)
-        if backward(G, self.bandwidth) <= tau:
-            self.logdets[omega] = logdet
-            out = (J0 + negatives, J0, logdet)
+        for order in self._orders(B):
+            negatives, G, logdet = ldl(order, 0.0, W)
+            if backward(G, self.bandwidth) <= tau:
+                out = (J0 + negatives, J0, logdet)
+                break
         else:
             out = (J0 + self.eigenvalues_in(B, -np.inf, 0.0), J0, math.nan)
         self.factors[omega] = out
         return out
+
+    def _orders(self, B: np.ndarray):
+        """B, then (only if asked for) B with its freedoms in reverse order: the factors
+        then eliminate from the other end, other leading blocks, other pivots."""
+        yield B
+        yield reverse_band(B, np.empty_like(B))
+
+    def within(self, B: np.ndarray, tau: float, W: np.ndarray) -> int | None:
+        """How many eigenvalues of D (band rows B, in the order to factor) lie in
+        ``[-tau, tau)``: the counts of ``D - tau I`` and ``D + tau I`` apart, each
+        factorization exact for a D within tau / 4; None where their pivots grew past it."""
+        below, G_below, _ = ldl(B, -tau, W)
+        above, G_above, _ = ldl(B, tau, W)
+        if 4.0 * backward(max(G_below, G_above), self.bandwidth) <= tau:
+            return above - below
+        return None
 
     def sure_count(self, omega: float) -> tuple[int, int, int]:
         """``(count, J0, unsure)``: the count, its members' part, and how many eigenvalues
@@ -326,16 +341,15 @@ class Assembly:
             return J0, J0, 0
         W = self._work()
         roundoff = self.roundoff(B)
-        for order in (B, reverse_band(B, np.empty_like(B))):
+        for order in self._orders(B):
             negatives, G, logdet = ldl(order, 0.0, W)
             tau = max(roundoff, 8.0 * backward(G, self.bandwidth))
             if tau > SURE_GROWTH * roundoff:
                 continue
-            below, G_below, _ = ldl(order, -tau, W)
-            above, G_above, _ = ldl(order, tau, W)
-            if 4.0 * backward(max(G_below, G_above), self.bandwidth) <= tau:
-                self.logdets[omega] = logdet
-                return J0 + negatives, J0, above - below
+            unsure = self.within(order, tau, W)
+            if unsure is not None:
+                self.factors[omega] = (J0 + negatives, J0, logdet)
+                return J0 + negatives, J0, unsure
         return self._sure_count_orthogonal(B, J0)
 
     def _sure_count_orthogonal(self, B: np.ndarray, J0: int) -> tuple[int, int, int]:
@@ -403,14 +417,11 @@ class Assembly:
         iteration leaves a residual above D's round-off (:meth:`near_zero` then)."""
         W = self._work()
         tau = self.roundoff(B)
-        for order in (B, reverse_band(B, np.empty_like(B))):
+        for order in self._orders(B):
             _, G, _ = ldl(order, 0.0, W)
             if not backward(G, self.bandwidth) <= tau:
                 continue
-            x = np.cos(np.arange(self.n) * 1.618)
-            for _ in range(3):
-                ldl_solve(W, x)
-                x /= np.linalg.norm(x)
+            x = inverse_iteration(W, 3)
             if order is not B:
                 x = x[::-1].copy()
             y = np.empty_like(x)

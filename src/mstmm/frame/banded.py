@@ -23,7 +23,9 @@ import numpy as np
 import mstmm.numerics.cache  # noqa: F401  (numba's user-cache locator, before any njit below)
 from mstmm.jit import njit
 
-__all__ = ["backward", "band_matvec", "ldl", "ldl_solve", "reverse_band", "row_norm"]
+__all__ = [
+    "backward", "band_matvec", "inverse_iteration", "ldl", "ldl_solve", "reverse_band", "row_norm",
+]  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")
@@ -91,6 +93,17 @@ def band_matvec(B, x, y):
         for k in range(1, top + 1):
             y[i] += B[i, k] * x[i + k]
             y[i + k] += B[i, k] * x[i]
+
+
+def inverse_iteration(W: np.ndarray, steps: int) -> np.ndarray:
+    """The unit eigenvector of the eigenvalue nearest 0 of the matrix whose :func:`ldl`
+    factors W holds (in its band order), by ``steps`` inverse iterations from a fixed
+    start that no eigenvector is orthogonal to in practice."""
+    x = np.cos(np.arange(len(W)) * 1.618)
+    for _ in range(steps):
+        ldl_solve(W, x)
+        x /= np.linalg.norm(x)
+    return x
 
 
 def backward(G: float, bandwidth: int) -> float:

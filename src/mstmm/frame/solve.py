@@ -38,7 +38,7 @@ import numpy as np
 from mstmm.scene import SceneError
 
 from .assembly import Assembly, MemberMap
-from .banded import backward, band_matvec, ldl, ldl_solve, row_norm
+from .banded import backward, band_matvec, inverse_iteration, ldl, row_norm
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
@@ -166,13 +166,8 @@ def _mechanism(asm: Assembly) -> None:
     if asm.n == 0:
         return
     B, _ = asm.banded(0.0)
-    W = asm._work()
-    tau = MECHANISM * float(row_norm(B))
-    below, G_below, _ = ldl(B, -tau, W)  # the eigenvalues in [-tau, tau): two factorizations,
-    above, G_above, _ = ldl(B, tau, W)  # each exact for a D within tau / 4 (a stable one's)
-    if 4.0 * backward(max(G_below, G_above), asm.bandwidth) <= tau:
-        free = above - below
-    else:  # pivots grew (a mechanism's singular D(0), or near it): the dense eigenvalues
+    free = asm.within(B, MECHANISM * float(row_norm(B)), asm._work())
+    if free is None:  # pivots grew (a mechanism's singular D(0), or near it): the dense eigenvalues
         e = np.linalg.eigvalsh(asm.dense(B))
         free = int(np.count_nonzero(np.abs(e) <= MECHANISM * np.max(np.abs(e))))
     if free:
@@ -205,17 +200,14 @@ def roots(
     def g(w: float, idx: int) -> float:
         return asm.eigenvalue(asm.banded(w)[0], idx)
 
-    def state(w: float) -> tuple[int, int]:
-        return asm.factor(w)[:2]
-
-    stack = [(lo, *(state(lo) if lo > 0 else (0, 0)), hi, *state(hi))]
+    stack = [(lo, *(asm.state(lo) if lo > 0 else (0, 0)), hi, *asm.state(hi))]
     while stack:
         a, ca, ja, b, cb, jb = stack.pop()
         if cb == ca or (modes is not None and total() >= modes):
             continue
         if (ja != jb and b - a > ROOT_GUARD * b) or (cb - ca > 1 and b - a > SEPARATE * b):
             mid = 0.5 * (a + b)
-            cm, jm = state(mid)
+            cm, jm = asm.state(mid)
             stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
             continue
         idx = ca - ja
@@ -250,7 +242,7 @@ def roots(
             break
         else:  # no window settles: the bracket is cut in two and searched again
             mid = 0.5 * (a + b)
-            cm, jm = state(mid)
+            cm, jm = asm.state(mid)
             stack += [(mid, cm, jm, b, cb, jb), (a, ca, ja, mid, cm, jm)]
     found.sort()
     return found
@@ -282,14 +274,19 @@ def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[fl
         grown |= backward(G, asm.bandwidth) > SIMPLE_GROWTH * asm.roundoff(B)
         if not math.isfinite(logabs):
             return 0.0
-        return (-1.0) ** (neg - negatives) * math.exp(min(max(logabs - log_a, -700.0), 700.0))
+        return (-1.0) ** (neg - negatives) * _ratio(logabs - log_a)
 
-    log_a = asm.logdets.get(a)
+    def known(w: float) -> float | None:
+        """log|det D(w)| from an earlier factorization, or None."""
+        log = asm.factors.get(w, (0, 0, math.nan))[2]
+        return log if math.isfinite(log) else None
+
+    log_a = known(a)
     if log_a is None:
         log_a = ldl(asm.banded(a)[0], 0.0, W)[2]
-    log_b = asm.logdets.get(b)
+    log_b = known(b)
     fa = 1.0
-    fb = -math.exp(min(max(log_b - log_a, -700.0), 700.0)) if log_b is not None else f(b)
+    fb = -_ratio(log_b - log_a) if log_b is not None else f(b)
     if not (math.isfinite(log_a) and fb < 0.0) or grown:
         return None
     wa, wb, w = a, b, b
@@ -314,10 +311,7 @@ def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[fl
         return None
     w2, B2 = seen[-1]
     ldl(B2, 0.0, W)
-    x = np.cos(np.arange(asm.n) * 1.618)
-    for _ in range(2):
-        ldl_solve(W, x)
-        x /= np.linalg.norm(x)
+    x = inverse_iteration(W, 2)
     y = np.empty_like(x)
 
     def t(B: np.ndarray) -> float:
@@ -343,6 +337,11 @@ def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[fl
     else:
         return None
     return w, max(ROOT_GUARD, 4.0 * asm.roundoff(B2) / (w * abs(slope)))
+
+
+def _ratio(log: float) -> float:
+    """``exp(log)``, its exponent kept within float64's range (a determinant's ratio)."""
+    return math.exp(min(max(log, -700.0), 700.0))
 
 
 def _mass_form(asm: Assembly, w: float) -> np.ndarray:
@@ -525,31 +524,36 @@ def fields_at(mm: MemberMap, mode: FrameMode, x: np.ndarray) -> dict:
 
 
 def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
-    """``(Gamma_X, Gamma_Y)`` of a mode of unit modal mass: the mass-weighted integral of
-    its displacement along X and Y (members by Gauss-Legendre on each segment, node
-    masses and absorbers); ``Gamma^2`` is the mode's effective mass (kg) in that direction."""
-    if asm.frame.motion == "out_of_plane":
-        return _participation_z(asm, mode), 0.0
+    """``(Gamma_X, Gamma_Y)`` of a mode of unit modal mass (a grillage's: ``(Gamma_Z,
+    0)``): the mass-weighted integral of its displacement along X and Y (along Z) (members
+    by Gauss-Legendre on each segment, node masses and absorbers); ``Gamma^2`` is the
+    mode's effective mass (kg) in that direction."""
+    grid = asm.frame.motion == "out_of_plane"
     gx = gy = 0.0
     for mm in asm.members:
         L, c, s = asm.frame.geometry(mm.member)
         start = 0.0
         for j, h in enumerate(mm.h):
-            waves = h * (mode.omega * mode.omega * mm.mbar[j] / mm.member.segments[j].EI) ** 0.25
-            waves += h * mode.omega * math.sqrt(mm.mbar[j] / mm.EA[j])
+            seg = mm.member.segments[j]
+            waves = h * (mode.omega * mode.omega * seg.mass_per_length / seg.EI) ** 0.25
+            if not mm.torsion:
+                waves += h * mode.omega * math.sqrt(mm.mbar[j] / mm.EA[j])
             n = GAUSS_POINTS * (1 + int(waves))
             t, weight = _gauss(n)
-            x = start + 0.5 * h * (t + 1.0)
-            f = fields_at(mm, mode, x)
-            wt = 0.5 * h * weight * mm.mbar[j]
-            gx += float(np.sum(wt * (c * f["u"] - s * f["w"])))
-            gy += float(np.sum(wt * (s * f["u"] + c * f["w"])))
+            f = fields_at(mm, mode, start + 0.5 * h * (t + 1.0))
+            wt = 0.5 * h * weight * seg.mass_per_length
+            if grid:  # w is along Z
+                gx += float(np.sum(wt * f["w"]))
+            else:
+                gx += float(np.sum(wt * (c * f["u"] - s * f["w"])))
+                gy += float(np.sum(wt * (s * f["u"] + c * f["w"])))
             start += h
     for name, node in asm.frame.nodes.items():
-        X, Y, _ = mode.nodes[name]
-        gx += node.mass * X
-        gy += node.mass * Y
-    for i, ab in enumerate(asm.frame.absorbers):
+        first, second, _ = mode.nodes[name]  # (X, Y, Theta), or a grillage's (W, ...)
+        gx += node.mass * first
+        if not grid:
+            gy += node.mass * second
+    for i, ab in enumerate(asm.frame.absorbers):  # a grillage's along (1, 0): along Z
         q = mode.vector[asm.absorber_freedoms[i]]
         gx += ab.m * q * ab.direction[0]
         gy += ab.m * q * ab.direction[1]
@@ -560,26 +564,6 @@ def participation(asm: Assembly, mode: FrameMode) -> tuple[float, float]:
 def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss-Legendre points and weights on [-1, 1] (computed once per n)."""
     return np.polynomial.legendre.leggauss(n)
-
-
-def _participation_z(asm: Assembly, mode: FrameMode) -> float:
-    """``Gamma_Z`` of a grillage's mode of unit modal mass: the mass-weighted integral of
-    its displacement along Z (members by Gauss-Legendre, node masses, absorbers)."""
-    gz = 0.0
-    for mm in asm.members:
-        start = 0.0
-        for j, h in enumerate(mm.h):
-            seg = mm.member.segments[j]
-            waves = h * (mode.omega**2 * seg.mass_per_length / seg.EI) ** 0.25
-            n = GAUSS_POINTS * (1 + int(waves))
-            t, weight = _gauss(n)
-            f = fields_at(mm, mode, start + 0.5 * h * (t + 1.0))
-            gz += float(np.sum(0.5 * h * weight * seg.mass_per_length * f["w"]))
-            start += h
-    gz += sum(node.mass * mode.nodes[name][0] for name, node in asm.frame.nodes.items())
-    for i, ab in enumerate(asm.frame.absorbers):
-        gz += ab.m * mode.vector[asm.absorber_freedoms[i]]
-    return gz
 
 
 def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
