@@ -424,26 +424,20 @@ def test_cli_frf_of_a_frame_between_a_node_and_a_point_inside_a_member(capsys, t
     the Python call (checked against the reference model in the column test above) times
     i omega for mobility; a point off its member or a force without a direction: one line
     naming the option, exit 2, nothing written."""
-    import json
 
     from mstmm.cli import main
     from mstmm.frame import frf
 
     path = EXAMPLES / "frames" / "building_tmd.toml"
-    args = ["frf", str(path), "--input", "force:N10_0=x", "--output", "displacement:N10_0=x",
-            "--output", "displacement:m3@3=y", "--band", "1", "5", "--points", "9",
-            "--format", "json", "--quantity", "mobility"]  # fmt: skip
-    assert main(args) == 0
-    shown = json.loads(capsys.readouterr().out)
+    outputs = ["displacement:N10_0=x", "displacement:m3@3=y"]
+    shown, got = _cli_frf(capsys, path, "force:N10_0=x", outputs, (1, 5, 9), "mobility")
     w = np.linspace(1.0, 5.0, 9)
     H = frf(load_frame(path), ("force", "N10_0", (1.0, 0.0)),
             [("displacement", "N10_0", (1.0, 0.0)), ("displacement", ("m3", 3.0), (0.0, 1.0))],
             w)  # fmt: skip
     np.testing.assert_allclose(shown["omega"], w)
-    for j, label in enumerate(["displacement:N10_0=x", "displacement:m3@3=y"]):
-        got = np.array(shown["re"][j]) + 1j * np.array(shown["im"][j])
-        np.testing.assert_allclose(got, 1j * w * H[:, j], rtol=1e-12)
-        assert shown["outputs"][j] == label
+    np.testing.assert_allclose(got, 1j * w[:, None] * H, rtol=1e-12)
+    assert shown["outputs"] == outputs
     out = tmp_path / "h.csv"
     for bad, option in (("force:m3@9=x", "input"), ("force:N10_0", "--input")):
         bad_args = ["frf", str(path), "--input", bad, "--output", "displacement:N10_0=x",
@@ -492,6 +486,22 @@ def test_cli_sweep_of_a_frame_against_the_reference_model(capsys, tmp_path):
         err = capsys.readouterr().err.strip()
         assert field in err and len(err.splitlines()) == 1, err
         assert not out.exists()
+
+
+def _cli_frf(capsys, path, load: str, outputs: list, band: tuple, quantity: str):
+    """``mstmm frf`` of a frame file as JSON (LO, HI, POINTS in ``band``): what it printed
+    and its responses (frequencies x outputs, complex)."""
+    import json
+
+    from mstmm.cli import main
+
+    args = ["frf", str(path), "--input", load, "--band", str(band[0]), str(band[1]),
+            "--points", str(band[2]), "--format", "json", "--quantity", quantity]  # fmt: skip
+    for out in outputs:
+        args += ["--output", out]
+    assert main(args) == 0
+    shown = json.loads(capsys.readouterr().out)
+    return shown, (np.array(shown["re"]) + 1j * np.array(shown["im"])).T
 
 
 def _toml(path) -> dict:
@@ -746,7 +756,6 @@ def test_the_floor_grillage_example_with_its_damper(capsys):
     either side of the bare floor's (both moving the centre: large effective masses along
     Z), the table's effective masses along Z; the vertical receptance at the centre as
     ``mstmm frf ... force:N11=z`` equals the Python call."""
-    import json
 
     from reference_frame import Member as RMember
 
@@ -780,18 +789,13 @@ def test_the_floor_grillage_example_with_its_damper(capsys):
     sol = solve_frame(load_frame(path), 4)
     assert sol.omega[0] < bare.omega[0] < sol.omega[1] < bare.omega[1]
     assert all(m.effective_mass[0] > 0.2 * sol.frame.mass for m in sol.modes[:2])
-    args = ["frf", str(path), "--input", "force:N11=z", "--output", "displacement:N11=z",
-            "--output", "rotation:m0@3=y", "--band", "5", "12", "--points", "8",
-            "--format", "json"]  # fmt: skip
-    assert main(args) == 0
-    shown = json.loads(capsys.readouterr().out)
+    outputs = ["displacement:N11=z", "rotation:m0@3=y"]
+    _, got = _cli_frf(capsys, path, "force:N11=z", outputs, (5, 12, 8), "receptance")
     w = np.linspace(5.0, 12.0, 8)
     H = frf(load_frame(path), ("force", "N11", (0.0, 0.0)),
             [("displacement", "N11", (0.0, 0.0)), ("rotation", ("m0", 3.0), (0.0, 1.0))],
             w)  # fmt: skip
-    for j in range(2):
-        got = np.array(shown["re"][j]) + 1j * np.array(shown["im"][j])
-        np.testing.assert_allclose(got, H[:, j], rtol=1e-12)
+    np.testing.assert_allclose(got, H, rtol=1e-12)
 
 
 @pytest.mark.parametrize(

@@ -344,12 +344,19 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _checked_band(args, scene: Scene) -> tuple[float, float] | None:
     """``--band`` as a tuple, checked against the scene (None without ``--band``)."""
+    band = _band(args)
+    if band is not None:
+        check_band(scene, band, COMMAND_LINE, "--band")
+    return band
+
+
+def _band(args) -> tuple[float, float] | None:
+    """``--band`` as a tuple, HI above LO (None without ``--band``)."""
     if args.band is None:
         return None
     band = (float(args.band[0]), float(args.band[1]))
     if band[1] <= band[0]:
         raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(band))
-    check_band(scene, band, COMMAND_LINE, "--band")
     return band
 
 
@@ -405,9 +412,7 @@ def _solve_frame(args, frame) -> int:
             COMMAND_LINE, "--formulation", "a frame is solved by its dynamic stiffness only",
             args.formulation,
         )  # fmt: skip
-    band = tuple(args.band) if args.band else None
-    if band is not None and band[1] <= band[0]:
-        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", list(band))
+    band = _band(args)
     sol = solve_frame(frame, modes=args.modes, band=band, shapes=args.shapes)
     if band is not None and not sol.omega.size:
         raise NoRoots(
@@ -552,48 +557,43 @@ def _sweep(args) -> int:
     from .scene.reading import is_frame, read_table
 
     data, source = read_table(args.scene)
-    if is_frame(data):
-        return _sweep_frame(args, data, source, vary)
-    scene = scene_from_dict(data, source=source)
     t0 = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        omega = sweep(
-            scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
-        )
+    if is_frame(data):
+        omega, text, notes = _sweep_frame(args, data, source, vary)
+    else:
+        scene = scene_from_dict(data, source=source)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            omega = sweep(
+                scene, vary, modes=args.modes, scheduler=args.scheduler, progress=progress.enabled
+            )
+        text = output.sweep_csv(scene, vary, omega)
+        notes = [str(w.message) for w in caught]
     _phase(args, "sweep", sweep=time.perf_counter() - t0)
-    text = output.sweep_csv(scene, vary, omega)
     if args.out is None:
         sys.stdout.write(text)
     else:
         output.write_atomically(args.out, text)
         print(args.out)
-    for w in caught:
-        _warn(str(w.message))
+    for note in notes:
+        _warn(note)
     return EXIT_UNTRUSTED if _has_nan(omega) else 0
 
 
-def _sweep_frame(args, data, source: str, vary: dict) -> int:
-    """``mstmm sweep`` of a frame file (:func:`mstmm.frame.study.sweep_frame`)."""
+def _sweep_frame(args, data, source: str, vary: dict) -> tuple:
+    """``mstmm sweep`` of a frame file (:func:`mstmm.frame.study.sweep_frame`): the
+    frequencies, their CSV and what to warn of."""
     from . import output
     from .frame.study import field_unit, sweep_frame
 
     if args.scheduler is not None:
         raise SceneError(COMMAND_LINE, "--scheduler", "a frame's study runs on this machine")
-    t0 = time.perf_counter()
     omega = sweep_frame(data, vary, modes=args.modes, source=source)
-    _phase(args, "sweep", sweep=time.perf_counter() - t0)
     units = [field_unit(data, path) for path in vary]
-    text = output.sweep_csv(None, vary, omega, units=units)
-    if args.out is None:
-        sys.stdout.write(text)
-    else:
-        output.write_atomically(args.out, text)
-        print(args.out)
+    notes = []
     if _has_nan(omega):
-        _warn("some points' roots could not be confirmed by the count: set to NaN")
-        return EXIT_UNTRUSTED
-    return 0
+        notes.append("some points' roots could not be confirmed by the count: set to NaN")
+    return omega, output.sweep_csv(None, vary, omega, units=units), notes
 
 
 def _has_nan(values) -> bool:
@@ -743,27 +743,35 @@ def _frf_request(args, scene: Scene):
     """The frequencies and the parsed --input / --output of ``frf`` and ``plot --frf``,
     checked: the band as ``solve --band`` checks it, at most
     :data:`mstmm.response.MAX_RESPONSES` responses."""
-    import numpy as np
-
-    from .response import MAX_RESPONSES, parse_point
+    from .response import parse_point
 
     if args.input is None or not args.output:
         raise SceneError(COMMAND_LINE, "--input", "--frf needs --input and --output")
     src = parse_point(args.input, "input", COMMAND_LINE)
     dst = [parse_point(o, "output", COMMAND_LINE) for o in args.output]
-    lo, hi = _checked_band(args, scene)
+    return _frequencies(args, *_checked_band(args, scene), len(dst)), src, dst
+
+
+def _frequencies(args, lo: float, hi: float, outputs: int):
+    """The ``--points`` frequencies of a frequency response from LO to HI, spaced as
+    ``--spacing`` says, checked: LO > 0 for a log spacing, at most
+    :data:`mstmm.response.MAX_RESPONSES` responses over ``outputs`` outputs."""
+    import numpy as np
+
+    from .response import MAX_RESPONSES
+
     if getattr(args, "spacing", "lin") == "log" and lo <= 0.0:
         raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
-    if args.points * len(dst) > MAX_RESPONSES:
+    if args.points * outputs > MAX_RESPONSES:
         raise SceneError(
             COMMAND_LINE,
             "--points",
-            f"{args.points} frequencies x {len(dst)} output(s) is more than {MAX_RESPONSES:.0e}"
+            f"{args.points} frequencies x {outputs} output(s) is more than {MAX_RESPONSES:.0e}"
             " responses (16 bytes each): fewer points, or several runs over narrower bands",
             args.points,
         )
     space = np.geomspace if getattr(args, "spacing", "lin") == "log" else np.linspace
-    return space(lo, hi, args.points), src, dst
+    return space(lo, hi, args.points)
 
 
 def _frf(args) -> int:
@@ -816,31 +824,16 @@ def _frf_frame(args, frame) -> int:
     members (:func:`mstmm.frame.response.parse_point`), the whole band in one call."""
     import contextlib
 
-    import numpy as np
-
     from . import output
     from .frame.response import frf, parse_point
-    from .response import MAX_RESPONSES
+    from .response import as_quantity
     from .units import frf_unit
 
     src = parse_point(args.input, "--input", COMMAND_LINE)
     dst = [parse_point(o, "--output", COMMAND_LINE) for o in args.output]
-    lo, hi = float(args.band[0]), float(args.band[1])
-    if hi <= lo:
-        raise SceneError(COMMAND_LINE, "--band", "HI must exceed LO", [lo, hi])
-    if args.spacing == "log" and lo <= 0.0:
-        raise SceneError(COMMAND_LINE, "--band", "a log spacing needs LO > 0", lo)
-    if args.points * len(dst) > MAX_RESPONSES:
-        raise SceneError(
-            COMMAND_LINE, "--points",
-            f"{args.points} frequencies x {len(dst)} output(s) is more than"
-            f" {MAX_RESPONSES:.0e} responses", args.points,
-        )  # fmt: skip
-    omegas = (np.geomspace if args.spacing == "log" else np.linspace)(lo, hi, args.points)
+    omegas = _frequencies(args, *_band(args), len(dst))
     t0 = time.perf_counter()
-    H = frf(frame, src, dst, omegas)
-    rate = {"receptance": 1.0, "mobility": 1j * omegas, "accelerance": -(omegas**2)}
-    H = H * np.reshape(rate[args.quantity], (-1, 1))
+    H = as_quantity(args.quantity, omegas, frf(frame, src, dst, omegas))
     labels = [o.strip() for o in args.output]
     units = [frf_unit(args.quantity, d[0], src[0]) for d in dst]
     with contextlib.ExitStack() as stack:

@@ -64,6 +64,17 @@ class Point:
         return f"{self.quantity}:{self.where}={at}"
 
 
+def as_quantity(quantity: str, ws: np.ndarray, H: np.ndarray) -> np.ndarray:
+    """Receptances H (frequencies ``ws`` along its first axis) as ``quantity``:
+    ``receptance`` H, ``mobility`` i w H, ``accelerance`` -w^2 H."""
+    shape = (-1,) + (1,) * (H.ndim - 1)
+    if quantity == "mobility":
+        return H * (1j * ws).reshape(shape)
+    if quantity == "accelerance":
+        return H * (-(ws**2)).reshape(shape)
+    return H
+
+
 def parse_point(spec, role: str, source: str = "<frf>") -> Point:
     """A :class:`Point` from ``"force:x=0.5"``, ``"displacement:mass=2"`` or a tuple;
     ``role`` is ``"input"`` or ``"output"``. Raises :class:`SceneError`."""
@@ -262,11 +273,7 @@ class _Job:
 
     def scaled(self, ws: np.ndarray, H: np.ndarray) -> np.ndarray:
         """Receptances H as the quantity asked for."""
-        if self.quantity == "mobility":
-            return H * (1j * ws)[:, None, None]
-        if self.quantity == "accelerance":
-            return H * (-(ws**2))[:, None, None]
-        return H
+        return as_quantity(self.quantity, ws, H)
 
     def march(self, ws: np.ndarray) -> np.ndarray:
         """The kernel's receptances at ``ws``; NaN at a frequency where its end matrix is

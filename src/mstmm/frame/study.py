@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from mstmm.catalog import SEGMENT_PHYSICS
 from mstmm.limits import MAX_MODES, MAX_SWEEP_POINTS, check_count
 from mstmm.scene import SceneError
+from mstmm.units import BEAM_UNITS
 
 from .reading import frame_from_dict
 from .solve import solve_frame
@@ -29,16 +29,18 @@ __all__ = ["field_unit", "sweep_frame"]
 
 _STEP = re.compile(r"^(\w+)(?:\[(\d+)\])?$")
 
-#: The unit of a frame scene's fields by their key (attachments: by their kind).
+#: The unit of a frame scene's fields by their key (attachments: by their kind): a
+#: segment's as a beam's, and the frame's own.
 UNITS: dict[str, str] = {
+    **BEAM_UNITS,
     "x": "m",
     "y": "m",
-    "length": "m",
-    "EI": "N m^2",
     "EA": "N",
-    "mass_per_length": "kg/m",
+    "GJ": "N m^2",
+    "rho_Ip": "kg m",
     "k_x": "N/m",
     "k_y": "N/m",
+    "k_z": "N/m",
     "k_t": "N m/rad",
     "mass": "kg",
     "J": "kg m^2",
@@ -46,7 +48,6 @@ UNITS: dict[str, str] = {
     "end_k": "N m/rad",
     "m": "kg",
     "c": "N s/m",
-    **{key: unit for key, _, unit in SEGMENT_PHYSICS},
 }
 
 
