@@ -72,7 +72,6 @@ from .walk import (
 
 __all__ = ["bind_characteristic", "UNDAMPED", "DAMPED"]
 
-
 def _printed(*args):
     raise NotImplementedError("printed per topology into its kernel module")
 

@@ -382,6 +382,7 @@ def joined_count(Ja, Ta, Jb, Tb, Da, Db, S):
     return Ja + Jb + negatives2(S[0, 0], 0.5 * (S[0, 1] + S[1, 0]), S[1, 1]), True
 
 
+
 @njit(cache=True)
 def compound(T, C):
     """C <- the second compound of the 4x4 T (6x6: its 2x2 minors, rows and columns in the
