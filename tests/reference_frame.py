@@ -66,6 +66,10 @@ class Frame:
     held: dict = field(default_factory=dict)
     masses: dict = field(default_factory=dict)
     motion: str = "in_plane"
+    #: Absorbers ``(node, k, m, c, (dx, dy))``: a mass m on a spring k and a dashpot c
+    #: (N/m, kg, N s/m) at the node, moving along the unit vector (dx, dy) (out of the
+    #: plane: along Z, the vector unused).
+    absorbers: tuple = ()
 
 
 def _freedoms(frame: Frame) -> tuple[dict, int]:
@@ -82,15 +86,54 @@ def _freedoms(frame: Frame) -> tuple[dict, int]:
         for end in (0, 1):
             if m.pinned[end]:
                 index[(i, end)] = len(index)
+    for j in range(len(frame.absorbers)):
+        index[("absorber", j)] = len(index)
     return index, len(index)
 
 
 def _rod(m: Member, L, w):
-    """The rod's dynamic stiffness (2 x 2, SI) and its clamped-clamped count below w."""
+    """The rod's dynamic stiffness (2 x 2, SI) and its clamped-clamped count below w (None
+    at a complex w)."""
     mu = w * L * mpmath.sqrt(mpf(m.mbar) / m.EA)
     c, s = mpmath.cos(mu), mpmath.sin(mu)
     f = m.EA * mu / (L * s)
-    return [[f * c, -f], [-f, f * c]], int(mpmath.floor(mu / mp.pi))
+    count = None if isinstance(w, mpmath.mpc) else int(mpmath.floor(mu / mp.pi))
+    return [[f * c, -f], [-f, f * c]], count
+
+
+def _basis(b, d: int, x):
+    """The d-th derivatives at x of the bending solutions cos, sin, cosh, sinh of (b x)."""
+    z = b * x
+    f = b**d
+    return [
+        f * mpmath.cos(z + d * mp.pi / 2),
+        f * mpmath.sin(z + d * mp.pi / 2),
+        f * (mpmath.cosh(z) if d % 2 == 0 else mpmath.sinh(z)),
+        f * (mpmath.sinh(z) if d % 2 == 0 else mpmath.cosh(z)),
+    ]
+
+
+def bending_energy(m: Member, L, w):
+    """The bending dynamic stiffness (4 x 4 over v_a, theta_a, v_b, theta_b, SI) at any
+    frequency, complex too, from the exact solutions of ``EI v^(4) = mbar w^2 v`` (cos,
+    sin, cosh, sinh of b x): with ``A`` their end values and ``G_kl = [EI g_k^(2) g_l^(1) - EI
+    g_k^(3) g_l]_0^L`` (by parts, ``int EI g_k^(2) g_l^(2) - mbar w^2 g_k g_l``), ``K = A^-T G
+    A^-1``: the energy of the solution with the given end values. Another route than
+    ``_bending`` (a closed form), which it equals at a real w."""
+    b = mpmath.root(mpf(m.mbar) * w * w / m.EI, 4)
+    A = mpmath.matrix(4, 4)
+    for r, (d, x) in enumerate(((0, 0), (1, 0), (0, L), (1, L))):
+        for k, v in enumerate(_basis(b, d, x)):
+            A[r, k] = v
+    G = mpmath.matrix(4, 4)
+    for x, sign in ((L, 1), (0, -1)):
+        g0, g1, g2, g3 = (_basis(b, d, x) for d in range(4))
+        for k in range(4):
+            for j in range(4):
+                G[k, j] += sign * m.EI * (g2[k] * g1[j] - g3[k] * g0[j])
+    Ai = A**-1
+    K = Ai.T * G * Ai
+    return [[(K[i, j] + K[j, i]) / 2 for j in range(4)] for i in range(4)]
 
 
 def _bending(m: Member, L, w):
@@ -107,7 +150,7 @@ def _bending(m: Member, L, w):
 def dynamic_stiffness(frame: Frame, w) -> tuple:
     """``(K, J0)``: the assembled dynamic stiffness over the free freedoms at w (rad/s)
     (an mpmath matrix) and the members' clamped-clamped count below w."""
-    w = mpf(w)
+    w = mpmath.mpmathify(w)
     index, n = _freedoms(frame)
     K = mpmath.zeros(n, n)
     J0 = 0
@@ -121,8 +164,11 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
             rod, ja = _rod(Member(m.a, m.b, m.EI, m.GJ, m.rhoIp), L, w)
         else:
             rod, ja = _rod(m, L, w)
-        bend, jb = _bending(m, L, w)
-        J0 += ja + jb
+        if isinstance(w, mpmath.mpc):  # a complex frequency: no count
+            bend, J0 = bending_energy(m, L, w), None
+        else:
+            bend, jb = _bending(m, L, w)
+            J0 += ja + jb
         # local freedoms (u_a, v_a, t_a, u_b, v_b, t_b) as global ones: (index, factor) pairs
         local = []
         for node in (m.a, m.b) if out else ():
@@ -159,7 +205,34 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
             g = index.get((name, j))
             if g is not None:
                 K[g, g] -= w * w * value
+    for j, (node, k, mass, c, (dx, dy)) in enumerate(frame.absorbers):
+        q = index[("absorber", j)]
+        z = k + 1j * w * c  # the spring and its dashpot: z (q - d . U)^2 / 2
+        row = [(q, mpf(1))]
+        along = ((0, 1),) if frame.motion == "out_of_plane" else ((0, dx), (1, dy))  # Z: W
+        row += [(index[(node, a)], -f) for a, f in along if (node, a) in index]
+        for gi, fi in row:
+            for gj, fj in row:
+                K[gi, gj] += z * fi * fj
+        K[q, q] -= w * w * mass
     return K, J0
+
+
+def damped_root(frame: Frame, w0: complex, dps: int = 30):
+    """The damped natural frequency (mpc, rad/s) of the frame nearest w0: a zero of ``det
+    K(w)`` by the secant method from w0 at ``dps`` digits (a start within a fraction of
+    the roots' spacing, e.g. the value under test)."""
+    with mp.workdps(dps):
+        w0 = mpmath.mpc(w0)
+        scale = mpmath.det(dynamic_stiffness(frame, w0 * (1 + mpf(10) ** -6))[0])
+
+        def f(w):
+            return mpmath.det(dynamic_stiffness(frame, w)[0]) / scale
+
+        w = mpmath.findroot(f, (w0, w0 * (1 + mpf(10) ** -7)), solver="secant", verify=False)
+        if abs(f(w)) > mpf(10) ** (12 - dps):  # |w - root| about 1e-6 |w| |f|
+            raise ValueError(f"no root near {w0}: |det| = {abs(f(w))} at {w}")
+        return w
 
 
 def negative_pivots(K) -> int:
@@ -344,6 +417,14 @@ def as_table(rf: Frame) -> dict:
                 member[key] = "pinned"
         members.append(member)
     table = {"nodes": nodes, "members": members}
+    if rf.absorbers:
+        table["attachments"] = [
+            {"type": "spring_mass", "node": node, "k": float(k), "m": float(m), "c": float(c)}
+            for node, k, m, c, _ in rf.absorbers
+        ]
+        if rf.motion != "out_of_plane":
+            for a, (*_, d) in zip(table["attachments"], rf.absorbers):
+                a["direction"] = [float(d[0]), float(d[1])]
     if rf.motion == "out_of_plane":
         table["motion"] = "out_of_plane"
     return table

@@ -60,9 +60,10 @@ def _element(EI: float, EA: float, mbar: float, h: float, c: float, s: float):
     return T.T @ k @ T, T.T @ m @ T
 
 
-def frequencies(frame, n_modes: int, n_elements: int) -> np.ndarray:
-    """The lowest ``n_modes`` natural frequencies (rad/s) with ``n_elements`` elements per
-    member."""
+def assemble(frame, n_elements: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(K, C, M)`` over the free freedoms with ``n_elements`` elements per member; each
+    absorber of the frame (``(node, k, m, c, (dx, dy))``) adds its mass's freedom, its
+    spring and its dashpot."""
     index: dict = {}
 
     def dof(key) -> int:
@@ -90,8 +91,12 @@ def frequencies(frame, n_modes: int, n_elements: int) -> np.ndarray:
                 ends += keys
             elements.append((k, m, [dof(key) for key in ends]))
     held = {(name, "xyt".index(d)) for name, ds in frame.held.items() for d in ds}
+    absorbers = getattr(frame, "absorbers", ())
+    for j in range(len(absorbers)):
+        dof(("absorber", j))
     n = len(index)
     K = np.zeros((n, n))
+    C = np.zeros((n, n))
     M = np.zeros((n, n))
     for k, m, dofs in elements:
         K[np.ix_(dofs, dofs)] += k
@@ -100,9 +105,37 @@ def frequencies(frame, n_modes: int, n_elements: int) -> np.ndarray:
         for j, value in ((0, mass), (1, mass), (2, inertia)):
             if (name, j) in index:
                 M[index[(name, j)], index[(name, j)]] += float(value)
+    for j, (node, k, mass, c, (dx, dy)) in enumerate(absorbers):
+        q = index[("absorber", j)]
+        row = np.zeros(n)
+        row[q] = 1.0
+        row[index[(node, 0)]] -= float(dx)
+        row[index[(node, 1)]] -= float(dy)
+        K += float(k) * np.outer(row, row)
+        C += float(c) * np.outer(row, row)
+        M[q, q] += float(mass)
     free = [g for key, g in index.items() if key not in held]
-    lam = scipy.linalg.eigh(
-        K[np.ix_(free, free)], M[np.ix_(free, free)], eigvals_only=True,
-        subset_by_index=[0, n_modes - 1],
-    )  # fmt: skip
+    keep = np.ix_(free, free)
+    return K[keep], C[keep], M[keep]
+
+
+def frequencies(frame, n_modes: int, n_elements: int) -> np.ndarray:
+    """The lowest ``n_modes`` natural frequencies (rad/s) with ``n_elements`` elements per
+    member."""
+    K, _, M = assemble(frame, n_elements)
+    lam = scipy.linalg.eigh(K, M, eigvals_only=True, subset_by_index=[0, n_modes - 1])
     return np.sqrt(lam)
+
+
+def damped_roots(frame, n_elements: int) -> np.ndarray:
+    """Every damped root ``w = w_d + i sigma`` (rad/s, time dependence exp(i w t)) with
+    ``w_d >= 0``: ``(K + i w C - w^2 M) x = 0`` as the linear pencil of ``lambda = i w``
+    over ``[x, lambda x]`` (``scipy.linalg.eig``), sorted by w_d."""
+    K, C, M = assemble(frame, n_elements)
+    n = K.shape[0]
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
+    B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
+    lam = scipy.linalg.eigvals(A, B)
+    w = -1j * lam[np.isfinite(lam)]
+    w = w[w.real >= -1e-9 * np.abs(w)]
+    return w[np.argsort(w.real)]

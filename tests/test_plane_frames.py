@@ -302,15 +302,9 @@ def test_effective_masses_of_a_column_are_the_beams():
     assert max(m.effective_mass[1] for m in sol.modes[:n]) < 1e-9 * frame.mass
 
 
-def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
-    """The receptance at the top of a vertical cantilever column carrying a damped
-    absorber (force and displacement along X there) equals the mpmath reference model's
-    (``reference_model.frf``: a direct solve of the beam's global system) at frequencies
-    across the first three modes."""
-    from reference_model import frf as reference_frf
-
-    from mstmm.frame import frf
-
+def _damped_column() -> tuple:
+    """``(beam, frame, L)``: a vertical cantilever column carrying a damped absorber 2.5 m
+    up, as a beam scene and as a frame (the absorber along X, the member cut there)."""
     EI, mbar, L, EA = 4.0e5, 30.0, 6.0, 8.0e9
     absorber = {"type": "spring_mass", "k": 3.0e4, "m": 8.0, "c": 60.0}
     beam = scene_from_dict(
@@ -331,6 +325,19 @@ def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
             "attachments": [{**absorber, "member": "col", "x": 2.5, "direction": [1.0, 0.0]}],
         }
     )  # fmt: skip
+    return beam, frame, L
+
+
+def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
+    """The receptance at the top of a vertical cantilever column carrying a damped
+    absorber (force and displacement along X there) equals the mpmath reference model's
+    (``reference_model.frf``: a direct solve of the beam's global system) at frequencies
+    across the first three modes."""
+    from reference_model import frf as reference_frf
+
+    from mstmm.frame import frf
+
+    beam, frame, L = _damped_column()
     omega = np.array([20.0, 31.0, 150.0, 400.0])
     point = ("force", "x", L)
     expected = reference_frf(beam, point, ("displacement", "x", L), omega, dps=20)
@@ -347,8 +354,19 @@ def test_frequency_response_of_a_column_with_a_damped_absorber_is_the_beams():
     got = frf(frame, ("force", ("col", 1.0), X),
               [("displacement", "top", X), ("displacement", ("col", 4.0), X)], omega)  # fmt: skip
     np.testing.assert_allclose(got, expected, rtol=1e-9)
-    with pytest.raises(SceneError, match="damped natural frequencies of frames"):
-        solve_frame(frame, 3)
+
+
+def test_damped_roots_of_a_column_with_a_damped_absorber_are_the_beams():
+    """The same column's damped natural frequencies (``mstmm.frame.damped``) equal the
+    beam's mpmath reference model's (``reference_model.damped_frequencies``, certified by
+    its own argument principle); the column's axial roots lie far above."""
+    from reference_model import damped_frequencies
+
+    beam, frame, _ = _damped_column()
+    expected = np.array([complex(w) for w in damped_frequencies(beam, 4)])
+    sol = solve_frame(frame, 4)
+    assert sol.count_checked
+    np.testing.assert_allclose(sol.omega, expected, rtol=1e-11)
 
 
 def test_the_building_example_splits_its_first_mode_with_the_roof_damper():

@@ -420,7 +420,10 @@ def _solve_frame(args, frame) -> int:
             " (the count confirms it)"
         )
     _emit(args, frame_text(sol, args.format, args.shapes))
-    return 0 if sol.count_checked else EXIT_UNTRUSTED
+    for warning in getattr(sol, "warnings", ()):  # a damped frame's
+        _warn(warning)
+    trusted = sol.count_checked and all(getattr(sol, "converged", ()))
+    return 0 if trusted else EXIT_UNTRUSTED
 
 
 def _solve(args) -> int:

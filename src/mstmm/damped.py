@@ -252,22 +252,19 @@ class _Problem:
 TALLEST = 1.0e4
 
 
-def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tuple[float, str]:
-    """Top of the counted rectangle: the proved bound on the decay rate of every root with
-    ``w_d <= w_top`` (:func:`mstmm.decay_bound.sigma_max`), and what to tell when it is not
-    proved (""): where the proof does not apply, several times the largest decay rate
-    found; where the bound exceeds what can be counted (the frequency of the beam's
-    ``TALLEST``-th mode), that height."""
-    bound = sigma_max(scene, w_top)
+def sigma_top(
+    bound, roots: list[DampedRoot], w_top: float, unit: float, unproved: str
+) -> tuple[float, str]:
+    """Top of the counted rectangle: ``bound``, the proved bound on the decay rate of every
+    root with ``w_d <= w_top`` (a :class:`mstmm.decay_bound.DecayBound`, None where the
+    proof does not apply), and what to tell when it is not proved (""): where the proof
+    does not apply (``unproved``: why), several times the largest decay rate found; where
+    the bound exceeds what can be counted (the frequency of the ``TALLEST``-th mode of a
+    beam of the frequency unit ``unit``), that height."""
     found = max([abs(r.sigma) for r in roots] + [0.1 * w_top])
     if bound is None:
         top = 4.0 * found
-        return top, (
-            "no proved bound on the decay rate applies (a rotational damper, a damper on"
-            " a massless coordinate, a segment in compression, or a point damper on a"
-            " Timoshenko segment: mstmm.decay_bound):"
-            f" roots with sigma > {top:.6g} rad/s are not counted"
-        )
+        return top, f"{unproved}: roots with sigma > {top:.6g} rad/s are not counted"
     cap = max(unit * (TALLEST * math.pi) ** 2, 4.0 * found)
     if not bound.sigma <= cap:
         top = 4.0 * found  # what can be searched reliably: several times the rates found
@@ -276,6 +273,14 @@ def _sigma_top(scene, roots: list[DampedRoot], w_top: float, unit: float) -> tup
             f" can be counted: roots with sigma > {top:.6g} rad/s are not counted"
         )
     return max(bound.sigma, 1.01 * found), ""
+
+
+#: Why a beam's decay rate has no proved bound (:func:`mstmm.decay_bound.sigma_max`).
+UNPROVED = (
+    "no proved bound on the decay rate applies (a rotational damper, a damper on a massless"
+    " coordinate, a segment in compression, or a point damper on a Timoshenko segment:"
+    " mstmm.decay_bound)"
+)
 
 
 def _continue(
@@ -294,7 +299,7 @@ def _continue(
     while t < 1.0:
         t_new = min(1.0, t + dt)
         last = t_new == 1.0
-        f = problem.f if last else _Function(problem.kernel, pick(t_new))
+        f = problem.f if last else pick(t_new)
         guess = w if t == t_prev else w + (w - w_prev) * ((t_new - t) / (t - t_prev))
         w_new, ok = newton(f, guess, scale=problem.unit, tol=NEWTON_TOL if last else 1e-9)
         # a step that jumps further than the root moved so far is not trusted
@@ -322,7 +327,7 @@ def _leap(problem: _Problem, w0s: np.ndarray, pick) -> tuple[np.ndarray, np.ndar
     path bends, or Newton went to a neighbour): the continuation in steps then follows it.
     Returns (roots, ok)."""
     w0s = np.asarray(w0s, dtype=np.complex128)
-    small = _Function(problem.kernel, pick(LEAP_T))
+    small = pick(LEAP_T)
     w_t, ok_t = newton_many(small, w0s, scale=problem.unit, tol=1e-10)
     guess = w0s + (w_t - w0s) / LEAP_T
     w, ok = newton_many(problem.f, guess, scale=problem.unit)
@@ -450,9 +455,26 @@ def damped_roots(
         np.unique(elastic),
     )
 
-    def pick(t: float) -> np.ndarray:
-        return damping_scaled(p, columns, t)
+    def pick(t: float) -> _Function:
+        return _Function(kernel, damping_scaled(p, columns, t))
 
+    def top(roots: list[DampedRoot]) -> tuple[float, str]:
+        return sigma_top(sigma_max(scene, w_top), roots, w_top, unit, UNPROVED)
+
+    return search(problem, undamped, pick, w_top, top)
+
+
+def search(problem: _Problem, undamped: np.ndarray, pick, w_top: float, top) -> DampedRoots:
+    """Steps 2 to 4 of the module's search on ``problem`` (a beam's or a frame's,
+    :mod:`mstmm.frame.damped`): the simple roots of ``undamped`` (rad/s, ascending,
+    repeated by multiplicity) carried to full damping (``pick(t)``: log f at damping
+    scale t), the rectangle ``w_d < w_top``, ``sigma < S`` counted (``top(roots)``: ``(S,
+    why it is not proved or "")``, called once the continuation is done) and what the
+    count says is left searched."""
+    unit = problem.unit
+    viscous = problem.viscous
+    rigid = problem.rigid
+    elastic = np.asarray([w for w in undamped if w > 0.0])
     values, counts = np.unique(elastic, return_counts=True)
     todo = [
         (float(w0), 0)
@@ -469,23 +491,23 @@ def damped_roots(
         # contour would need samples as close), and the bottom as far below the origin's
         # zero (a passive structure has no zero with sigma < 0)
         eps = delta = 0.25 * scale
-    sigma_top, unproved = _sigma_top(scene, problem.roots, w_top, unit)
+    s_top, unproved = top(problem.roots)
     proved = not unproved
     if unproved:
         problem.notes.append(unproved)
-    box = (-eps, w_top, -delta, sigma_top)
+    box = (-eps, w_top, -delta, s_top)
     count = subdivision.count_box(problem, box)
     checked = count is not None and proved
     if count is not None:
         if viscous and problem.known(box) < count:
-            _axis_roots(problem, 1e-9 * scale, sigma_top)
+            _axis_roots(problem, 1e-9 * scale, s_top)
         subdivision.fill(problem, box, count)
         found = problem.known(box)
         if found != count:
             checked = False
             problem.notes.append(
                 f"the argument principle counts {count} zeros in w_d < {w_top:.6g},"
-                f" sigma < {sigma_top:.6g} rad/s (the origin's {problem.order0} included);"
+                f" sigma < {s_top:.6g} rad/s (the origin's {problem.order0} included);"
                 f" {found} found"
             )
     # the box reaches eps left of the imaginary axis (its contour clear of the origin's
@@ -495,12 +517,12 @@ def damped_roots(
     inside = [
         r
         for r, x0 in zip(problem.roots, w_left)
-        if x0 < r.omega.real < w_top and -delta < r.omega.imag < sigma_top
+        if x0 < r.omega.real < w_top and -delta < r.omega.imag < s_top
     ]
     left = [
         r
         for r, x0 in zip(problem.roots, w_left)
-        if r.omega.real <= x0 and -delta < r.omega.imag < sigma_top
+        if r.omega.real <= x0 and -delta < r.omega.imag < s_top
     ]
     if left:  # a loss factor's model: no mirror symmetry, a continuation may cross w_d = 0
         problem.notes.append(
@@ -546,29 +568,11 @@ def undamped_twin(scene):
     return twin
 
 
-@dataclass(repr=False)
-class DampedSolution(Tabulated):
-    """Damped natural frequencies ``omega = w_d + i sigma`` (rad/s, complex; time
-    dependence exp(i w t), sigma > 0 decays), ascending in w_d with overdamped roots
-    (w_d = 0) first by sigma and rigid-body zeros first of all, repeated by multiplicity."""
+class DampedValues:
+    """What a damped solution's roots ``omega`` (complex, rad/s) give: a beam's
+    (:class:`DampedSolution`) or a frame's (:class:`mstmm.frame.damped.DampedFrameSolution`)."""
 
-    scene: object
     omega: np.ndarray
-    multiplicity: np.ndarray
-    converged: np.ndarray
-    kernel_origin: str
-    timings: dict
-    count_checked: bool
-    #: The rectangle of the w plane whose zeros were counted (w_d, w_d, sigma, sigma).
-    rectangle: tuple[float, float, float, float]
-    warnings: list[str] = field(default_factory=list)
-    truncated: bool = False
-    shapes: list | None = None
-    formulation: str = "stable"
-    damped: bool = True
-    #: A compressed scene's stability (:mod:`mstmm.buckling`, from its undamped twin: the
-    #: damping does not change the statics); when buckled, ``omega`` is empty.
-    buckling: object = None
 
     @property
     def w_d(self) -> np.ndarray:
@@ -596,12 +600,11 @@ class DampedSolution(Tabulated):
         """Damped frequencies in Hz (w_d / 2 pi)."""
         return self.omega.real / (2.0 * math.pi)
 
-    def to_dict(self, shapes: bool = False) -> dict:
-        """What ``mstmm solve --format json`` writes for a damped scene."""
-        out = {
-            "scene": self.scene.name,
+    def roots_dict(self) -> dict:
+        """The roots as ``--format json`` writes them (with ``multiplicity``,
+        ``converged``, ``count_checked`` and the counted ``rectangle``)."""
+        return {
             "damped": True,
-            "formulation": self.formulation,
             "w_d": self.w_d.tolist(),
             "sigma": self.sigma.tolist(),
             "abs_omega": self.magnitude.tolist(),
@@ -614,12 +617,73 @@ class DampedSolution(Tabulated):
                 "w_d": [self.rectangle[0], self.rectangle[1]],
                 "sigma": [self.rectangle[2], self.rectangle[3]],
             },
+        }
+
+
+@dataclass(repr=False)
+class DampedSolution(DampedValues, Tabulated):
+    """Damped natural frequencies ``omega = w_d + i sigma`` (rad/s, complex; time
+    dependence exp(i w t), sigma > 0 decays), ascending in w_d with overdamped roots
+    (w_d = 0) first by sigma and rigid-body zeros first of all, repeated by multiplicity."""
+
+    scene: object
+    omega: np.ndarray
+    multiplicity: np.ndarray
+    converged: np.ndarray
+    kernel_origin: str
+    timings: dict
+    count_checked: bool
+    #: The rectangle of the w plane whose zeros were counted (w_d, w_d, sigma, sigma).
+    rectangle: tuple[float, float, float, float]
+    warnings: list[str] = field(default_factory=list)
+    truncated: bool = False
+    shapes: list | None = None
+    formulation: str = "stable"
+    damped: bool = True
+    #: A compressed scene's stability (:mod:`mstmm.buckling`, from its undamped twin: the
+    #: damping does not change the statics); when buckled, ``omega`` is empty.
+    buckling: object = None
+
+    def to_dict(self, shapes: bool = False) -> dict:
+        """What ``mstmm solve --format json`` writes for a damped scene."""
+        out = {
+            "scene": self.scene.name,
+            "formulation": self.formulation,
+            **self.roots_dict(),
             "truncated": bool(self.truncated),
             "kernel": self.kernel_origin,
             "timings": dict(self.timings),
             "warnings": list(self.warnings),
         }
         return self.buckling_and_shapes(out, shapes)
+
+
+def roots_table(found: DampedRoots, roots: list[DampedRoot], modes: int | None) -> tuple:
+    """``(omega, multiplicity, converged, truncated, warnings)``: ``roots`` (of ``found``)
+    one entry per multiplicity, the lowest ``modes`` (``truncated``: a multiple root cut
+    there), and what to tell: the search's notes, a count that disagrees, a root not
+    converged."""
+    omega, mult, conv = [], [], []
+    for r in roots:
+        omega += [r.omega] * r.multiplicity
+        mult += [r.multiplicity] * r.multiplicity
+        conv += [r.converged] * r.multiplicity
+    truncated = False
+    if modes is not None and len(omega) > modes:
+        truncated = mult[modes - 1] > 1 and omega[modes] == omega[modes - 1]
+        omega, mult, conv = omega[:modes], mult[:modes], conv[:modes]
+    warnings = list(found.notes)
+    unproved = any(n.startswith("no proved bound on the decay rate") for n in found.notes)
+    if not found.count_checked and not unproved:
+        warnings.append(
+            "the damped roots disagree with the argument-principle count: some may be missing"
+        )
+    warnings += [
+        f"omega = {w:.17g} rad/s: not converged; this value is not trusted"
+        for w, c in zip(omega, conv)
+        if not c
+    ]
+    return omega, mult, conv, truncated, warnings
 
 
 def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = True, kernel=None):
@@ -687,31 +751,11 @@ def solve_damped(scene, modes: int | None = None, band=None, *, shapes: bool = T
             buckling=und.buckling,
         )
     roots = found.roots
-    truncated = False
     if band is not None:
         lo, hi = band
         roots = [r for r in roots if lo <= r.omega.real <= hi or (lo <= 0.0 and r.omega == 0)]
     timings["scan_refine"] = time.perf_counter() - t1
-    omega, mult, conv = [], [], []
-    for r in roots:
-        for _ in range(r.multiplicity):
-            omega.append(r.omega)
-            mult.append(r.multiplicity)
-            conv.append(r.converged)
-    if modes is not None and len(omega) > modes:
-        truncated = mult[modes - 1] > 1 and omega[modes] == omega[modes - 1]
-        omega, mult, conv = omega[:modes], mult[:modes], conv[:modes]
-    warnings = list(found.notes)
-    unproved = any(n.startswith("no proved bound on the decay rate") for n in found.notes)
-    if not found.count_checked and not unproved:
-        warnings.append(
-            "the damped roots disagree with the argument-principle count: some may be missing"
-        )
-    warnings += [
-        f"omega = {w:.17g} rad/s: not converged; this value is not trusted"
-        for w, c in zip(omega, conv)
-        if not c
-    ]
+    omega, mult, conv, truncated, warnings = roots_table(found, roots, modes)
     omega_arr = np.asarray(omega, dtype=complex)
     shape_list = None
     if shapes:

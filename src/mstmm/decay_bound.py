@@ -211,6 +211,17 @@ def sigma_max(scene, w_top: float) -> DecayBound | None:
             lo = 0.0
         piece = min(piece, hi - lo)
         reach += g / (hi - lo)
+    return bound_from(gamma, rate, reach, piece, mbar, EI, eta, w_top)
+
+
+def bound_from(
+    gamma: float, rate: float, reach: float, piece: float, mbar: float, EI: float, eta: float,
+    w_top: float,
+) -> DecayBound:  # fmt: skip
+    """The bound (2) and (1) of the module's proof from its ingredients (SI): ``gamma``
+    (Gamma, the dampers' beam-side damping), ``rate`` (R), ``reach`` (sum_j Gamma_j /
+    P_j), ``piece`` (the least P_j, reported), the least mass per length and EI, the
+    largest loss factor and the band's top ``w_top`` (W)."""
     W = abs(float(w_top))
     X0 = 2.0 * rate + 16.0 * reach / mbar + W
     B = 16.0 * gamma / mbar * (4.0 * gamma / EI) ** (1.0 / 3.0)

@@ -173,11 +173,12 @@ def damped_csv(sol) -> str:
     return _csv(rows)
 
 
-def damped_table(sol) -> str:
-    """The table of ``mstmm solve`` for a damped scene: w_d, sigma, |w|, damping ratio."""
-    x0, x1, y0, y1 = sol.rectangle
+def damped_rows(sol, title: str) -> list[str]:
+    """The damped roots' table (w_d, sigma, |w|, damping ratio, f_d, multiplicity; an
+    overdamped root and one not trusted marked) under its ``title``: a beam's
+    (:func:`damped_table`) or a frame's (:mod:`mstmm.frame.report`)."""
     lines = [
-        f"{sol.scene.name}: {len(sol.omega)} damped natural frequencies w = w_d + i sigma"
+        f"{title}{len(sol.omega)} damped natural frequencies w = w_d + i sigma"
         " (time dependence exp(i w t))",
         f"{'mode':>4}  {'w_d [rad/s]':>22}  {'sigma [1/s]':>22}  {'|w| [rad/s]':>22}"
         f"  {'zeta':>10}  {'f_d [Hz]':>12}  mult",
@@ -190,6 +191,13 @@ def damped_table(sol) -> str:
             f"  {_fmt(sol.magnitude[i], '>22.16g')}  {_fmt(sol.zeta[i], '>10.4g')}"
             f"  {_fmt(sol.hz[i], '>12.6g')}  {sol.multiplicity[i]:>4}{kind}{flag}"
         )
+    return lines
+
+
+def damped_table(sol) -> str:
+    """The table of ``mstmm solve`` for a damped scene: w_d, sigma, |w|, damping ratio."""
+    x0, x1, y0, y1 = sol.rectangle
+    lines = damped_rows(sol, f"{sol.scene.name}: ")
     t = sol.timings
     lines.append(
         f"time: load {t['load']:.3f} s, search {t['scan_refine'] * 1e3:.2f} ms; argument"

@@ -19,14 +19,23 @@ same way.
 
 from __future__ import annotations
 
+import cmath
 import math
 
 import numpy as np
 
 from mstmm.jit import njit
 from mstmm.numerics.field import clamped_clamped_bound
-from mstmm.numerics.layout import HEAD, SEGMENT_WIDTH, X_END
-from mstmm.numerics.segment import piece_matrix, segment_pieces, segment_values
+from mstmm.numerics.layout import COL_EI, COL_MBAR, HEAD, SEGMENT_WIDTH, X_END
+from mstmm.numerics.segment import (
+    field_exp,
+    field_prepare,
+    is_general,
+    piece_matrix,
+    piece_transfer_c,
+    segment_pieces,
+    segment_values,
+)
 
 #: Each piece's proved clamped-clamped bound lies this many times above omega^2: its
 #: transfer's B block (the end displacements the end forces make) stays well conditioned.
@@ -40,6 +49,10 @@ PIECE_STEP = 1.0
 #: frequencies), up to PIECE_RETRIES cuts, the best kept. J0 is the same for any cut.
 PIVOT_RATIO = 1e-3
 PIECE_RETRIES = 4
+#: The longest piece (k h) at a complex frequency far above the real axis (a tall
+#: rectangle's side): its transfer's entries grow as e^(k h), its stiffness keeps the
+#: digits the argument principle's phase needs.
+WIDE_STEP = 8.0
 
 
 @njit(cache=True)
@@ -60,10 +73,10 @@ def piece_stiffness(U, k):
     D]]``). The nodal force and moment are ``[Q, -M]`` at the start and ``[-Q, M]`` at the
     end (``count.pair_count``'s PI_LEFT and PI_RIGHT): with ``f_0 = B^-1 (d_h - A d_0)``
     and ``f_h = C d_0 + D f_0``, symmetrised (its asymmetry is round-off)."""
-    Bi = np.empty((2, 2))
+    Bi = np.empty((2, 2), U.dtype)
     inv2(U[0:2, 2:4], Bi)
-    f0 = np.zeros((2, 4))  # f_0 = [-Bi A | Bi] [d_0; d_h]
-    fh = np.zeros((2, 4))
+    f0 = np.zeros((2, 4), U.dtype)  # f_0 = [-Bi A | Bi] [d_0; d_h]
+    fh = np.zeros((2, 4), U.dtype)
     for r in range(2):
         for c in range(2):
             f0[r, 2 + c] = Bi[r, c]
@@ -71,7 +84,7 @@ def piece_stiffness(U, k):
                 f0[r, c] -= Bi[r, j] * U[j, c]
     for r in range(2):
         for c in range(4):
-            acc = U[2 + r, c] if c < 2 else 0.0
+            acc = U[2 + r, c] if c < 2 else 0.0 * U[0, 0]
             for j in range(2):
                 acc += U[2 + r, 2 + j] * f0[j, c]
             fh[r, c] = acc
@@ -100,6 +113,37 @@ def negatives_sym(P):
 
 
 @njit(cache=True)
+def chain_pivot(S, k, n):
+    """The pivot ``P = S_far + k_near`` (n x n) of appending piece k to the chain S."""
+    P = np.empty((n, n), S.dtype)
+    for r in range(n):
+        for c in range(n):
+            P[r, c] = S[n + r, n + c] + k[r, c]
+    return P
+
+
+@njit(cache=True)
+def chain_eliminate(S, k, n, Pi):
+    """S <- over [start; far] after eliminating the middle node, whose pivot's inverse is
+    Pi: ``[[S_ss, 0], [0, k_ff]] - X Pi X^T``, ``X = [S_sm; k_fm]`` (real or complex)."""
+    X = np.empty((2 * n, n), S.dtype)
+    for r in range(n):
+        for c in range(n):
+            X[r, c] = S[r, n + c]
+            X[n + r, c] = k[n + r, c]
+    Y = X @ Pi
+    T = np.zeros((2 * n, 2 * n), S.dtype)
+    for r in range(n):
+        for c in range(n):
+            T[r, c] = S[r, c]
+            T[n + r, n + c] = k[n + r, n + c]
+    R = T - Y @ X.T
+    for r in range(2 * n):
+        for c in range(2 * n):
+            S[r, c] = 0.5 * (R[r, c] + R[c, r])
+
+
+@njit(cache=True)
 def chain_add(S, k, n, first, worst):
     """Append a piece of stiffness k (2n x 2n over [near; far], n freedoms a node) to the
     chain S (2n x 2n over [start; last node]), eliminating the last node: S <- over [start;
@@ -107,14 +151,9 @@ def chain_add(S, k, n, first, worst):
     <- the least of itself and the pivot's conditioning (its least eigenvalue over its
     largest, about: a pivot near singular loses that many digits of S)."""
     if first:
-        for r in range(2 * n):
-            for c in range(2 * n):
-                S[r, c] = k[r, c]
+        S[:, :] = k
         return 0
-    P = np.empty((n, n))
-    for r in range(n):
-        for c in range(n):
-            P[r, c] = S[n + r, n + c] + k[r, c]
+    P = chain_pivot(S, k, n)
     if n == 1:
         neg = 1 if P[0, 0] < 0.0 else 0
         Pi = np.empty((1, 1))
@@ -127,25 +166,44 @@ def chain_add(S, k, n, first, worst):
         big = max(abs(P[0, 0]), abs(P[1, 1]), abs(P[0, 1]))
         ratio = abs(det) / (big * big) if big > 0.0 else 0.0
     worst[0] = min(worst[0], ratio)
-    # [start; far] after eliminating the middle: X = [S_sm; k_fm] (2n x n), M = X Pi X^T
-    X = np.empty((2 * n, n))
-    for r in range(n):
-        for c in range(n):
-            X[r, c] = S[r, n + c]
-            X[n + r, c] = k[n + r, c]
-    Y = X @ Pi
-    T = np.empty((2 * n, 2 * n))
-    for r in range(n):
-        for c in range(n):
-            T[r, c] = S[r, c]
-            T[r, n + c] = 0.0
-            T[n + r, c] = 0.0
-            T[n + r, n + c] = k[n + r, n + c]
-    R = T - Y @ X.T
-    for r in range(2 * n):
-        for c in range(2 * n):
-            S[r, c] = 0.5 * (R[r, c] + R[c, r])
+    chain_eliminate(S, k, n, Pi)
     return neg
+
+
+@njit(cache=True)
+def chain_add_c(S, k, n, first):
+    """``chain_add`` in complex arithmetic (a complex frequency): returns the log of the
+    eliminated pivot's determinant (0 for the first piece). The chain's pivots multiply
+    the condensed determinant into that of every piece's node kept: ``det D_full = det
+    D * prod(det P)`` (block elimination)."""
+    if first:
+        S[:, :] = k
+        return 0j
+    P = chain_pivot(S, k, n)
+    Pi = np.empty((n, n), S.dtype)
+    if n == 1:
+        det = P[0, 0]
+        Pi[0, 0] = 1.0 / det
+    else:
+        det = inv2(P, Pi)
+    chain_eliminate(S, k, n, Pi)
+    return cmath.log(det)
+
+
+@njit(cache=True)
+def segment_cut(p, seg, rho, beta, step, w2, F, ready):
+    """``(pieces, ready)``: equal pieces across rho (units of L) of segment seg, k h <=
+    step at beta (``segment.segment_pieces``: F, ready) and each piece's proved
+    clamped-clamped bound above ``BOUND_MARGIN`` w2 (so that its J0 is 0 and its
+    stiffness has no pole up to w2 = (lam_0 L)^4)."""
+    pieces, ready = segment_pieces(p, seg, beta, rho, step, F, ready)
+    e, m, kGA, rhoI, t, r, k_w = segment_values(p, seg, 1.0)
+    shear = math.inf if kGA == 0.0 else kGA
+    for _ in range(60):
+        if clamped_clamped_bound(e, shear, rhoI, m, t, rho / pieces) > BOUND_MARGIN * w2:
+            break
+        pieces *= 2
+    return pieces, ready
 
 
 @njit(cache=True)
@@ -173,13 +231,7 @@ def member_bending(p, beta, K):
             end = 1.0 if seg == n_seg - 1 else p[HEAD + SEGMENT_WIDTH * seg + X_END] / p[0]
             rho = end - start
             start = end
-            pieces, ready = segment_pieces(p, seg, beta, rho, PIECE_STEP, F, ready)
-            e, m, kGA, rhoI, t, r, k_w = segment_values(p, seg, 1.0)
-            shear = math.inf if kGA == 0.0 else kGA
-            for _ in range(60):
-                if clamped_clamped_bound(e, shear, rhoI, m, t, rho / pieces) > BOUND_MARGIN * w2:
-                    break
-                pieces *= 2
+            pieces, ready = segment_cut(p, seg, rho, beta, PIECE_STEP, w2, F, ready)
             pieces += extra
             ready = piece_matrix(p, seg, beta, rho / pieces, U, F, ready)
             piece_stiffness(U, k)
@@ -260,44 +312,39 @@ def member_stiffnesses(P, p_off, EA, mbar, h, r_off, L, omega, K, J0):
         r0, r1 = r_off[t], r_off[t + 1]
         count += member_rod(EA[r0:r1], mbar[r0:r1], h[r0:r1], omega, K2)
         J0[t] = count
-        scale = p[1] / Lt**3
-        k = K[t]
-        k[:, :] = 0.0
-        for r in range(4):
-            br = 1 + r + r // 2  # (1, 2, 4, 5): w_a, psi_a, w_b, psi_b
-            dr = Lt if r % 2 == 1 else 1.0
-            for c in range(4):
-                dc = Lt if c % 2 == 1 else 1.0
-                k[br, 1 + c + c // 2] = scale * dr * K4[r, c] * dc
-        k[0, 0] = K2[0, 0]
-        k[0, 3] = K2[0, 1]
-        k[3, 0] = K2[1, 0]
-        k[3, 3] = K2[1, 1]
+        place(K[t], K4, K2, p[1] / Lt**3, Lt)
 
 
 @njit(cache=True)
-def assemble_members(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, omega, B):
-    """D += every member's exact dynamic stiffness at omega (rad/s), turned to the global
-    freedoms, D in upper band rows B (``B[i, k] = D[i, i + k]``, :mod:`.banded`).
+def place(k, K4, K2, scale, Lt):
+    """k (6 x 6 over ``[u_a, w_a, psi_a, u_b, w_b, psi_b]``, SI) <- the bending K4 (units L
+    = EI_0 = 1, times ``scale`` = EI_0 / L^3 and L on each rotation) and the rod K2."""
+    k[:, :] = 0.0
+    for r in range(4):
+        br = 1 + r + r // 2  # (1, 2, 4, 5): w_a, psi_a, w_b, psi_b
+        dr = Lt if r % 2 == 1 else 1.0
+        for c in range(4):
+            dc = Lt if c % 2 == 1 else 1.0
+            k[br, 1 + c + c // 2] = scale * dr * K4[r, c] * dc
+    k[0, 0] = K2[0, 0]
+    k[0, 3] = K2[0, 1]
+    k[3, 0] = K2[1, 0]
+    k[3, 3] = K2[1, 1]
 
-    Members of one type (the same beam, rod and length: a building's columns) share
-    their local stiffness: :func:`member_stiffnesses` computes each type once; member i
-    is of type ``kind[i]``, and ``T[i]`` (6 x 6) maps the freedoms at band positions
-    ``idx[i]`` (-1: none) to its local ``[u_a, w_a, psi_a, u_b, w_b, psi_b]`` and carries
-    D's units. Returns the members' J0."""
-    n_types = len(p_off) - 1
-    K = np.empty((n_types, 6, 6))
-    J = np.zeros(n_types, dtype=np.int64)
-    member_stiffnesses(P, p_off, EA, mbar, h, r_off, L, omega, K, J)
-    kT = np.empty((6, 6))
-    J0 = 0
+
+@njit(cache=True)
+def scatter(K, kind, T, idx, B):
+    """B += every member's local stiffness ``K[kind[i]]`` (6 x 6) turned to the global
+    freedoms: ``T[i]`` (6 x 6) maps the freedoms at band positions ``idx[i]`` (-1: none) to
+    its local ``[u_a, w_a, psi_a, u_b, w_b, psi_b]`` and carries D's units; B holds D's
+    upper band rows (``B[i, k] = D[i, i + k]``, :mod:`.banded`), real or complex."""
+    kT = np.empty((6, 6), B.dtype)
     for i in range(len(kind)):
         k = K[kind[i]]
-        J0 += J[kind[i]]
         Ti = T[i]
         for r in range(6):  # kT <- k Ti (loops: BLAS costs more than the 6 x 6 product)
             for c in range(6):
-                acc = 0.0
+                acc = 0.0 * k[0, 0]
                 for j in range(6):
                     acc += k[r, j] * Ti[j, c]
                 kT[r, c] = acc
@@ -309,8 +356,139 @@ def assemble_members(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, omega, B):
                 gb = idx[i, b]
                 if gb < ga:
                     continue
-                acc = 0.0
+                acc = 0.0 * k[0, 0]
                 for r in range(6):
                     acc += Ti[r, a] * kT[r, b]
                 B[ga, gb - ga] += acc
+
+
+@njit(cache=True)
+def assemble_members(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, omega, B):
+    """D += every member's exact dynamic stiffness at omega (rad/s), turned to the global
+    freedoms, D in upper band rows B (``B[i, k] = D[i, i + k]``, :mod:`.banded`).
+
+    Members of one type (the same beam, rod and length: a building's columns) share
+    their local stiffness: :func:`member_stiffnesses` computes each type once; member i
+    is of type ``kind[i]`` (:func:`scatter`). Returns the members' J0."""
+    n_types = len(p_off) - 1
+    K = np.empty((n_types, 6, 6))
+    J = np.zeros(n_types, dtype=np.int64)
+    member_stiffnesses(P, p_off, EA, mbar, h, r_off, L, omega, K, J)
+    scatter(K, kind, T, idx, B)
+    J0 = 0
+    for i in range(len(kind)):
+        J0 += J[kind[i]]
     return J0
+
+
+# -- a complex frequency (damped natural frequencies: mstmm.frame.damped) ---------------
+
+
+@njit(cache=True)
+def bending_pieces(p, beta_top, beta, out):
+    """out[seg] <- the pieces of each segment of the member whose beam is p for the
+    complex frequencies of a rectangle whose real points have ``|lam_0 L| <= beta_top``
+    and all ``|lam_0 L| <= beta``: each piece's proved clamped-clamped bound above
+    ``BOUND_MARGIN`` beta_top^4 and k h <= ``WIDE_STEP`` at beta. A piece's
+    clamped-clamped frequencies are real (an undamped piece), so its transfer's B block
+    is then regular in the whole rectangle: the pieces' stiffnesses have no pole there."""
+    F = np.empty((4, 4, 4))
+    ready = -1
+    start = 0.0
+    n_seg = int(p[3])
+    for seg in range(n_seg):
+        end = 1.0 if seg == n_seg - 1 else p[HEAD + SEGMENT_WIDTH * seg + X_END] / p[0]
+        rho = end - start
+        start = end
+        out[seg], ready = segment_cut(p, seg, rho, beta, WIDE_STEP, beta_top**4, F, ready)
+
+
+@njit(cache=True)
+def member_bending_c(p, w1, pieces, K):
+    """K (4 x 4, complex) <- the bending dynamic stiffness of the member whose beam is p at
+    the complex ``w1 = (lam_0 L)^2 = omega / unit``, segment seg cut in ``pieces[seg]``
+    (:func:`bending_pieces`); returns the log of its inner pivots' determinants."""
+    U = np.empty((4, 4), np.complex128)
+    F = np.empty((4, 4, 4), np.complex128)
+    k = np.empty((4, 4), np.complex128)
+    beta = cmath.sqrt(w1)
+    log = 0j
+    first = True
+    start = 0.0
+    n_seg = int(p[3])
+    for seg in range(n_seg):
+        i = HEAD + SEGMENT_WIDTH * seg
+        end = 1.0 if seg == n_seg - 1 else p[i + X_END] / p[0]
+        h = (end - start) / pieces[seg]
+        start = end
+        if is_general(p, seg):
+            field_prepare(p, seg, w1 * w1, 1.0 + 0j, F)
+            field_exp(F, h, U)
+        else:
+            e = p[i + COL_EI] / p[1]
+            piece_transfer_c(beta * (p[i + COL_MBAR] / p[2] / e) ** 0.25, e, h, U)
+        piece_stiffness(U, k)
+        for _ in range(pieces[seg]):
+            log += chain_add_c(K, k, 2, first)
+            first = False
+    return log
+
+
+@njit(cache=True)
+def rod_pieces(EA, mbar, h, top, omega, out):
+    """out[j] <- the pieces of rod segment j for the complex frequencies of a rectangle
+    whose real points have ``|omega| <= top`` and all ``|omega| <= omega`` (rad/s): ``|mu|
+    <= 1`` at top, below the first zero of sin mu (a real pi), and ``|mu| <= WIDE_STEP``
+    at omega."""
+    for j in range(len(EA)):
+        a = h[j] * math.sqrt(mbar[j] / EA[j])
+        out[j] = max(1, int(math.ceil(top * a)), int(math.ceil(omega * a / WIDE_STEP)))
+
+
+@njit(cache=True)
+def member_rod_c(EA, mbar, h, pieces, w, K):
+    """``member_rod`` at the complex w (rad/s), segment j in ``pieces[j]``; returns the log
+    of its inner pivots."""
+    k = np.empty((2, 2), np.complex128)
+    log = 0j
+    first = True
+    for j in range(len(EA)):
+        hj = h[j] / pieces[j]
+        mu = w * hj * math.sqrt(mbar[j] / EA[j])
+        f = EA[j] / hj * (mu / cmath.sin(mu) if mu != 0.0 else 1.0)
+        c = cmath.cos(mu)
+        k[0, 0] = f * c
+        k[1, 1] = f * c
+        k[0, 1] = -f
+        k[1, 0] = -f
+        for _ in range(pieces[j]):
+            log += chain_add_c(K, k, 1, first)
+            first = False
+    return log
+
+
+@njit(cache=True)
+def assemble_members_c(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, bp, rp, omega, B):
+    """:func:`assemble_members` at the complex omega (rad/s), B complex; each type's
+    segments in the pieces ``bp[p_off-like]`` (bending: ``bp[t, seg]``) and ``rp`` (rod:
+    ``rp[r_off[t]:r_off[t + 1]]``). Returns the log of every member's inner pivots'
+    determinants: D's determinant times their product is that of the frame with every
+    piece's node kept, which has no pole where the pieces have none."""
+    n_types = len(p_off) - 1
+    K = np.zeros((n_types, 6, 6), np.complex128)
+    logs = np.zeros(n_types, np.complex128)
+    K4 = np.empty((4, 4), np.complex128)
+    K2 = np.empty((2, 2), np.complex128)
+    for t in range(n_types):
+        p = P[p_off[t] : p_off[t + 1]]
+        Lt = L[t]
+        w1 = Lt * Lt * math.sqrt(p[2] / p[1]) * omega
+        logs[t] = member_bending_c(p, w1, bp[t], K4)
+        r0, r1 = r_off[t], r_off[t + 1]
+        logs[t] += member_rod_c(EA[r0:r1], mbar[r0:r1], h[r0:r1], rp[r0:r1], omega, K2)
+        place(K[t], K4, K2, p[1] / Lt**3, Lt)
+    scatter(K, kind, T, idx, B)
+    log = 0j
+    for i in range(len(kind)):
+        log += logs[kind[i]]
+    return log

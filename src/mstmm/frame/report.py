@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import json
 
+from mstmm.output import damped_csv, damped_rows
+
+from .damped import DampedFrameSolution
 from .solve import FrameSolution
 
 __all__ = ["frame_text"]
@@ -21,9 +24,11 @@ def _components(sol: FrameSolution) -> tuple[str, ...]:
     return ("X (m)", "Y (m)", "Theta (rad)")
 
 
-def frame_text(sol: FrameSolution, fmt: str, shapes: bool) -> str:
+def frame_text(sol: FrameSolution | DampedFrameSolution, fmt: str, shapes: bool) -> str:
     """The solution as ``fmt`` (``table``, ``csv`` or ``json``); with ``shapes`` each
     mode's joint displacements (X, Y in m, Theta in rad; unit modal mass)."""
+    if getattr(sol, "damped", False):
+        return _damped_text(sol, fmt, shapes)
     if fmt == "json":
         data = sol.to_dict()
         if not shapes:
@@ -80,4 +85,41 @@ def frame_text(sol: FrameSolution, fmt: str, shapes: bool) -> str:
             + ", ".join(f"{a} {t:.6g} kg ({100 * t / mass:.1f} %)" for a, t in zip(axes, total))
             + f" of {mass:.6g} kg"
         )
+    return "\n".join(lines) + "\n"
+
+
+def _damped_text(sol: DampedFrameSolution, fmt: str, shapes: bool) -> str:
+    """A damped frame's roots (and with ``shapes`` its complex modes: the joints'
+    displacements scaled so that the largest translation is 1)."""
+    if fmt == "json":
+        data = sol.to_dict()
+        if not shapes:
+            data.pop("modes")
+        return json.dumps(data, indent=1) + "\n"
+    names = list(sol.frame.nodes)
+    if fmt == "csv":
+        text = damped_csv(sol)
+        if shapes and sol.modes:
+            head = ",".join(
+                f"{n}.{c} {part}" for n in names for c in _components(sol) for part in ("re", "im")
+            )
+            lines = ["", "mode," + head]
+            for j, mode in enumerate(sol.modes):
+                values = [complex(v) for n in names for v in mode.nodes[n]]
+                lines.append(f"{j + 1}," + ",".join(f"{v.real!r},{v.imag!r}" for v in values))
+            text += "\n".join(lines) + "\n"
+        return text
+    nodes, members = len(sol.frame.nodes), len(sol.frame.members)
+    lines = damped_rows(sol, f"{sol.frame.name}: {nodes} nodes, {members} members; ")
+    x0, x1, y0, y1 = sol.rectangle
+    lines.append(
+        f"argument principle checked: {sol.count_checked} (counted w_d < {x1:.6g} rad/s,"
+        f" sigma < {y1:.6g} 1/s)"
+    )
+    if shapes and sol.modes:
+        moving = 1 if sol.frame.motion == "out_of_plane" else 2
+        lines += ["", f"{'mode':>4}  {'node moving most':<20}  {'complexity':>10}"]
+        for j, mode in enumerate(sol.modes):
+            name = max(names, key=lambda n: sum(abs(c) ** 2 for c in mode.nodes[n][:moving]))
+            lines.append(f"{j + 1:>4}  {name:<20}  {mode.complexity:>10.4g}")
     return "\n".join(lines) + "\n"

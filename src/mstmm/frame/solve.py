@@ -32,6 +32,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -41,6 +42,9 @@ from .assembly import Assembly, MemberMap
 from .banded import backward, band_matvec, inverse_iteration, ldl, row_norm
 from .member import member_bending, member_march, member_rod
 from .model import Frame
+
+if TYPE_CHECKING:
+    from .damped import DampedFrameSolution
 
 __all__ = ["FrameMode", "FrameSolution", "solve_frame"]
 
@@ -464,10 +468,10 @@ def _cut(frame: Frame) -> Frame:
 def _joints(asm: Assembly, x: np.ndarray) -> dict[str, tuple[float, float, float]]:
     out = {}
     for name, index in asm.node_freedoms.items():
-        v = np.zeros(3)
+        v = np.zeros(3, dtype=x.dtype)
         for g in index:
             v += x[g] * np.asarray(asm.freedoms[g].vector)
-        out[name] = (float(v[0]), float(v[1]), float(v[2]))
+        out[name] = tuple(v.tolist())
     return out
 
 
@@ -598,18 +602,16 @@ def solve_frame(
     band: tuple[float, float] | None = None,
     *,
     shapes: bool = True,
-) -> FrameSolution:
+) -> FrameSolution | DampedFrameSolution:
     """The lowest ``modes`` natural frequencies of ``frame`` (default 10), or all in
-    ``band`` (rad/s), each with its exact multiplicity, and their mode shapes."""
+    ``band`` (rad/s), each with its exact multiplicity, and their mode shapes. With
+    dashpots (an absorber's ``c``) the damped roots: :func:`.damped.solve_damped_frame`."""
     if modes is None and band is None:
         modes = 10
-    for ab in frame.absorbers:
-        if ab.c:
-            raise SceneError(
-                frame.source, f"absorber at {ab.node!r}: c",
-                "damped natural frequencies of frames are not built yet (mstmm.frame.frf"
-                " takes the dashpot; set c = 0 to solve)", ab.c,
-            )  # fmt: skip
+    if any(ab.c for ab in frame.absorbers):
+        from .damped import solve_damped_frame
+
+        return solve_damped_frame(frame, modes, band, shapes=shapes)
     asm = Assembly(frame)
     found = roots(asm, modes, band)
     omega = np.array([w for w, m in found for _ in range(m)])

@@ -5,7 +5,9 @@
 to its values; the varied arrays run together (point i takes the i-th value of each), as
 the beam's :func:`mstmm.study.sweep` does. Each point is the scene with those values, read
 as a file would be (every value checked; a refused one names the field and the point) and
-solved by the count (:func:`mstmm.frame.solve.solve_frame`, frequencies only).
+solved by the count (:func:`mstmm.frame.solve.solve_frame`, frequencies only). A frame
+with dashpots (an absorber's ``c``, given or varied) is a damped study: its points' damped
+roots ``w_d + i sigma`` (:mod:`mstmm.frame.damped`), complex, as the beam's damped study.
 """
 
 from __future__ import annotations
@@ -104,7 +106,8 @@ def sweep_frame(
     source: str = "<frame>",
 ) -> np.ndarray:
     """The lowest ``modes`` natural frequencies (rad/s) at every point, ``(points,
-    modes)``; NaN where the count could not confirm a point's roots."""
+    modes)``, complex where the study is damped (a dashpot given or varied); NaN where
+    the count could not confirm a point's roots."""
     check_count(modes, MAX_MODES, "modes", source, "modes")
     values = {path: np.atleast_1d(np.asarray(v, dtype=float)) for path, v in vary.items()}
     if not values:
@@ -116,7 +119,10 @@ def sweep_frame(
     for path in values:
         check_count(n, MAX_SWEEP_POINTS, "points", source, path)
         _set(copy.deepcopy(dict(table)), path, 0.0, source, f"--vary {path}")  # the path exists
-    out = np.full((n, modes), math.nan)
+    attachments = table.get("attachments", [])
+    damped = any(_positive(a.get("c", 0.0)) for a in attachments if isinstance(a, Mapping))
+    damped |= any(path.rsplit(".", 1)[-1] == "c" for path in values)
+    out = np.full((n, modes), complex(math.nan, math.nan) if damped else math.nan)
     for i in range(n):
         point = copy.deepcopy(dict(table))
         for path, v in values.items():
@@ -130,3 +136,8 @@ def sweep_frame(
         if sol.count_checked:
             out[i] = sol.omega[:modes]
     return out
+
+
+def _positive(value: Any) -> bool:
+    """Whether a scene's value is a positive number (a dashpot there)."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0

@@ -1,0 +1,191 @@
+"""Damped natural frequencies of frames (``mstmm.frame.damped``) against independent models.
+
+* the mpmath plane-frame model (``tests/reference_frame.py``) at a complex frequency: each
+  member's bending stiffness from its exact solutions' energy (``bending_energy``, not the
+  closed form the undamped tests use), the rod's closed form, the absorbers' ``k + i w c``;
+  each root reported is within 1e-11 of the 30-digit model's root nearest it, and each
+  mode is a null vector of the model's dynamic stiffness there;
+* the count: a finite-element model of the same frame (``tests/reference_frame_fem.py``,
+  8 to 32 elements a member, the quadratic eigenproblem linearised) has as many roots in the
+  band and below the counted rectangle's top, each within 1e-3 of one reported;
+* (``tests/test_plane_frames.py``) a column carrying a damped absorber is the beam's mpmath
+  reference model (``reference_model.damped_frequencies``);
+* the CLI on a damped building: the table, the JSON and the exit status.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+import reference_frame as rf  # noqa: E402
+import reference_frame_fem as fem  # noqa: E402
+
+from mstmm.frame import frame_from_dict, solve_frame  # noqa: E402
+
+EXAMPLES = HERE.parent / "examples"
+FRAMES = rf.sample_frames()
+#: Frames with absorbers (node, k, m, c, direction), the band's top (rad/s, in a gap of
+#: the finite-element roots) and the elements a member of the FE model takes: a lightly
+#: damped tip absorber; two at the corners of a portal, one of them overdamped (two roots
+#: on the imaginary axis); one on the roof of a two-bay frame.
+CASES = {
+    "L": (replace(FRAMES["L"], absorbers=(("C", 400.0, 2.0, 15.0, (0.0, 1.0)),)), 100.0, 32),
+    "portal": (
+        replace(
+            FRAMES["portal"],
+            absorbers=(
+                ("C", 2000.0, 3.0, 40.0, (1.0, 0.0)),
+                ("B", 500.0, 1.0, 300.0, (0.6, 0.8)),
+            ),
+        ),
+        70.0,
+        16,
+    ),
+    "two_bay": (
+        replace(FRAMES["two_bay_two_storey"], absorbers=(("R2", 3000.0, 4.0, 25.0, (1.0, 0.0)),)),
+        35.0,
+        8,
+    ),
+}
+
+
+def _frame(r: rf.Frame, name: str):
+    return frame_from_dict(rf.as_table(r), name, name)
+
+
+def _reference_residual(r: rf.Frame, mode) -> float:
+    """``|K(w) x| / (|K(w)| |x|)`` of the 30-digit model at the mode's root, x its joints'
+    and absorbers' displacements in the model's freedoms."""
+    import mpmath
+
+    index, n = rf._freedoms(r)
+    x = np.zeros(n, dtype=complex)
+    for key, g in index.items():
+        if key[0] == "absorber":
+            x[g] = mode.absorbers[key[1]]
+        else:
+            x[g] = mode.nodes[key[0]][key[1]]
+    with mpmath.workdps(30):
+        K = rf.dynamic_stiffness(r, mpmath.mpc(mode.omega))[0]
+        K = np.array([[complex(K[i, j]) for j in range(n)] for i in range(n)])
+    return float(np.linalg.norm(K @ x) / (np.linalg.norm(K, 2) * np.linalg.norm(x)))
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_damped_frames_against_the_reference_model_and_the_fe_count(name):
+    """Every root of the band through the default path (shapes on): to 1e-11 of the
+    reference model's, its mode a null vector of the model's D; as many as the
+    finite-element model has in the counted rectangle, each FE root near one of them;
+    the portal's overdamped absorber gives roots on the imaginary axis (w_d exactly 0)."""
+    r, top, elements = CASES[name]
+    sol = solve_frame(_frame(r, name), band=(0.0, top))
+    assert sol.count_checked and not sol.warnings
+    for w in np.unique(sol.omega):
+        ref = complex(rf.damped_root(r, w))
+        assert abs(ref - w) <= 1e-11 * abs(w), (w, ref)
+    for mode in sol.modes:
+        assert _reference_residual(r, mode) < 1e-9
+    fe = fem.damped_roots(r, elements)
+    inside = fe[(fe.real <= top) & (fe.imag < sol.rectangle[3])]
+    assert len(inside) == len(sol.omega)
+    for w in inside:
+        assert np.min(np.abs(sol.omega - w)) <= 1e-3 * abs(w)
+    if name == "portal":
+        axis = sol.omega[sol.omega.real == 0.0]
+        assert len(axis) == 2 and np.all(axis.imag > 0)
+
+
+def test_a_dashpot_the_proof_does_not_cover_is_said():
+    """A dashpot along the only member at its node (the tree's free tip, pushed along X):
+    the decay-rate bound does not apply, so the roots are found but the count is not
+    called checked, and the warning says why; the roots are still the model's."""
+    r = replace(FRAMES["tree"], absorbers=(("D", 300.0, 0.5, 2.0, (1.0, 0.0)),))
+    sol = solve_frame(_frame(r, "tree"), 3, shapes=False)
+    assert not sol.count_checked
+    assert any("no proved bound on the decay rate" in w for w in sol.warnings)
+    for w in sol.omega:
+        assert abs(complex(rf.damped_root(r, w)) - w) <= 1e-11 * abs(w)
+
+
+def test_cli_solves_a_damped_building(capsys, tmp_path):
+    """``mstmm solve`` on the building example with Den Hartog's dashpot in its roof
+    damper: the damper splits the bare frame's first mode into two damped roots on either
+    side of it, each with a few percent of damping (the frame's own modes have none), as
+    the table and the JSON say alike; exit 0 (the count checked)."""
+    from mstmm.cli import main
+
+    text = (EXAMPLES / "frames" / "building_tmd.toml").read_text()
+    damper = "m = 2441.62848191887    # kg\n"
+    assert damper in text
+    path = tmp_path / "damped.toml"
+    path.write_text(text.replace(damper, damper + "c = 1076.0\n"))
+    bare = solve_frame(frame_from_dict(_bare(text)), 2, shapes=False)
+    assert main(["solve", str(path), "--modes", "4", "--format", "json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["damped"] and shown["count_checked"]
+    w_d, zeta = np.array(shown["w_d"]), np.array(shown["zeta"])
+    assert w_d[0] < bare.omega[0] < w_d[1] < bare.omega[1]
+    assert np.all((zeta[:2] > 0.01) & (zeta[:2] < 0.1)) and np.all(zeta[2:] < 1e-3)
+    assert main(["solve", str(path), "--modes", "4"]) == 0
+    table = capsys.readouterr().out
+    assert "damped natural frequencies" in table and "argument principle checked: True" in table
+    assert f"{w_d[0]:.16g}"[:12] in table
+
+
+def _bare(text: str) -> dict:
+    """The building's table without its damper."""
+    import tomllib
+
+    table = tomllib.loads(text)
+    table.pop("attachments")
+    return table
+
+
+def test_a_sweep_of_a_dashpot_is_a_damped_study():
+    """``sweep_frame`` varying an absorber's ``c`` returns each point's damped roots
+    (complex; the point with c = 0 real), each the reference model's."""
+    from mstmm.frame.study import sweep_frame
+
+    r, _, _ = CASES["L"]
+    table = rf.as_table(r)
+    cs = np.array([0.0, 40.0])
+    omega = sweep_frame(table, {"attachments[0].c": cs}, modes=2)
+    assert np.iscomplexobj(omega) and omega.shape == (2, 2)
+    assert np.all(omega[0].imag == 0.0) and np.all(omega[1].imag > 0.0)
+    for c, row in zip(cs, omega):
+        point = replace(r, absorbers=((*r.absorbers[0][:3], c, r.absorbers[0][4]),))
+        for w in row:
+            assert abs(complex(rf.damped_root(point, w)) - w) <= 1e-11 * abs(w)
+
+
+def test_a_damped_grillage_against_the_reference_model():
+    """Out of the plane: an L-grillage (clamped, bending and torsion members) with a damped
+    absorber along Z at its free corner: every root of the lowest five to 1e-11 of the
+    reference model's (extended out of the plane), the count checked (the dashpot moves
+    W, every member's own deflection there)."""
+    out = "out_of_plane"
+    r = rf.Frame(
+        {"A": (0.0, 0.0), "B": (2.0, 0.0), "C": (2.0, 1.5)},
+        (
+            rf.Member("A", "B", 3.0e3, 0.0, 6.0, GJ=1.2e3, rhoIp=0.05),
+            rf.Member("B", "C", 2.0e3, 0.0, 6.0, GJ=0.8e3, rhoIp=0.05),
+        ),
+        held={"A": "zab"},
+        masses={"C": (4.0, 0.3)},
+        motion=out,
+        absorbers=(("C", 900.0, 1.5, 12.0, (0.0, 0.0)),),
+    )
+    sol = solve_frame(_frame(r, "grillage"), 5)
+    assert sol.count_checked and not sol.warnings
+    for w in np.unique(sol.omega):
+        assert abs(complex(rf.damped_root(r, w)) - w) <= 1e-11 * abs(w)
+    for mode in sol.modes:
+        assert _reference_residual(r, mode) < 1e-9
