@@ -7,6 +7,10 @@ natural frequencies certified, cold (first call in the process: loads the member
 compiled functions) and warm (median of ``--rounds``), with and without shapes. Prints one
 line per size; ``--json FILE`` writes them.
 
+``--damped``: the last size with Den Hartog's dashpot in each roof TMD (and, a second
+row, a loss factor of 0.02 in every member as well): its lowest ``modes`` damped roots
+certified (:mod:`mstmm.frame.damped`), warm, and the ratio to the undamped run.
+
 ``--fem``: the same building by the finite-element model a user would write instead
 (textbook rod and Hermite beam elements, consistent masses, as ``tests/reference_frame_fem.py``,
 assembled sparse and solved by shift-invert Lanczos, ``scipy.sparse.linalg.eigsh``), with
@@ -77,6 +81,35 @@ def with_dampers(storeys: int, bays: int, distinct: bool = False) -> dict:
     mu = 2 * m / bare.modes[0].effective_mass[0]
     w = bare.omega[0] / (1 + mu)
     return building(storeys, bays, tmd={"k": m * w * w, "m": m}, distinct=distinct)
+
+
+def damped(storeys: int, bays: int, modes: int, rounds: int, undamped_s: float) -> list[dict]:
+    """The building's damped roots (Den Hartog's dashpots; then a loss factor too): warm
+    median of ``rounds``, and its ratio to the undamped warm time ``undamped_s``."""
+    table = with_dampers(storeys, bays)
+    frame = frame_from_dict(table)
+    mu = 2 * table["attachments"][0]["m"] / solve_frame(frame, 1).modes[0].effective_mass[0]
+    zeta = math.sqrt(3 * mu / (8 * (1 + mu) ** 3))
+    for a in table["attachments"]:
+        a["c"] = 2 * zeta * math.sqrt(a["k"] * a["m"])
+    rows = []
+    for eta in (0.0, 0.02):
+        point = {**table, "members": [{**m, "loss_factor": eta} for m in table["members"]]}
+        frame = frame_from_dict(point)
+        solve_frame(frame, modes, shapes=False)
+        times = []
+        for _ in range(rounds):
+            t = time.perf_counter()
+            sol = solve_frame(frame, modes, shapes=False)
+            times.append(time.perf_counter() - t)
+        warm = statistics.median(times)
+        rows.append({
+            "storeys": storeys, "bays": bays, "modes": modes, "zeta_tmd": zeta,
+            "loss_factor": eta, "warm_s": warm, "ratio": warm / undamped_s,
+            "count_checked": bool(sol.count_checked),
+            "first": [sol.omega[0].real, sol.omega[0].imag],
+        })  # fmt: skip
+    return rows
 
 
 def fem_frequencies(table: dict, modes: int, n: int) -> np.ndarray:
@@ -228,6 +261,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--record", action="store_true", help="record the results in docs/figures.json"
     )
+    parser.add_argument("--damped", action="store_true", help="also the damped building")
     parser.add_argument(
         "--fem", type=int, default=0, metavar="N",
         help="also the finite-element model of the last size, up to N elements a member",
@@ -246,6 +280,17 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {a['frame']:<20} lowest {a['modes']}: worst relative error {a['worst']:.1e},"
               f" multiplicities {'exact' if a['multiplicities'] else 'WRONG'}")  # fmt: skip
 
+    damped_rows = []
+    if args.damped:
+        storeys, bays = rows[-1]["storeys"], rows[-1]["bays"]
+        damped_rows = damped(storeys, bays, args.modes, args.rounds, rows[-1]["warm_s"])
+        for d in damped_rows:
+            print(
+                f"  damped (TMD zeta {d['zeta_tmd']:.3f}, members' loss factor"
+                f" {d['loss_factor']:g}): lowest {args.modes} certified"
+                f" {d['count_checked']}, warm {d['warm_s']:.3f} s, {d['ratio']:.1f}x the"
+                " undamped", flush=True,
+            )  # fmt: skip
     if args.fem:
         storeys, bays = rows[-1]["storeys"], rows[-1]["bays"]
         exact = solve_frame(frame_from_dict(with_dampers(storeys, bays)), args.modes, shapes=False)
@@ -267,6 +312,8 @@ def main(argv: list[str] | None = None) -> int:
         from . import figures
 
         result = {"sizes": rows, "distinct": distinct, "accuracy": accurate}
+        if damped_rows:
+            result["damped"] = damped_rows
         cmd = "python -m benchmarks.frames " + " ".join(argv if argv is not None else sys.argv[1:])
         print(f"recorded in {figures.record('frames', result, command=cmd)}")
     if args.json:

@@ -54,6 +54,8 @@ class Member:
     pinned: tuple[bool, bool] = (False, False)
     GJ: float = 0.0
     rhoIp: float = 0.0
+    #: The loss factor: EI and EA (GJ) times 1 + i eta (the model is then complex).
+    eta: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -94,9 +96,10 @@ def _freedoms(frame: Frame) -> tuple[dict, int]:
 def _rod(m: Member, L, w):
     """The rod's dynamic stiffness (2 x 2, SI) and its clamped-clamped count below w (None
     at a complex w)."""
-    mu = w * L * mpmath.sqrt(mpf(m.mbar) / m.EA)
+    EA = m.EA * (1 + 1j * mpf(m.eta)) if m.eta else m.EA
+    mu = w * L * mpmath.sqrt(mpf(m.mbar) / EA)
     c, s = mpmath.cos(mu), mpmath.sin(mu)
-    f = m.EA * mu / (L * s)
+    f = EA * mu / (L * s)
     count = None if isinstance(w, mpmath.mpc) else int(mpmath.floor(mu / mp.pi))
     return [[f * c, -f], [-f, f * c]], count
 
@@ -120,7 +123,8 @@ def bending_energy(m: Member, L, w):
     g_k^(3) g_l]_0^L`` (by parts, ``int EI g_k^(2) g_l^(2) - mbar w^2 g_k g_l``), ``K = A^-T G
     A^-1``: the energy of the solution with the given end values. Another route than
     ``_bending`` (a closed form), which it equals at a real w."""
-    b = mpmath.root(mpf(m.mbar) * w * w / m.EI, 4)
+    EI = m.EI * (1 + 1j * mpf(m.eta)) if m.eta else m.EI
+    b = mpmath.root(mpf(m.mbar) * w * w / EI, 4)
     A = mpmath.matrix(4, 4)
     for r, (d, x) in enumerate(((0, 0), (1, 0), (0, L), (1, L))):
         for k, v in enumerate(_basis(b, d, x)):
@@ -130,7 +134,7 @@ def bending_energy(m: Member, L, w):
         g0, g1, g2, g3 = (_basis(b, d, x) for d in range(4))
         for k in range(4):
             for j in range(4):
-                G[k, j] += sign * m.EI * (g2[k] * g1[j] - g3[k] * g0[j])
+                G[k, j] += sign * EI * (g2[k] * g1[j] - g3[k] * g0[j])
     Ai = A**-1
     K = Ai.T * G * Ai
     return [[(K[i, j] + K[j, i]) / 2 for j in range(4)] for i in range(4)]
@@ -151,6 +155,8 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
     """``(K, J0)``: the assembled dynamic stiffness over the free freedoms at w (rad/s)
     (an mpmath matrix) and the members' clamped-clamped count below w."""
     w = mpmath.mpmathify(w)
+    if any(m.eta for m in frame.members):  # complex stiffnesses: the complex path
+        w = mpmath.mpc(w)
     index, n = _freedoms(frame)
     K = mpmath.zeros(n, n)
     J0 = 0
@@ -161,7 +167,7 @@ def dynamic_stiffness(frame: Frame, w) -> tuple:
         c, s = dx / L, dy / L
         out = frame.motion == "out_of_plane"
         if out:  # the twist: a rod of GJ and rho_Ip
-            rod, ja = _rod(Member(m.a, m.b, m.EI, m.GJ, m.rhoIp), L, w)
+            rod, ja = _rod(Member(m.a, m.b, m.EI, m.GJ, m.rhoIp, eta=m.eta), L, w)
         else:
             rod, ja = _rod(m, L, w)
         if isinstance(w, mpmath.mpc):  # a complex frequency: no count
@@ -412,6 +418,8 @@ def as_table(rf: Frame) -> dict:
         else:
             member["EA"] = float(m.EA)
         member["mass_per_length"] = float(m.mbar)
+        if m.eta:
+            member["loss_factor"] = float(m.eta)
         for end, key in enumerate(("start_joint", "end_joint")):
             if m.pinned[end]:
                 member[key] = "pinned"

@@ -61,7 +61,8 @@ def _element(EI: float, EA: float, mbar: float, h: float, c: float, s: float):
 
 
 def assemble(frame, n_elements: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(K, C, M)`` over the free freedoms with ``n_elements`` elements per member; each
+    """``(K, C, M)`` over the free freedoms with ``n_elements`` elements per member (K
+    complex: a member's loss factor eta makes its elements' ``K (1 + i eta)``); each
     absorber of the frame (``(node, k, m, c, (dx, dy))``) adds its mass's freedom, its
     spring and its dashpot."""
     index: dict = {}
@@ -78,6 +79,7 @@ def assemble(frame, n_elements: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
         length = math.hypot(dx, dy)
         c, s = dx / length, dy / length
         k, m = _element(float(mem.EI), float(mem.EA), float(mem.mbar), length / n_elements, c, s)
+        k = k * (1.0 + 1j * getattr(mem, "eta", 0.0))  # a loss factor: K (1 + i eta)
         for e in range(n_elements):
             ends = []
             for j, at in ((0, e), (1, e + 1)):
@@ -95,7 +97,7 @@ def assemble(frame, n_elements: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
     for j in range(len(absorbers)):
         dof(("absorber", j))
     n = len(index)
-    K = np.zeros((n, n))
+    K = np.zeros((n, n), dtype=complex)
     C = np.zeros((n, n))
     M = np.zeros((n, n))
     for k, m, dofs in elements:
@@ -121,8 +123,9 @@ def assemble(frame, n_elements: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
 def frequencies(frame, n_modes: int, n_elements: int) -> np.ndarray:
     """The lowest ``n_modes`` natural frequencies (rad/s) with ``n_elements`` elements per
-    member."""
+    member (undamped)."""
     K, _, M = assemble(frame, n_elements)
+    K = K.real
     lam = scipy.linalg.eigh(K, M, eigvals_only=True, subset_by_index=[0, n_modes - 1])
     return np.sqrt(lam)
 

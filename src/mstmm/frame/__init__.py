@@ -5,16 +5,20 @@ A frame scene (TOML) has ``[[nodes]]`` and ``[[members]]`` instead of a ``[beam]
 with every segment term a beam declares. Its natural frequencies come from the members'
 exact dynamic stiffness assembled at the joints and counted by Wittrick-Williams, so that
 no root is missed and each repeated root has its exact multiplicity
-(:mod:`mstmm.frame.solve`).
+(:mod:`mstmm.frame.solve`); dashpots and loss factors give damped roots
+(:mod:`mstmm.frame.damped`).
 """
 
+from .api import solve_frame
+from .damped import DampedFrameSolution
 from .model import Absorber, Frame, FrameSegment, Member, Node
 from .reading import frame_from_dict, frame_from_file, is_frame, load_frame
 from .response import frf
-from .solve import FrameSolution, solve_frame
+from .solve import FrameSolution
 
 __all__ = [
     "Absorber",
+    "DampedFrameSolution",
     "Frame",
     "FrameSegment",
     "FrameSolution",

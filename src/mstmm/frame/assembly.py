@@ -118,7 +118,8 @@ class Assembly:
         global freedoms to its six local ones ``[u_a, w_a, psi_a, u_b, w_b, psi_b]``."""
         L, c, s = self.frame.geometry(m)
         segments = [
-            (sg.length, sg.EI, sg.mass_per_length, 0.0, *_physics(sg.physics)) for sg in m.segments
+            (sg.length, sg.EI, sg.mass_per_length, sg.loss_factor, *_physics(sg.physics))
+            for sg in m.segments
         ]
         key = tuple(segments)
         if key not in self._layouts:  # members of one section share their beam
@@ -159,8 +160,10 @@ class Assembly:
             EA = np.array([sg.EA for sg in m.segments])
             mbar = np.array([sg.mass_per_length for sg in m.segments])
         h = np.array([sg.length for sg in m.segments])
+        eta = np.array([sg.loss_factor for sg in m.segments])
         torsion = self.frame.motion == "out_of_plane"
-        return MemberMap(m, L, p, np.asarray(index, dtype=np.int64), T, EA, mbar, h, torsion)
+        index = np.asarray(index, dtype=np.int64)
+        return MemberMap(m, L, p, index, T, EA, mbar, h, torsion, eta)
 
     def _lumped(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(K, C, M)`` of everything but the members, over the free freedoms (SI): node
@@ -224,6 +227,8 @@ class Assembly:
         EA = np.concatenate([mm.EA for mm in first])
         mbar = np.concatenate([mm.mbar for mm in first])
         h = np.concatenate([mm.h for mm in first])
+        #: each rod segment's loss factor (on EA or GJ), as ``packed``'s rods are laid out
+        self.rod_eta = np.concatenate([mm.eta for mm in first])
         r_off = np.cumsum([0] + [len(mm.h) for mm in first]).astype(np.int64)
         L = np.array([mm.L for mm in first])
         T = np.zeros((len(self.members), 6, 6))
@@ -486,6 +491,7 @@ class MemberMap:
     mbar: np.ndarray
     h: np.ndarray
     torsion: bool = False
+    eta: np.ndarray | None = None  # each segment's loss factor
 
 
 #: An eigenvalue of D within this fraction of its largest is round-off (``sure_count``):

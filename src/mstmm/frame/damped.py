@@ -26,8 +26,7 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import scipy.linalg
-from scipy.linalg.lapack import zgbtrf
+from scipy.linalg.lapack import zgbtrf, zgbtrs
 
 from mstmm.damped import (
     DampedRoot,
@@ -43,6 +42,7 @@ from mstmm.decay_bound import DecayBound, bound_from
 from .assembly import Assembly
 from .member import assemble_members_c, bending_pieces, rod_pieces
 from .model import Frame
+from .solve import _joints, roots
 
 __all__ = ["DampedFrameMode", "DampedFrameSolution", "solve_damped_frame", "sigma_max"]
 
@@ -62,6 +62,12 @@ class FrameFunction:
         self.top = self.radius = 0.0
         self.calls = 0
         self.C_band = t * asm.to_band(asm.C_lumped)
+        # LAPACK's general band storage of D from its upper band rows, in one gather
+        n, b = asm.n, asm.bandwidth
+        i, k = np.nonzero(np.arange(n)[:, None] + np.arange(b + 1)[None, :] < n)
+        self._rows = np.concatenate([2 * b - k, 2 * b + k])  # A[i, i + k], A[i + k, i]
+        self._cols = np.concatenate([i + k, i])
+        self._src = np.concatenate([i * (b + 1) + k] * 2)
         self.cover(top, radius or top)
 
     def cover(self, top: float, radius: float) -> None:
@@ -87,8 +93,17 @@ class FrameFunction:
         """D(w)'s band rows (complex) and the log of the members' inner pivots."""
         asm = self.asm
         B = asm.K_band + (1j * w) * self.C_band - (w * w) * asm.M_band
-        log = assemble_members_c(*asm.packed, self.bp, self.rp, complex(w), B)
+        log = assemble_members_c(*asm.packed, self.bp, self.rp, asm.rod_eta, self.t, complex(w), B)
         return B, log
+
+    def lu(self, B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """LAPACK's band LU with partial pivoting (``zgbtrf``) of D in band rows B: its
+        factors and pivots (for ``zgbtrs``)."""
+        n, b = self.asm.n, self.asm.bandwidth
+        ab = np.zeros((3 * b + 1, n), dtype=np.complex128)
+        ab[self._rows, self._cols] = B.ravel()[self._src]
+        lu, piv, _ = zgbtrf(ab, b, b)
+        return lu, piv
 
     def one(self, w: complex) -> complex:
         """log g at w (rad/s)."""
@@ -97,11 +112,7 @@ class FrameFunction:
         n, b = self.asm.n, self.asm.bandwidth
         if n == 0:
             return log
-        ab = np.zeros((3 * b + 1, n), dtype=np.complex128)
-        for k in range(min(b + 1, n)):
-            ab[2 * b - k, k:] = B[: n - k, k]  # A[i, i + k]
-            ab[2 * b + k, : n - k] = B[: n - k, k]  # A[i + k, i]
-        lu, piv, info = zgbtrf(ab, b, b)
+        lu, piv = self.lu(B)
         d = lu[2 * b]
         if not np.all(np.isfinite(d)):
             return complex(math.nan, math.nan)
@@ -128,9 +139,11 @@ def sigma_max(frame: Frame, w_top: float) -> DecayBound | None:
     (``d.U_N = (N^-T d) . (w_1, w_2)``, ``N`` their normals: ``s = |N^-T d|^2``). Each
     ``|w_e(N)|^2`` is the beam's interpolation over the member (its length the piece
     ``P_j``), so ``Gamma_j = 2 c s`` and the beam's bound follows. Out of the plane (a
-    grillage) the dashpot moves W, every member's own w at N (s = 1). None where a
-    member shears (Timoshenko), is compressed, or a damped node has no such members (a
-    dashpot along the only member at its node: its axial motion is not bounded so)."""
+    grillage) the dashpot moves W, every member's own w at N (s = 1). A loss factor
+    multiplies every member stiffness (EI, EA or GJ, the terms declared with a loss) and
+    no spring, so ``k_I <= eta_max k_R``, as the proof takes it. None where a member shears
+    (Timoshenko), is compressed, or a damped node has no such members (a dashpot along
+    the only member at its node: its axial motion is not bounded so)."""
     from mstmm.physics import segment as segment_terms
 
     shear = [t.name for t in segment_terms.of_role("shear")]
@@ -160,7 +173,7 @@ def sigma_max(frame: Frame, w_top: float) -> DecayBound | None:
         reach += g / P
         piece = min(piece, P)
         rate = max(rate, 2.0 * ab.c / ab.m)
-    return bound_from(gamma, rate, reach, piece, mbar, EI, 0.0, w_top)
+    return bound_from(gamma, rate, reach, piece, mbar, EI, loss_factor(frame), w_top)
 
 
 def _spread(frame: Frame, ab, at: list) -> tuple[float, float] | None:
@@ -205,8 +218,9 @@ def damped_frame_roots(
     by multiplicity) up to beyond ``w_top``."""
     f = FrameFunction(asm, 1.0, 2.0 * w_top)
     undamped = np.asarray(undamped, dtype=float)
+    viscous = loss_factor(frame) == 0.0  # else no mirror symmetry (mstmm.damped)
     problem = _Problem(
-        None, None, f, None, asm.omega_ref, True, 0, 0, np.unique(undamped[undamped > 0])
+        None, None, f, None, asm.omega_ref, viscous, 0, 0, np.unique(undamped[undamped > 0])
     )
 
     def pick(t: float) -> FrameFunction:
@@ -247,20 +261,17 @@ def polish(asm: Assembly, w: complex) -> complex:
     if asm.n == 0:
         return w
     f = FrameFunction(asm, 1.0, POLISH_RADIUS * abs(w))  # a real root's neighbourhood
-    D = _dense(asm, f.band(w)[0])
-    try:
-        lu = scipy.linalg.lu_factor(D, check_finite=False)
-    except (ValueError, np.linalg.LinAlgError):
-        return w
-    x = np.ones(asm.n, dtype=complex)
+    b = asm.bandwidth
+    lu, piv = f.lu(f.band(w)[0])
+    x = np.ones(asm.n, dtype=complex)  # in the band order, as B
     for _ in range(3):
-        x = scipy.linalg.lu_solve(lu, x, check_finite=False)
+        x, _ = zgbtrs(lu, b, b, x, piv)
         x /= np.linalg.norm(x)
         if not np.all(np.isfinite(x)):
             return w
 
     def r(z: complex) -> complex:
-        return complex(x @ (_dense(asm, f.band(z)[0]) @ x))
+        return band_quadratic(f.band(z)[0], x)
 
     w0, w1 = w * (1.0 + 1e-9), w
     r0, r1 = r(w0), r(w1)
@@ -285,6 +296,22 @@ def _polished(asm: Assembly, w: complex) -> complex:
     """:func:`polish`, an overdamped root (w_d exactly 0) along the imaginary axis."""
     z = polish(asm, w)
     return complex(0.0, z.imag) if w.real == 0.0 else z
+
+
+def complex_matrix(asm: Assembly, w: float) -> np.ndarray:
+    """The damped frame's dense D at the frequency w (rad/s, dimensionless as
+    :meth:`Assembly.matrix`): members with their loss factors, the dashpots' ``i w C``."""
+    return _dense(asm, FrameFunction(asm, 1.0, POLISH_RADIUS * abs(w)).band(w)[0])
+
+
+def band_quadratic(B: np.ndarray, x: np.ndarray) -> complex:
+    """``x^T D x`` (no conjugate) of the symmetric D in upper band rows B (``B[i, k] =
+    D[i, i + k]``)."""
+    n = len(x)
+    out = complex(np.sum(B[:, 0] * x * x))
+    for k in range(1, min(B.shape[1], n)):
+        out += 2.0 * complex(np.sum(B[: n - k, k] * x[: n - k] * x[k:]))
+    return out
 
 
 def _dense(asm: Assembly, B: np.ndarray) -> np.ndarray:
@@ -357,8 +384,24 @@ class DampedFrameSolution(DampedValues):
 
 
 def undamped_twin(frame: Frame) -> Frame:
-    """The frame without its dashpots."""
-    return replace(frame, absorbers=tuple(replace(a, c=0.0) for a in frame.absorbers))
+    """The frame without its dashpots and loss factors."""
+    members = tuple(
+        replace(m, segments=tuple(replace(s, loss_factor=0.0) for s in m.segments))
+        for m in frame.members
+    )
+    return replace(
+        frame, members=members, absorbers=tuple(replace(a, c=0.0) for a in frame.absorbers)
+    )
+
+
+def is_damped(frame: Frame) -> bool:
+    """Whether anything damps the frame: a dashpot, a member's loss factor."""
+    return any(a.c for a in frame.absorbers) or loss_factor(frame) > 0.0
+
+
+def loss_factor(frame: Frame) -> float:
+    """The largest loss factor of the frame's members."""
+    return max((s.loss_factor for m in frame.members for s in m.segments), default=0.0)
 
 
 def solve_damped_frame(
@@ -371,8 +414,6 @@ def solve_damped_frame(
     """The damped natural frequencies of ``frame``: the lowest ``modes`` by w_d
     (overdamped roots first, by sigma) or all with ``band[0] <= w_d <= band[1]``
     (rad/s); with ``shapes``, each root's modes (the null space of D)."""
-    from .solve import roots
-
     if modes is None and band is None:
         modes = 10
     asm = Assembly(frame)
@@ -431,8 +472,6 @@ SHAPE_RESIDUAL = 1e-8
 def _damped_shapes(asm: Assembly, f: FrameFunction, w: complex, m: int) -> list[DampedFrameMode]:
     """The modes of the root w of multiplicity m: D's m right singular vectors of least
     singular value, each scaled so that its largest translation is 1."""
-    from .solve import _joints
-
     D = _dense(asm, f.band(w)[0])
     _, s, Vh = np.linalg.svd(D)
     out = []

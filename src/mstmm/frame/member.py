@@ -26,7 +26,7 @@ import numpy as np
 
 from mstmm.jit import njit
 from mstmm.numerics.field import clamped_clamped_bound
-from mstmm.numerics.layout import COL_EI, COL_MBAR, HEAD, SEGMENT_WIDTH, X_END
+from mstmm.numerics.layout import COL_EI, COL_ETA, COL_MBAR, HEAD, SEGMENT_WIDTH, X_END
 from mstmm.numerics.segment import (
     field_exp,
     field_prepare,
@@ -404,10 +404,11 @@ def bending_pieces(p, beta_top, beta, out):
 
 
 @njit(cache=True)
-def member_bending_c(p, w1, pieces, K):
+def member_bending_c(p, w1, pieces, t, K):
     """K (4 x 4, complex) <- the bending dynamic stiffness of the member whose beam is p at
     the complex ``w1 = (lam_0 L)^2 = omega / unit``, segment seg cut in ``pieces[seg]``
-    (:func:`bending_pieces`); returns the log of its inner pivots' determinants."""
+    (:func:`bending_pieces`), its stiffnesses times ``1 + i t eta`` (eta its loss factor,
+    t the damping scale); returns the log of its inner pivots' determinants."""
     U = np.empty((4, 4), np.complex128)
     F = np.empty((4, 4, 4), np.complex128)
     k = np.empty((4, 4), np.complex128)
@@ -421,12 +422,13 @@ def member_bending_c(p, w1, pieces, K):
         end = 1.0 if seg == n_seg - 1 else p[i + X_END] / p[0]
         h = (end - start) / pieces[seg]
         start = end
+        stiff = 1.0 + 1j * t * p[i + COL_ETA]
         if is_general(p, seg):
-            field_prepare(p, seg, w1 * w1, 1.0 + 0j, F)
+            field_prepare(p, seg, w1 * w1, stiff, F)
             field_exp(F, h, U)
         else:
-            e = p[i + COL_EI] / p[1]
-            piece_transfer_c(beta * (p[i + COL_MBAR] / p[2] / e) ** 0.25, e, h, U)
+            e = p[i + COL_EI] / p[1] * stiff
+            piece_transfer_c(beta * cmath.sqrt(cmath.sqrt(p[i + COL_MBAR] / p[2] / e)), e, h, U)
         piece_stiffness(U, k)
         for _ in range(pieces[seg]):
             log += chain_add_c(K, k, 2, first)
@@ -446,16 +448,17 @@ def rod_pieces(EA, mbar, h, top, omega, out):
 
 
 @njit(cache=True)
-def member_rod_c(EA, mbar, h, pieces, w, K):
-    """``member_rod`` at the complex w (rad/s), segment j in ``pieces[j]``; returns the log
-    of its inner pivots."""
+def member_rod_c(EA, mbar, h, eta, pieces, t, w, K):
+    """``member_rod`` at the complex w (rad/s), segment j in ``pieces[j]``, its EA times
+    ``1 + i t eta[j]``; returns the log of its inner pivots."""
     k = np.empty((2, 2), np.complex128)
     log = 0j
     first = True
     for j in range(len(EA)):
         hj = h[j] / pieces[j]
-        mu = w * hj * math.sqrt(mbar[j] / EA[j])
-        f = EA[j] / hj * (mu / cmath.sin(mu) if mu != 0.0 else 1.0)
+        ea = EA[j] * (1.0 + 1j * t * eta[j])
+        mu = w * hj * cmath.sqrt(mbar[j] / ea)
+        f = ea / hj * (mu / cmath.sin(mu) if mu != 0.0 else 1.0)
         c = cmath.cos(mu)
         k[0, 0] = f * c
         k[1, 1] = f * c
@@ -468,12 +471,13 @@ def member_rod_c(EA, mbar, h, pieces, w, K):
 
 
 @njit(cache=True)
-def assemble_members_c(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, bp, rp, omega, B):
+def assemble_members_c(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, bp, rp, eta, s, omega, B):
     """:func:`assemble_members` at the complex omega (rad/s), B complex; each type's
-    segments in the pieces ``bp[p_off-like]`` (bending: ``bp[t, seg]``) and ``rp`` (rod:
-    ``rp[r_off[t]:r_off[t + 1]]``). Returns the log of every member's inner pivots'
-    determinants: D's determinant times their product is that of the frame with every
-    piece's node kept, which has no pole where the pieces have none."""
+    segments in the pieces ``bp[t, seg]`` (bending) and ``rp[r_off[t]:r_off[t + 1]]``
+    (rod), the loss factors (the beams' own, the rods' ``eta``) scaled by s. Returns the
+    log of every member's inner pivots' determinants: D's determinant times their product
+    is that of the frame with every piece's node kept, which has no pole where the
+    pieces have none."""
     n_types = len(p_off) - 1
     K = np.zeros((n_types, 6, 6), np.complex128)
     logs = np.zeros(n_types, np.complex128)
@@ -483,9 +487,11 @@ def assemble_members_c(P, p_off, EA, mbar, h, r_off, L, kind, T, idx, bp, rp, om
         p = P[p_off[t] : p_off[t + 1]]
         Lt = L[t]
         w1 = Lt * Lt * math.sqrt(p[2] / p[1]) * omega
-        logs[t] = member_bending_c(p, w1, bp[t], K4)
+        logs[t] = member_bending_c(p, w1, bp[t], s, K4)
         r0, r1 = r_off[t], r_off[t + 1]
-        logs[t] += member_rod_c(EA[r0:r1], mbar[r0:r1], h[r0:r1], rp[r0:r1], omega, K2)
+        logs[t] += member_rod_c(
+            EA[r0:r1], mbar[r0:r1], h[r0:r1], eta[r0:r1], rp[r0:r1], s, omega, K2
+        )
         place(K[t], K4, K2, p[1] / Lt**3, Lt)
     scatter(K, kind, T, idx, B)
     log = 0j

@@ -31,6 +31,9 @@ class FrameSegment:
     physics: tuple[tuple[str, float], ...] = ()
     GJ: float = 0.0
     rho_Ip: float = 0.0
+    #: The material's loss factor eta: EI, EA (GJ) and each term declared with a loss
+    #: times (1 + i eta) (a damped frame: :mod:`mstmm.frame.damped`).
+    loss_factor: float = 0.0
 
 
 @dataclass(frozen=True)

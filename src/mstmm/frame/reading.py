@@ -193,14 +193,10 @@ def _segment(
         for k in keys
     }  # fmt: skip
     physics = _optional(table, prefix, source)
-    if physics.pop("loss_factor", 0.0) != 0.0:
-        raise SceneError(
-            source, f"{prefix}.loss_factor", "frames are undamped in this version (docs/frames.md)",
-            table["loss_factor"],
-        )  # fmt: skip
+    eta = float(physics.pop("loss_factor", 0.0))
     return FrameSegment(
         length, got["EI"], got.get("EA", 0.0), got["mass_per_length"], tuple(physics.items()),
-        got.get("GJ", 0.0), got.get("rho_Ip", 0.0),
+        got.get("GJ", 0.0), got.get("rho_Ip", 0.0), eta,
     )  # fmt: skip
 
 

@@ -3,7 +3,7 @@
 ``frf(frame, input, output, omega)``: the steady-state response (time dependence
 ``exp(i w t)``) of ``output`` to a unit harmonic ``input``, from the exact dynamic
 stiffness: ``x = D(omega)^-1 f`` with ``D = members + K + i omega C - omega^2 M`` (the
-members exact and undamped, the absorbers' dashpots in C). Loads and responses:
+members exact, with their loss factors, the absorbers' dashpots in C). Loads and responses:
 ``("force", where, (dx, dy))`` (N along the unit vector), ``("moment", where)`` (N m,
 counterclockwise); ``("displacement", where, (dx, dy))`` (m), ``("rotation", where)``
 (rad). ``where`` is a node's name or ``(member, x)``, a point x m along a member from its
@@ -26,6 +26,7 @@ import numpy as np
 from mstmm.scene import SceneError
 
 from .assembly import Assembly
+from .damped import complex_matrix, loss_factor
 from .model import Frame
 from .reading import with_points
 
@@ -126,9 +127,13 @@ def frf(frame: Frame, input, output, omega) -> np.ndarray:
     fs, Gs = asm.scale * f, G * asm.scale[None, :]
     w_all = np.atleast_1d(np.asarray(omega, dtype=float))
     out = np.empty((len(w_all), len(outputs)), dtype=complex)
+    lossy = loss_factor(frame) > 0.0
     for j, w in enumerate(w_all):
-        D, _ = asm.matrix(w)
-        Dc = D + 1j * w * asm.C_lumped
+        if lossy:  # the members' stiffnesses complex: the damped frame's D (dashpots in it)
+            Dc = complex_matrix(asm, w)
+        else:
+            D, _ = asm.matrix(w)
+            Dc = D + 1j * w * asm.C_lumped
         try:
             out[j] = units * (Gs @ np.linalg.solve(Dc, fs))
         except np.linalg.LinAlgError:

@@ -8,13 +8,14 @@ missed and a repeated root's multiplicity is the count's jump across it:
    there) and, while it is wider than :data:`SEPARATE`, until it holds one root;
 2. a bracket of one root: ``det D`` changes sign once in it; :func:`refine_simple`
    finds the root from the band factors' determinant and the Rayleigh quotient of its
-   null vector (compiled, no eigensolver: about seven evaluations of D a root);
+   null vector (compiled, no eigensolver: about seven evaluations of D a root); the
+   bracket's counts already say it holds one root, of multiplicity 1;
 3. any other bracket (a repeated root, a cluster, or where the factors' pivots grew):
    ``g(omega)``, the ``(count(a) - J0)``-th eigenvalue of D in ascending order, is
    >= 0 at a and < 0 from the bracket's first root on (D's negative eigenvalues never
    fall between poles, as the count never does): Brent's method finds that root to
    1e-11 and :func:`polish` to round-off;
-4. the counts just below and above it say how many roots lie there: the narrowest
+4. for those, the counts just below and above it say how many roots lie there: the narrowest
    window (from the root's own, ``polish``, up to 1e-6) at whose edges no eigenvalue
    of D lies within its round-off (:meth:`Assembly.sure_count`), with the bracket's
    count below, gives the root's multiplicity, and the bracket's rest is searched
@@ -32,7 +33,6 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -43,10 +43,7 @@ from .banded import backward, band_matvec, inverse_iteration, ldl, row_norm
 from .member import member_bending, member_march, member_rod
 from .model import Frame
 
-if TYPE_CHECKING:
-    from .damped import DampedFrameSolution
-
-__all__ = ["FrameMode", "FrameSolution", "solve_frame"]
+__all__ = ["FrameMode", "FrameSolution", "solve_undamped_frame"]
 
 #: Relative precision of Brent's refinement (ulp of float64).
 ROOT_GUARD = 4 * np.finfo(float).eps
@@ -218,9 +215,10 @@ def roots(
         simple = None
         if cb - ca == 1 and ja == jb:
             simple = refine_simple(asm, a, b, idx)
-        if simple is not None:
-            w, window = simple
-        elif ja == jb and 0 <= idx < asm.n and g(a, idx) > 0.0 and g(b, idx) < 0.0:
+        if simple is not None:  # one root, by the bracket's counts: nothing to settle
+            found.append((simple, 1))
+            continue
+        if ja == jb and 0 <= idx < asm.n and g(a, idx) > 0.0 and g(b, idx) < 0.0:
             w = brentq(g, a, b, args=(idx,), xtol=1e-300, rtol=BRENT_RTOL, maxiter=200)
             k = local_multiplicity(asm, w, cb - ca)
             w, window = polish(asm, w, k, w * POLISH_REACH)
@@ -252,11 +250,10 @@ def roots(
     return found
 
 
-def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[float, float] | None:
+def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> float | None:
     """The one root in a bracket ``[a, b]`` where D has no pole and one more negative
-    eigenvalue at b than its ``negatives`` at a, with its window (as :func:`polish`), or
-    None where the fast route cannot vouch for it (the caller then takes the orthogonal
-    one).
+    eigenvalue at b than its ``negatives`` at a, or None where the fast route cannot
+    vouch for it (the caller then takes the orthogonal one).
 
     ``det D(omega)`` changes sign once there, at the root, and is smooth: the
     Anderson-Bjorck bracketing secant on it, from the pivots of :func:`.banded.ldl`
@@ -340,7 +337,7 @@ def refine_simple(asm: Assembly, a: float, b: float, negatives: int) -> tuple[fl
         t2 = t(B2)
     else:
         return None
-    return w, max(ROOT_GUARD, 4.0 * asm.roundoff(B2) / (w * abs(slope)))
+    return w
 
 
 def _ratio(log: float) -> float:
@@ -596,22 +593,18 @@ def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
     return u, N
 
 
-def solve_frame(
+def solve_undamped_frame(
     frame: Frame,
     modes: int | None = None,
     band: tuple[float, float] | None = None,
     *,
     shapes: bool = True,
-) -> FrameSolution | DampedFrameSolution:
+) -> FrameSolution:
     """The lowest ``modes`` natural frequencies of ``frame`` (default 10), or all in
-    ``band`` (rad/s), each with its exact multiplicity, and their mode shapes. With
-    dashpots (an absorber's ``c``) the damped roots: :func:`.damped.solve_damped_frame`."""
+    ``band`` (rad/s), each with its exact multiplicity, and their mode shapes, of a
+    frame without damping (:func:`mstmm.frame.solve_frame` chooses)."""
     if modes is None and band is None:
         modes = 10
-    if any(ab.c for ab in frame.absorbers):
-        from .damped import solve_damped_frame
-
-        return solve_damped_frame(frame, modes, band, shapes=shapes)
     asm = Assembly(frame)
     found = roots(asm, modes, band)
     omega = np.array([w for w, m in found for _ in range(m)])

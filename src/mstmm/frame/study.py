@@ -5,9 +5,10 @@
 to its values; the varied arrays run together (point i takes the i-th value of each), as
 the beam's :func:`mstmm.study.sweep` does. Each point is the scene with those values, read
 as a file would be (every value checked; a refused one names the field and the point) and
-solved by the count (:func:`mstmm.frame.solve.solve_frame`, frequencies only). A frame
-with dashpots (an absorber's ``c``, given or varied) is a damped study: its points' damped
-roots ``w_d + i sigma`` (:mod:`mstmm.frame.damped`), complex, as the beam's damped study.
+solved by the count (:func:`mstmm.frame.solve_frame`, frequencies only). A frame
+with dashpots (an absorber's ``c``) or loss factors, given or varied, is a damped study:
+its points' damped roots ``w_d + i sigma`` (:mod:`mstmm.frame.damped`), complex, as the
+beam's damped study.
 """
 
 from __future__ import annotations
@@ -24,8 +25,9 @@ from mstmm.limits import MAX_MODES, MAX_SWEEP_POINTS, check_count
 from mstmm.scene import SceneError
 from mstmm.units import BEAM_UNITS
 
+from .api import solve_frame
+from .damped import is_damped
 from .reading import frame_from_dict
-from .solve import solve_frame
 
 __all__ = ["field_unit", "sweep_frame"]
 
@@ -119,9 +121,8 @@ def sweep_frame(
     for path in values:
         check_count(n, MAX_SWEEP_POINTS, "points", source, path)
         _set(copy.deepcopy(dict(table)), path, 0.0, source, f"--vary {path}")  # the path exists
-    attachments = table.get("attachments", [])
-    damped = any(_positive(a.get("c", 0.0)) for a in attachments if isinstance(a, Mapping))
-    damped |= any(path.rsplit(".", 1)[-1] == "c" for path in values)
+    damped = is_damped(frame_from_dict(table, source))
+    damped |= any(path.rsplit(".", 1)[-1] in ("c", "loss_factor") for path in values)
     out = np.full((n, modes), complex(math.nan, math.nan) if damped else math.nan)
     for i in range(n):
         point = copy.deepcopy(dict(table))
@@ -136,8 +137,3 @@ def sweep_frame(
         if sol.count_checked:
             out[i] = sol.omega[:modes]
     return out
-
-
-def _positive(value: Any) -> bool:
-    """Whether a scene's value is a positive number (a dashpot there)."""
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0
