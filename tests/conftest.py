@@ -112,7 +112,8 @@ if os.environ.get("CI"):
 #: the default run (CI) keeps a representative case of each: the damped roots of every
 #: scene of tests/test_damped.py, the other repeated cells, the other extreme cases, the
 #: other damped FE scenes, the receptances of tests/test_frf.py's fixed cases, the withheld
-#: seed at 0.04, the random general scenes, and each kind's first end pair below.
+#: seed at 0.04, the random general scenes, each kind's first end pair below, and the
+#: damped L-frame and portal (the closed two-bay frame nightly).
 EXHAUSTIVE = (
     "tests/test_damped.py::test_property_random_damped_scenes_against_the_reference",
     "tests/test_repeated.py::test_roots_against_the_reference[chain_sliding_free]",
@@ -124,6 +125,7 @@ EXHAUSTIVE = (
     "tests/test_reference_damped.py::test_the_count_catches_a_withheld_seed[0.0]",
     "tests/test_general_reference.py::test_random_compressed_timoshenko_scenes",
     "tests/test_sympy_range.py::",
+    "tests/test_frame_damped.py::test_damped_frames_against_the_reference_model_and_the_fe_count[two_bay]",
 )
 
 
@@ -133,6 +135,10 @@ EXHAUSTIVE = (
 SAME_WORKER = {
     "tests/test_kind_properties.py": "every_kind",
     "tests/test_segment_properties.py": "every_kind",
+    # the frames' compiled members (about 25 s of numba, 45 s with the damped ones)
+    "tests/test_plane_frames.py": "frames",
+    "tests/test_frame_damped.py": "frames",
+    "tests/test_frame_banded.py": "frames",
 }
 
 

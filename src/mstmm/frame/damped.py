@@ -42,7 +42,7 @@ from mstmm.decay_bound import DecayBound, bound_from
 from .assembly import Assembly
 from .member import assemble_members_c, bending_pieces, rod_pieces
 from .model import Frame
-from .solve import _joints, roots
+from .solve import _joints, member_fields, roots
 
 __all__ = ["DampedFrameMode", "DampedFrameSolution", "solve_damped_frame", "sigma_max"]
 
@@ -261,14 +261,9 @@ def polish(asm: Assembly, w: complex) -> complex:
     if asm.n == 0:
         return w
     f = FrameFunction(asm, 1.0, POLISH_RADIUS * abs(w))  # a real root's neighbourhood
-    b = asm.bandwidth
-    lu, piv = f.lu(f.band(w)[0])
-    x = np.ones(asm.n, dtype=complex)  # in the band order, as B
-    for _ in range(3):
-        x, _ = zgbtrs(lu, b, b, x, piv)
-        x /= np.linalg.norm(x)
-        if not np.all(np.isfinite(x)):
-            return w
+    x = null_vector(f, f.band(w)[0])
+    if not np.all(np.isfinite(x)):
+        return w
 
     def r(z: complex) -> complex:
         return band_quadratic(f.band(z)[0], x)
@@ -302,6 +297,20 @@ def complex_matrix(asm: Assembly, w: float) -> np.ndarray:
     """The damped frame's dense D at the frequency w (rad/s, dimensionless as
     :meth:`Assembly.matrix`): members with their loss factors, the dashpots' ``i w C``."""
     return _dense(asm, FrameFunction(asm, 1.0, POLISH_RADIUS * abs(w)).band(w)[0])
+
+
+def null_vector(f: FrameFunction, B: np.ndarray) -> np.ndarray:
+    """The unit null vector of D (band rows B, in the band order) at a simple root: three
+    steps of inverse iteration on its band LU (``zgbtrs``); not finite where D is exactly
+    singular to round-off."""
+    b = f.asm.bandwidth
+    lu, piv = f.lu(B)
+    x = np.ones(f.asm.n, dtype=complex)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for _ in range(3):
+            x, _ = zgbtrs(lu, b, b, x, piv)
+            x /= np.linalg.norm(x)
+    return x
 
 
 def band_quadratic(B: np.ndarray, x: np.ndarray) -> complex:
@@ -359,6 +368,12 @@ class DampedFrameSolution(DampedValues):
     warnings: list[str] = field(default_factory=list)
     modes: list[DampedFrameMode] = field(default_factory=list)
     damped: bool = True
+    assembly: Assembly | None = None
+
+    def member_fields(self, mode: int, member: str, points: int = 21) -> dict[str, np.ndarray]:
+        """Along member ``member`` in damped mode ``mode``: ``x`` (m from its start) and
+        ``u, w, psi, N, Q, M`` (complex, SI, local axes; scaled as the mode's joints)."""
+        return member_fields(self.assembly, self.modes[mode], member, points)
 
     f = DampedValues.hz
 
@@ -447,15 +462,15 @@ def solve_damped_frame(
         found.count_checked,
         found.rectangle,
         warnings,
+        assembly=asm,
     )
     if shapes:
-        f = FrameFunction(asm, 1.0, 2.0 * max([abs(w) for w in omega] + [1.0]))
         done: set[complex] = set()
         for w, m in zip(omega, mult):
             if w in done:
                 continue
             done.add(w)
-            sol.modes += _damped_shapes(asm, f, w, m)
+            sol.modes += _damped_shapes(asm, w, m)
         bad = [mo for mo in sol.modes if mo.residual > SHAPE_RESIDUAL]
         if bad:
             sol.warnings.append(
@@ -469,16 +484,27 @@ def solve_damped_frame(
 SHAPE_RESIDUAL = 1e-8
 
 
-def _damped_shapes(asm: Assembly, f: FrameFunction, w: complex, m: int) -> list[DampedFrameMode]:
-    """The modes of the root w of multiplicity m: D's m right singular vectors of least
-    singular value, each scaled so that its largest translation is 1."""
-    D = _dense(asm, f.band(w)[0])
-    _, s, Vh = np.linalg.svd(D)
+def _damped_shapes(asm: Assembly, w: complex, m: int) -> list[DampedFrameMode]:
+    """The modes of the root w of multiplicity m, each scaled so that its largest
+    translation is 1: a simple root's null vector by inverse iteration on D's band LU
+    (:func:`null_vector`), a multiple root's m right singular vectors of D of least
+    singular value; with the residual ``|D x| / (|D| |x|)`` of each."""
+    f = FrameFunction(asm, 1.0, POLISH_RADIUS * abs(w))
+    B = f.band(w)[0]
+    if m == 1:
+        x = np.empty(asm.n, dtype=complex)
+        x[asm.perm] = null_vector(f, B)
+        D = None
+        vectors = [x]
+    else:
+        D = _dense(asm, B)
+        _, _, Vh = np.linalg.svd(D)
+        vectors = [Vh[-j].conj() for j in range(1, m + 1)]
+    D = _dense(asm, B) if D is None else D
+    norm = float(np.linalg.norm(D, 2)) if asm.n else 1.0
     out = []
-    norm = float(s[0]) if s.size else 1.0
-    for j in range(1, m + 1):
-        x = Vh[-j].conj()
-        residual = float(s[-j]) / norm if norm else 0.0
+    for x in vectors:
+        residual = float(np.linalg.norm(D @ x) / (norm * np.linalg.norm(x))) if norm else 0.0
         xs = asm.scale * x
         trans = [g for g, fr in enumerate(asm.freedoms) if fr.translation and fr.kind == "node"]
         big = max(trans, key=lambda g: abs(xs[g])) if trans else int(np.argmax(np.abs(xs)))

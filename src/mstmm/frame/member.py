@@ -33,6 +33,7 @@ from mstmm.numerics.segment import (
     is_general,
     piece_matrix,
     piece_transfer_c,
+    segment_piece,
     segment_pieces,
     segment_values,
 )
@@ -269,12 +270,14 @@ def member_rod(EA, mbar, h, w, K):
 
 
 @njit(cache=True)
-def member_march(p, beta, Z0, xs, out):
+def member_march(p, w1, Z0, xs, out):
     """out[j] <- the state Z = [Y, psi, M, Q] (units L = EI_0 = 1) at xs[j] (ascending, in
-    units of L) from Z0 at the member's start, piece by piece (k h <= 1)."""
-    U = np.empty((4, 4))
-    F = np.empty((4, 4, 4))
-    ready = -1
+    units of L) from Z0 at the member's start, piece by piece (k h <= 1), at ``w1 = (lam_0
+    L)^2``: real (Z0 real), or complex with the segments' loss factors (Z0 complex: a
+    damped mode, ``segment.segment_piece`` chooses by the type)."""
+    U = np.empty((4, 4), Z0.dtype)
+    F = np.empty((4, 4, 4), Z0.dtype)
+    beta = w1**0.5
     n_seg = int(p[3])
     Z = Z0.copy()
     x = 0.0
@@ -284,8 +287,7 @@ def member_march(p, beta, Z0, xs, out):
         end = 1.0 if seg == n_seg - 1 else p[HEAD + SEGMENT_WIDTH * seg + X_END] / p[0]
         target = min(xs[j], end)
         if target > x:
-            pieces, ready = segment_pieces(p, seg, beta, target - x, PIECE_STEP, F, ready)
-            ready = piece_matrix(p, seg, beta, (target - x) / pieces, U, F, ready)
+            pieces, _ = segment_piece(p, seg, w1, beta, True, target - x, PIECE_STEP, U, F)
             for _ in range(pieces):
                 Z = U @ Z
             x = target

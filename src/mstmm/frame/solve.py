@@ -40,7 +40,15 @@ from mstmm.scene import SceneError
 
 from .assembly import Assembly, MemberMap
 from .banded import backward, band_matvec, inverse_iteration, ldl, row_norm
-from .member import member_bending, member_march, member_rod
+from .member import (
+    bending_pieces,
+    member_bending,
+    member_bending_c,
+    member_march,
+    member_rod,
+    member_rod_c,
+    rod_pieces,
+)
 from .model import Frame
 
 __all__ = ["FrameMode", "FrameSolution", "solve_undamped_frame"]
@@ -91,6 +99,8 @@ SIMPLE_GROWTH = 1e3
 #: Where ``_shapes`` cuts each member when a root sits on a member's pole (an
 #: irrational fraction: the pieces' clamped-clamped frequencies are not the member's).
 CUT = math.sqrt(2.0) - 1.0
+#: A damped mode's member stiffness is cut for frequencies up to this many times its own.
+DAMPED_REACH = 1.25
 #: Gauss-Legendre points per segment and per wave in it (a field's wavelength / 2 pi)
 #: for the participation integrals.
 GAUSS_POINTS = 16
@@ -501,15 +511,24 @@ def fields_at(mm: MemberMap, mode: FrameMode, x: np.ndarray) -> dict:
     d = mm.T @ mode.vector[mm.index]  # [u_a, w_a, psi_a, u_b, w_b, psi_b]
     L, EI0 = mm.L, mm.p[1]
     w = mode.omega
-    beta = L * (mm.p[2] * w * w / EI0) ** 0.25
-    K4 = np.empty((4, 4))
-    member_bending(mm.p, beta, K4)
+    w1 = L * L * math.sqrt(mm.p[2] / EI0) * w  # (lam_0 L)^2
+    K4 = np.empty((4, 4), d.dtype)
+    K2 = np.empty((2, 2), d.dtype)
+    if np.iscomplexobj(d):  # a damped mode: the members' stiffnesses at its complex root
+        reach = DAMPED_REACH * abs(w1) ** 0.5
+        pieces = np.ones(int(mm.p[3]), dtype=np.int64)
+        bending_pieces(mm.p, reach, reach, pieces)
+        member_bending_c(mm.p, complex(w1), pieces, 1.0, K4)
+        rods = np.ones(len(mm.h), dtype=np.int64)
+        rod_pieces(mm.EA, mm.mbar, mm.h, DAMPED_REACH * abs(w), DAMPED_REACH * abs(w), rods)
+        member_rod_c(mm.EA, mm.mbar, mm.h, mm.eta, rods, 1.0, complex(w), K2)
+    else:
+        member_bending(mm.p, math.sqrt(w1), K4)
+        member_rod(mm.EA, mm.mbar, mm.h, w, K2)
     nodal = K4 @ np.array([d[1] / L, d[2], d[4] / L, d[5]])  # member units: [F, M_t] at a
     Z0 = np.array([d[1] / L, d[2], -nodal[1], nodal[0]])
-    Z = np.empty((len(x), 4))
-    member_march(mm.p, beta, Z0, np.asarray(x, dtype=float) / L, Z)
-    K2 = np.empty((2, 2))
-    member_rod(mm.EA, mm.mbar, mm.h, w, K2)
+    Z = np.empty((len(x), 4), d.dtype)
+    member_march(mm.p, w1, Z0, np.asarray(x, dtype=float) / L, Z)
     N_a = -(K2[0, 0] * d[0] + K2[0, 1] * d[3])  # the start's nodal force is -N
     u, N = _rod_fields(mm, w, d[0], N_a, np.asarray(x, dtype=float))
     along, force = ("phi", "T") if mm.torsion else ("u", "N")
@@ -567,14 +586,18 @@ def _gauss(n: int) -> tuple[np.ndarray, np.ndarray]:
     return np.polynomial.legendre.leggauss(n)
 
 
-def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
-    """u and N along the rod's segments from (u, N) at its start."""
-    u = np.empty_like(xs)
-    N = np.empty_like(xs)
+def _rod_fields(mm, w, u0, N0, xs: np.ndarray):
+    """u and N along the rod's segments from (u, N) at its start (complex at a damped
+    mode's complex w: EA times 1 + i eta there)."""
+    damped = isinstance(w, complex) or isinstance(u0, complex) or np.iscomplexobj(u0)
+    u = np.empty(xs.shape, dtype=complex if damped else float)
+    N = np.empty_like(u)
     start = 0.0
     for j, h in enumerate(mm.h):
         EA, mbar = mm.EA[j], mm.mbar[j]
-        kappa = w * math.sqrt(mbar / EA)
+        if damped:
+            EA = EA * (1.0 + 1j * mm.eta[j])
+        kappa = w * np.sqrt(mbar / EA)
         last = j == len(mm.h) - 1
         inside = (xs >= start) & ((xs <= start + h) if last else (xs < start + h))
         t = xs[inside] - start
@@ -582,8 +605,8 @@ def _rod_fields(mm, w: float, u0: float, N0: float, xs: np.ndarray):
             u[inside] = u0 * np.cos(kappa * t) + N0 / (EA * kappa) * np.sin(kappa * t)
             N[inside] = -EA * kappa * u0 * np.sin(kappa * t) + N0 * np.cos(kappa * t)
             u0, N0 = (
-                u0 * math.cos(kappa * h) + N0 / (EA * kappa) * math.sin(kappa * h),
-                -EA * kappa * u0 * math.sin(kappa * h) + N0 * math.cos(kappa * h),
+                u0 * np.cos(kappa * h) + N0 / (EA * kappa) * np.sin(kappa * h),
+                -EA * kappa * u0 * np.sin(kappa * h) + N0 * np.cos(kappa * h),
             )
         else:
             u[inside] = u0 + N0 / EA * t
