@@ -417,7 +417,7 @@ def _solve_frame(args, frame) -> int:
     if band is not None and not sol.omega.size:
         raise NoRoots(
             f"no natural frequency in the band [{band[0]:.6g}, {band[1]:.6g}] rad/s"
-            " (the count confirms it)"
+            + (" (the count confirms it)" if sol.count_checked else "")
         )
     _emit(args, frame_text(sol, args.format, args.shapes))
     for warning in getattr(sol, "warnings", ()):  # a damped frame's
