@@ -122,12 +122,8 @@ def test_cli_solves_a_damped_building(capsys, tmp_path):
     the table and the JSON say alike; exit 0 (the count checked)."""
     from mstmm.cli import main
 
-    text = (EXAMPLES / "frames" / "building_tmd.toml").read_text()
-    damper = "m = 2441.62848191887    # kg\n"
-    assert damper in text
-    path = tmp_path / "damped.toml"
-    path.write_text(text.replace(damper, damper + "c = 1076.0\n"))
-    bare = solve_frame(frame_from_dict(_bare(text)), 2, shapes=False)
+    path = _damped_building(tmp_path)
+    bare = solve_frame(frame_from_dict(_bare(path.read_text())), 2, shapes=False)
     assert main(["solve", str(path), "--modes", "4", "--format", "json"]) == 0
     shown = json.loads(capsys.readouterr().out)
     assert shown["damped"] and shown["count_checked"]
@@ -138,6 +134,17 @@ def test_cli_solves_a_damped_building(capsys, tmp_path):
     table = capsys.readouterr().out
     assert "damped natural frequencies" in table and "argument principle checked: True" in table
     assert f"{w_d[0]:.16g}"[:12] in table
+
+
+def _damped_building(folder: Path) -> Path:
+    """The building example with Den Hartog's dashpot (c = 1076 N s/m) in its roof damper,
+    written to ``folder``."""
+    text = (EXAMPLES / "frames" / "building_tmd.toml").read_text()
+    damper = "m = 2441.62848191887    # kg\n"
+    assert damper in text
+    path = folder / "damped.toml"
+    path.write_text(text.replace(damper, damper + "c = 1076.0\n"))
+    return path
 
 
 def _bare(text: str) -> dict:
@@ -284,3 +291,36 @@ def test_damped_member_fields_are_the_exact_solutions_between_their_joints():
                     for x in xs
                 ]
                 assert np.max(np.abs(got["u"] - u)) <= 1e-8 * max(abs(v) for v in u), (k, i)
+
+
+def test_the_plot_draws_damped_modes_at_their_peak(tmp_path):
+    """``mstmm plot`` of a damped frame (the building with its dashpot): a PNG; through the
+    API (the portal with its absorbers) each panel's title has the damped frequency and
+    the damping ratio, and the beam's deformed curve ends where the real part of the
+    joint's complex displacement puts it (the mode scaled so that its largest translation
+    is real: the instant it peaks)."""
+    from mstmm.cli import main
+    from mstmm.frame.plot import AMPLITUDE, mode_shapes
+
+    path = _damped_building(tmp_path)
+    out = tmp_path / "building.png"
+    assert main(["plot", str(path), "--modes", "3", "-o", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    r = CASES["portal"][0]
+    sol = solve_frame(_frame(r, "portal"), 3)
+    fig = mode_shapes(sol, None, 3)
+    panels = [ax for ax in fig.axes if ax.get_title()]
+    assert len(panels) == 3
+    for j, ax in enumerate(panels):
+        assert f"{sol.f[j]:.5g} Hz, zeta {sol.zeta[j]:.3g}" in ax.get_title()
+        deformed = [ln for ln in ax.get_lines() if ln.get_color() == "C0"]
+        biggest = 0.0
+        for m in sol.frame.members:
+            L, c, s = sol.frame.geometry(m)
+            f = sol.member_fields(j, m.name, 21)
+            u, w = f["u"].real, f["w"].real
+            biggest = max(biggest, float(np.max(np.hypot(c * u - s * w, s * u + c * w))))
+        scale = AMPLITUDE * 4.0 / biggest
+        dX, dY, _ = sol.modes[j].nodes["C"]
+        X, Y = deformed[1].get_xdata()[-1], deformed[1].get_ydata()[-1]
+        assert abs(X - (4.0 + scale * dX.real)) < 1e-9 and abs(Y - (3.0 + scale * dY.real)) < 1e-9

@@ -671,7 +671,6 @@ def _plot(args) -> int:
 def _plot_frame(args, target: Path, frame) -> int:
     """``mstmm plot`` of a frame: its lowest mode shapes drawn on the structure."""
     from .frame import solve_frame
-    from .frame.damped import is_damped
     from .frame.plot import mode_shapes
 
     for option in ("frf", "sweep", "band", "input"):
@@ -681,12 +680,6 @@ def _plot_frame(args, target: Path, frame) -> int:
         raise SceneError(
             frame.source, "motion", "plots of a grillage's modes (out of the plane) are not"
             " built yet: mstmm solve --shapes gives them", frame.motion,
-        )  # fmt: skip
-    if is_damped(frame):
-        raise SceneError(
-            frame.source, "c, loss_factor", "plots of a damped frame's complex modes are not"
-            " built yet: mstmm solve --shapes gives them (or set them to 0 to plot the"
-            " undamped frame's)",
         )  # fmt: skip
     modes = args.modes or 6
     mode_shapes(solve_frame(frame, modes), target, modes)

@@ -1,23 +1,28 @@
 """Damped natural frequencies of a frame: complex roots, found by continuation from the
 undamped frame and certified by the argument principle, as a beam's (:mod:`mstmm.damped`).
 
-With the absorbers' dashpots the natural frequencies are the complex ``w = w_d + i
-sigma`` (time dependence ``exp(i w t)``, ``sigma > 0`` decays) where the dynamic
-stiffness ``D(w) = members(w) + K + i w C - w^2 M`` is singular. ``det D`` has poles,
-the members' own clamped-clamped frequencies, so the function counted is ``g(w) = det
-D_full(w)``: the frame with the node between every two pieces of every member kept
-(:func:`mstmm.frame.member.bending_pieces`, ``rod_pieces``), each piece so short that
-its clamped-clamped frequencies (real: the members are undamped) lie beyond the counted
-rectangle. ``g = det D * prod(det P)`` (block elimination: ``P`` the pivots of the
-pieces' inner nodes, :func:`mstmm.frame.member.chain_add_c`) is analytic in the
-rectangle, its zeros there exactly the damped roots with their multiplicities. ``det D``
-comes from LAPACK's band LU with partial pivoting (``zgbtrf``) of D's band rows.
+With the absorbers' dashpots and the members' loss factors (their stiffnesses times ``1 +
+i eta``) the natural frequencies are the complex ``w = w_d + i sigma`` (time dependence
+``exp(i w t)``, ``sigma > 0`` decays) where the dynamic stiffness ``D(w) = members(w) + K
++ i w C - w^2 M`` is singular. ``det D`` has poles, the members' own clamped-clamped
+frequencies, so the function counted is ``g(w) = det D_full(w)``: the frame with the node
+between every two pieces of every member kept (:func:`mstmm.frame.member.bending_pieces`,
+``rod_pieces``), each piece so short that its clamped-clamped frequencies lie beyond the
+counted rectangle's real points (an undamped piece's are real; with a loss factor their
+real parts are at least the undamped piece's lowest, by its Rayleigh quotient ``(k_R + i
+eta k_L) / m``, ``k_R / m`` at least that). ``g = det D * prod(det P)`` (block
+elimination: ``P`` the pivots of the pieces' inner nodes,
+:func:`mstmm.frame.member.chain_add_c`) is analytic in the rectangle, its zeros there
+exactly the damped roots with their multiplicities. ``det D`` comes from LAPACK's band LU
+with partial pivoting (``zgbtrf``) of D's band rows.
 
 The search is the beam's (:func:`mstmm.damped.search`): each simple undamped root carried
 to full damping, the rectangle ``w_d < W``, ``sigma < S`` counted, what the count says is
-left searched. ``S`` is proved (:func:`sigma_max`) where the proof applies; the dashpots
-are viscous, so the roots are mirror pairs ``(w, -conj w)`` and ``g`` is real on the
-imaginary axis (overdamped roots on it exactly).
+left searched; each simple root polished on the Rayleigh form of its null vector
+(:func:`polish`). ``S`` is proved (:func:`sigma_max`) where the proof applies. With
+dashpots only, the roots are mirror pairs ``(w, -conj w)`` and ``g`` is real on the
+imaginary axis (overdamped roots on it exactly); a loss factor breaks the symmetry, and
+the rectangle then starts just left of the axis, as a beam's.
 """
 
 from __future__ import annotations

@@ -4,7 +4,9 @@ One panel per mode, on equal axes (a tall frame stays tall): the undeformed memb
 grey, each mode's deformed members drawn from their own fields (``u, w`` marched along
 each member, turned to X, Y) scaled so that the largest displacement is a tenth of the
 structure's size, supports and node masses marked, the title the frequency and the
-multiplicity. Needs matplotlib (``mstmm[plot]``).
+multiplicity. A damped mode (complex, :mod:`.damped`) is drawn at the instant its largest
+joint translation peaks (its real part: the mode is scaled so that translation is real),
+its title the damped frequency and the damping ratio. Needs matplotlib (``mstmm[plot]``).
 """
 
 from __future__ import annotations
@@ -45,7 +47,8 @@ def _curves(
         f = sol.member_fields(j, mm.member.name, POINTS)
         x = f["x"]
         X, Y = a.x + c * x, a.y + s * x
-        out.append((X, Y, c * f["u"] - s * f["w"], s * f["u"] + c * f["w"]))
+        u, w = np.real(f["u"]), np.real(f["w"])  # a damped mode: at its peak's instant
+        out.append((X, Y, c * u - s * w, s * u + c * w))
     return out
 
 
@@ -84,6 +87,8 @@ def mode_shapes(
                 ax.plot(node.x, node.y, "o", color="C3", ms=6)
         mult = int(sol.multiplicity[j])
         title = f"mode {j + 1}: {sol.f[j]:.5g} Hz"
+        if getattr(sol, "damped", False):
+            title += f", zeta {sol.zeta[j]:.3g}"
         ax.set_title(title + (f" (x{mult})" if mult > 1 else ""), fontsize=9)
         ax.set_aspect("equal")
         pad = 0.15 * size
