@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -108,6 +109,21 @@ class Assembly:
         self.factors: dict[float, tuple[int, int, float]] = {}
         self.K_band = self.to_band(self.K_lumped)
         self.M_band = self.to_band(self.M_lumped)
+
+    @cached_property
+    def C_band(self) -> np.ndarray:
+        """The dashpots' C (dimensionless) in band rows: only a damped frame asks."""
+        return self.to_band(self.C_lumped)
+
+    @cached_property
+    def general_band(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(rows, cols, src)``: LAPACK's general band storage (kl = ku = bandwidth, as
+        ``zgbtrf`` takes it) of D from its upper band rows B in one gather, ``ab[rows,
+        cols] = B.ravel()[src]`` (``A[i, i + k]`` and ``A[i + k, i]``)."""
+        n, b = self.n, self.bandwidth
+        i, k = np.nonzero(np.arange(n)[:, None] + np.arange(b + 1)[None, :] < n)
+        rows = np.concatenate([2 * b - k, 2 * b + k])
+        return rows, np.concatenate([i + k, i]), np.concatenate([i * (b + 1) + k] * 2)
 
     def _add(self, freedom: Freedom) -> int:
         self.freedoms.append(freedom)

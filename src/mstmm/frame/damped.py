@@ -66,13 +66,7 @@ class FrameFunction:
         self.t = t
         self.top = self.radius = 0.0
         self.calls = 0
-        self.C_band = t * asm.to_band(asm.C_lumped)
-        # LAPACK's general band storage of D from its upper band rows, in one gather
-        n, b = asm.n, asm.bandwidth
-        i, k = np.nonzero(np.arange(n)[:, None] + np.arange(b + 1)[None, :] < n)
-        self._rows = np.concatenate([2 * b - k, 2 * b + k])  # A[i, i + k], A[i + k, i]
-        self._cols = np.concatenate([i + k, i])
-        self._src = np.concatenate([i * (b + 1) + k] * 2)
+        self.C_band = t * asm.C_band
         self.cover(top, radius or top)
 
     def cover(self, top: float, radius: float) -> None:
@@ -106,7 +100,8 @@ class FrameFunction:
         factors and pivots (for ``zgbtrs``)."""
         n, b = self.asm.n, self.asm.bandwidth
         ab = np.zeros((3 * b + 1, n), dtype=np.complex128)
-        ab[self._rows, self._cols] = B.ravel()[self._src]
+        rows, cols, src = self.asm.general_band
+        ab[rows, cols] = B.ravel()[src]
         lu, piv, _ = zgbtrf(ab, b, b)
         return lu, piv
 
