@@ -39,25 +39,27 @@ import stored  # noqa: E402
 
 stored.install()
 _MISSES = Path(CACHE) / "stored_misses"
-_missed = [0]
+_missed = [0, 0.0]
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:
     if stored.misses and not stored.RECORD:  # this process's count (a worker's too)
         with open(_MISSES, "a") as fh:
-            fh.write(f"{stored.misses}\n")
-    if _OWN_CACHE:  # the controller, after its workers: the session's count
-        _missed[0] = sum(map(int, _MISSES.read_text().split())) if _MISSES.exists() else 0
+            fh.write(f"{stored.misses} {stored.missed_seconds:.1f}\n")
+    if _OWN_CACHE:  # the controller, after its workers: the session's count and seconds
+        text = _MISSES.read_text() if _MISSES.exists() else ""
+        rows = [line.split() for line in text.splitlines()]
+        _missed[:] = [sum(int(n) for n, _ in rows), sum(float(s) for _, s in rows)]
         shutil.rmtree(CACHE, ignore_errors=True)
 
 
 def pytest_terminal_summary(terminalreporter) -> None:
-    misses = _missed[0]
+    misses, seconds = _missed
     if misses:
         terminalreporter.write_line(
             f"{misses} reference-model calls were not in tests/data/stored_references.jsonl.gz"
-            " and ran the model (some are expected: tests/stored.py; many mean the store is"
-            " stale: python tests/make_stored.py)"
+            f" and ran the model for {seconds:.0f} s (some are expected: tests/stored.py; many"
+            " mean the store is stale: python tests/make_stored.py)"
         )
 
 

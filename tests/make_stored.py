@@ -8,8 +8,11 @@ have got the same answer), sorted by key, under a header naming the models' sour
 Run it after changing ``reference_model.py`` or ``reference_bloch.py`` (their test then
 says so) or when pytest's summary reports calls the store lacks. Takes as long as a test
 run without the store (about 20 minutes on 2 cores); extra arguments go to pytest.
+``--add`` keeps the stored calls and adds those of the run (a few test files, after one
+of them changed what it asks the models):
 
     python tests/make_stored.py
+    python tests/make_stored.py --add tests/test_roots.py
 """
 
 from __future__ import annotations
@@ -63,6 +66,8 @@ def write(entries: dict[str, dict], model: str | None = None, path: Path = store
 
 
 def main(argv: list[str]) -> int:
+    add = "--add" in argv
+    argv = [a for a in argv if a != "--add"]
     shutil.rmtree(stored.PARTIAL, ignore_errors=True)
     # CI=true: hypothesis draws CI's examples (tests/conftest.py), the calls CI makes
     env = dict(os.environ, MSTMM_STORED="record", CI="true")
@@ -74,6 +79,12 @@ def main(argv: list[str]) -> int:
         print(f"the test run failed (status {run.returncode}): the store is not written")
         return 1
     entries = merge(parts)
+    if add:  # the store's calls kept (one model: its digest must be today's)
+        header, kept = stored.read_store()
+        if header.get("model") != stored.model_digest():
+            print("the store was written by another version of the models: write it whole")
+            return 1
+        entries = {**kept, **entries}
     write(entries)
     shutil.rmtree(stored.PARTIAL, ignore_errors=True)
     size = stored.STORE.stat().st_size

@@ -78,6 +78,8 @@ MISSED = os.environ.get("MSTMM_STORED_MISSED")
 #: Calls answered from the store and calls the models ran, this session.
 hits = 0
 misses = 0
+#: The seconds the models ran for the calls the store lacked, this session.
+missed_seconds = 0.0
 _lock = threading.Lock()
 _inside = threading.local()  # a stored function's own calls of another run it directly
 _table: dict[str, dict] | None = None
@@ -272,16 +274,19 @@ def stored(f, name: str):
             else:
                 hits += 1
                 return value
+        global missed_seconds
         misses += 1
-        if MISSED and not RECORD:
-            with _lock, open(MISSED, "a") as fh:
-                fh.write(json.dumps([name, arguments]) + "\n")
         t0 = time.perf_counter()
         _inside.depth = 1
         try:
             value = f(*args, **kwargs)
         finally:
             _inside.depth = 0
+        if not RECORD:
+            missed_seconds += time.perf_counter() - t0
+            if MISSED:
+                with _lock, open(MISSED, "a") as fh:
+                    fh.write(json.dumps([name, time.perf_counter() - t0, arguments]) + "\n")
         if RECORD:
             try:
                 encoded = encode(value)

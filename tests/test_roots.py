@@ -149,6 +149,14 @@ def test_property_no_missed_or_spurious_root(sc):
     check_lowest_20(sc)
 
 
+def _probe(w: float) -> float:
+    """w to 13 significant digits: a probe 1e-9 from a root moves by at most 5e-14 of
+    it (nothing the check depends on), and the reference's answer is looked up in its
+    store (tests/stored.py) even where a root found differs in its last bits from the one
+    the store was recorded with (7,548 of these calls ran the model in a CI run)."""
+    return float(f"{w:.12e}")
+
+
 def check_lowest_20(sc):
     sol = mstmm.solve(sc, modes=20)
     check_shapes(sc, sol)
@@ -162,8 +170,8 @@ def check_lowest_20(sc):
         if w == 0.0:
             assert mult == ref.rigid_body_mode_count(sc)
         else:
-            below = ref.count_below(sc, w * (1 - delta), dps=30)
-            above = ref.count_below(sc, w * (1 + delta), dps=30)
+            below = ref.count_below(sc, _probe(w * (1 - delta)), dps=30)
+            above = ref.count_below(sc, _probe(w * (1 + delta)), dps=30)
             assert below <= i and above >= i + mult, (i, w, below, above)
         i += mult
 
