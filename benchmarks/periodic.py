@@ -12,6 +12,9 @@ Run: ``python -m benchmarks.periodic [--record]`` (about a minute).
   own count): the worst relative error of an edge, edges missed or spurious, and the
   proved meetings of two pairs (band ends inside the zone) where mpmath's two mu turn
   from real to a complex pair within 1e-9;
+* **low frequencies**: the wavenumbers of the metamaterial's cell at omega = 1e-6 ..
+  1e3 rad/s (a point a decade) against ``tests/reference_bloch.py`` (30 digits): the
+  relative error of k at each, where both roots of the cell's quadratic crowd at mu = 2;
 * **attenuation**: a free-free beam of 60 cells (``repeat = 60``, the cell of
   ``tests/test_bands.py``) driven at one end at a frequency in the gap (``mstmm.frf``):
   the decay per cell of the response against the cell's Im k L.
@@ -135,10 +138,29 @@ def attenuation() -> dict:
     }
 
 
+def low_frequencies() -> dict:
+    sys.path.insert(0, str(ROOT / "tests"))
+    import reference_bloch as ref
+
+    import mstmm
+    from mstmm.bands import bands, cell_of
+
+    cell = cell_of(mstmm.load_scene(EXAMPLE))
+    ws = np.logspace(-6, 3, 10)
+    k = bands(cell, omegas=ws, edges=False).k
+    errors = []
+    for i, w in enumerate(ws):
+        want = sorted((complex(z) for z in ref.bloch_k(cell, float(w), dps=30)), key=abs)
+        got = sorted(k[i], key=lambda z: min(abs(z - x) for x in want[:1]))
+        errors.append(max(abs(g - x) / abs(x) for g, x in zip(got, want)))
+    return {"omega": ws.tolist(), "error": [float(e) for e in errors]}
+
+
 def measure() -> dict:
     return {
         "dispersion": dispersion(),
         "edges": edges_against_reference(),
+        "low_frequencies": low_frequencies(),
         "attenuation": attenuation(),
     }
 
@@ -149,6 +171,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     fig = measure()
     d, e, a = fig["dispersion"], fig["edges"], fig["attenuation"]
+    lf = fig["low_frequencies"]
     print(
         f"dispersion of {d['cell']} at {d['frequencies']} frequencies:"
         f" {d['seconds'] * 1e3:.2f} ms warm; edges of the default band"
@@ -158,6 +181,11 @@ def main(argv: list[str] | None = None) -> int:
         f"edges of {e['cells']} cells against mpmath: {e['edges']} edges, worst"
         f" {e['worst']:.1e}, {e['missed_or_spurious']} missed or spurious,"
         f" count {e['count_checked']}"
+    )
+    print(
+        "wavenumbers of the metamaterial's cell against mpmath, relative error: "
+        + ", ".join(f"{e:.1e} at {w:.0e}" for w, e in zip(lf["omega"], lf["error"]))
+        + " rad/s"
     )
     print(
         f"finite beam of {a['cells']} cells in the gap: decay per cell within"

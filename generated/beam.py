@@ -14,8 +14,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam"
-SIGNATURE = "aa3e9edde8efa5dd3b698dfc85a858c91f6325d8"
-NUMERICS = "8ddb17ac9818ba6e150d9964d970d3cfe5fae657"
+SIGNATURE = "4ebea725bf9087b7a0148e670c5f4c9284e91c0f"
+NUMERICS = "3f566c926c26546959f05aabdc05d55976564909"
 KINDS = ()
 DAMPERS = {}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -15,8 +15,8 @@ Derived by mstmm.derive with SymPy 1.14.0.
 from mstmm.numerics import *  # noqa: F403 (the shared numerics)
 
 TOPOLOGY = "beam__spring_mass"
-SIGNATURE = "709778b72408d1817730996525182735576e7b20"
-NUMERICS = "8ddb17ac9818ba6e150d9964d970d3cfe5fae657"
+SIGNATURE = "fbb6c6da5d6299ad7759da5a22a396591468c62a"
+NUMERICS = "3f566c926c26546959f05aabdc05d55976564909"
 KINDS = ('spring_mass',)
 DAMPERS = {'spring_mass': 'carried'}
 #: The parameter layout this kernel reads (``catalog.layout``): a segment row's columns

@@ -278,7 +278,7 @@ def pencil_det(X, lam, A):
 def bloch_poly(X, A, det0):
     """P(mu) = c0 mu^2 + c1 mu + c2 from det(XL - lam X0) at lam = 1, -1 and c0 = det X0
     as ``cell_subspace_in`` followed it (``det0``: phase, log) (A: 4x4 scratch of X's type),
-    over a common scale: returns (c0, c1, c2, P(2), P(-2))."""
+    over a common scale exp(ref): returns (c0, c1, c2, P(2), P(-2), ref)."""
     ph0, l0 = det0[0], det0[1].real
     ph1, l1 = pencil_det(X, 1.0, A)
     ph2, l2 = pencil_det(X, -1.0, A)
@@ -288,20 +288,69 @@ def bloch_poly(X, A, det0):
     pm = ph2 * math.exp(l2 - ref)  # P(-2)
     c1 = 0.25 * (pp - pm)
     c2 = 0.5 * (pp + pm) - 4.0 * c0  # c2 - 2 c0 of the module docstring
-    return c0, c1, c2, pp, pm
+    return c0, c1, c2, pp, pm, ref
+
+
+#: Both roots of P within this of +-2 (as omega -> 0): their sum is taken from P at a
+#: third point (``bloch_slope``), not from P(2) - P(-2).
+CROWDED = 0.1
 
 
 @njit(cache=True)
-def bloch_mu(c0, c1, c2):
-    """The roots mu = 2 cos(k L) of P (``bloch_poly``): the evanescent pair's (the larger in
-    modulus) first; inf when P is linear (a constrained cell has one pair)."""
-    disc = cmath.sqrt(c1 * c1 - 4.0 * c0 * c2)
-    if (c1.conjugate() * disc).real < 0.0:
+def bloch_slope(X, A, c0, ps, sh, h, ref):
+    """b = P'(sh) (sh = +-2) from P(sh + sign(sh) h) = det(XL - lam X0) / lam^2 (lam real,
+    |lam| > 1): b = (P(sh + nu) - P(sh) - c0 nu^2) / nu. Where both roots of P lie within
+    about h of sh, each term is about c0 h^2 and b keeps its digits; from c1 =
+    (P(2) - P(-2)) / 4 it is the difference of numbers about 4 c0 apart, an error of
+    about eps c0 that moves roots only ~h from sh by eps (k L loses digits as 1 / omega)."""
+    nu = h if sh > 0.0 else -h
+    lam = 1.0 + 0.5 * h + math.sqrt(0.5 * h * (2.0 + 0.5 * h))
+    if sh < 0.0:
+        lam = -lam
+    ph, lg = pencil_det(X, lam, A)
+    q = ph * math.exp(lg - ref) / (lam * lam)  # P(sh + nu), on bloch_poly's scale
+    return (q - ps - c0 * nu * nu) / nu
+
+
+@njit(cache=True)
+def bloch_mu(c0, c1, c2, pp, pm):
+    """The roots mu = 2 cos(k L) of P (``bloch_poly``) and each one's offset nu from the
+    nearer of +2 and -2, s (inf when P is linear: a constrained cell has one pair):
+    ``(mu_1, mu_2, nu_1, nu_2, s)``.
+
+    The roots are those of P(s + nu) = c0 nu^2 + (2 s c0 + c1) nu + P(s), s = +-2 the
+    nearer to the roots' mean, whose constant term P(+-2) = det M(+-1) is a determinant
+    of its own (``bloch_poly``'s pp, pm), not a difference: as omega -> 0 both roots
+    crowd at mu = 2 (k L -> 0 and the evanescent pair's i k L -> 0) and the quadratic in
+    mu itself kept about the square root of the working precision of mu - 2 (k L 15 %
+    off at omega = 1e-3 rad/s on examples/metamaterial.toml)."""
+    if c0 == 0.0:  # linear: one pair
+        if c1 == 0.0:
+            inf = complex(math.inf, 0.0)
+            return inf, inf, inf, inf, 2.0
+        mu = -c2 / c1
+        sh = 2.0 if mu.real >= 0.0 else -2.0
+        inf = complex(math.inf, 0.0)
+        return inf, mu, inf, mu - sh, sh
+    mean = -c1 / (2.0 * c0)
+    sh = 2.0 if mean.real >= 0.0 else -2.0
+    ps = pp if sh > 0.0 else pm
+    nu1, nu2 = shifted_roots(c0, 2.0 * sh * c0 + c1, ps)
+    return sh + nu1, sh + nu2, nu1, nu2, sh
+
+
+@njit(cache=True)
+def shifted_roots(c0, b, ps):
+    """The roots nu of c0 nu^2 + b nu + ps (c0 != 0), without cancellation: the larger
+    in modulus from -(b + sqrt(disc)) / 2 with the sign that adds, the other from the
+    product ps / c0."""
+    disc = cmath.sqrt(b * b - 4.0 * c0 * ps)
+    if (b.conjugate() * disc).real < 0.0:
         disc = -disc
-    qq = -0.5 * (c1 + disc)
-    if qq == 0.0:
-        return complex(math.inf, 0.0), complex(math.inf, 0.0)
-    return (qq / c0 if c0 != 0.0 else complex(math.inf, 0.0)), c2 / qq
+    qq = -0.5 * (b + disc)
+    if qq == 0.0:  # both at 0
+        return complex(0.0, 0.0), complex(0.0, 0.0)
+    return qq / c0, ps / qq
 
 
 @njit(cache=True)
@@ -324,30 +373,54 @@ def propagating_count(c0, c1, c2, pp, pm):
 
 
 @njit(cache=True)
-def bloch_k(mu):
-    """k L from mu = 2 cos(k L) with Im k L >= 0 (the wave decaying towards +x), Re k L
-    in [0, pi] when mu is real; pi + i inf for an infinite mu."""
+def bloch_k(mu, nu, sh, fold):
+    """k L from mu = 2 cos(k L) (nu = mu - sh, sh = +-2: ``bloch_mu``): Im k L >= 0 (the
+    wave decaying towards +x); with ``fold`` (an undamped cell at a real frequency) also
+    0 <= Re k L <= pi, the pair's wave -conj(k) taken where k has Re k L < 0 (the other
+    root of a complex conjugate pair of mu); pi + i inf for an infinite mu. Where |nu| is
+    small, k L = 2 asin(sqrt(-nu / 4)) (sh = 2) or pi - 2 asin(sqrt(nu / 4)) (sh = -2)
+    from nu itself, whose digits acos(mu / 2) would lose as k L -> 0 or pi."""
     if not (math.isfinite(mu.real) and math.isfinite(mu.imag)):
         return complex(math.pi, math.inf)
-    kL = cmath.acos(0.5 * mu)
-    if kL.imag < 0.0:
-        kL = -kL
-    if kL.real <= -math.pi:  # mu real below -2: pi, not -pi
+    if abs(nu) < 1.0:
+        if sh > 0.0:
+            kL = 2.0 * cmath.asin(cmath.sqrt(-0.25 * nu))
+        else:
+            kL = math.pi - 2.0 * cmath.asin(cmath.sqrt(0.25 * nu))
+    else:
+        kL = cmath.acos(0.5 * mu)
+    # k L and k L + 2 pi n are one wave (lam = exp(i k L)): Re k L into (-pi, pi]
+    if kL.real > math.pi:
+        kL = complex(kL.real - 2.0 * math.pi, kL.imag)
+    elif kL.real <= -math.pi:
         kL = complex(kL.real + 2.0 * math.pi, kL.imag)
+    if kL.imag < 0.0 or (kL.imag == 0.0 and kL.real < 0.0):
+        kL = -kL  # the pair's wave decaying towards +x
+    if kL.real <= -math.pi:
+        kL = complex(kL.real + 2.0 * math.pi, kL.imag)
+    if fold:
+        kL = complex(abs(kL.real), abs(kL.imag))
     return kL
 
 
 @njit(cache=True)
-def bloch_waves(X, A, det0, out):
+def bloch_waves(X, A, det0, fold, out):
     """out <- (mu_1, mu_2, k_1 L, k_2 L, n): ``bloch_mu`` and ``bloch_k``, the more
     attenuated pair first (of a complex conjugate pair, Im mu > 0 first), and n the pairs
     that propagate (``propagating_count``; meaningful for an undamped cell) (A: 4x4
-    scratch of X's type)."""
-    c0, c1, c2, pp, pm = bloch_poly(X, A, det0)
-    mu1, mu2 = bloch_mu(c0, c1, c2)
+    scratch of X's type; ``fold``: ``bloch_k``'s)."""
+    c0, c1, c2, pp, pm, ref = bloch_poly(X, A, det0)
+    mu1, mu2, nu1, nu2, sh = bloch_mu(c0, c1, c2, pp, pm)
+    h = max(abs(nu1), abs(nu2))
+    if c0 != 0.0 and 0.0 < h < CROWDED:  # both roots crowd at sh: b from a third point
+        ps = pp if sh > 0.0 else pm
+        nu1, nu2 = shifted_roots(c0, bloch_slope(X, A, c0, ps, sh, h, ref), ps)
+        mu1, mu2 = sh + nu1, sh + nu2
+    if abs(mu2) > abs(mu1):  # the larger modulus first
+        mu1, mu2, nu1, nu2 = mu2, mu1, nu2, nu1
     out[4] = propagating_count(c0, c1, c2, pp, pm)
-    k1 = bloch_k(mu1)
-    k2 = bloch_k(mu2)
+    k1 = bloch_k(mu1, nu1, sh, fold)
+    k2 = bloch_k(mu2, nu2, sh, fold)
     if k2.imag > k1.imag or (k2.imag == k1.imag and mu2.imag > mu1.imag):
         # (a complex conjugate pair of mu in a gap, equally attenuated: Im mu > 0 first)
         mu1, mu2, k1, k2 = mu2, mu1, k2, k1

@@ -344,7 +344,7 @@ def bloch_at(event, w, p, damped, work, A, out):
     fewer than four free parameters)."""
     X = cell_subspace_in(event, w, p, damped, work)
     if X.shape[0] == 8:
-        bloch_waves(X, A, work[DET0], out)
+        bloch_waves(X, A, work[DET0], not damped and w.imag == 0.0, out)
     else:
         out[:] = complex(math.nan, math.nan)
 
