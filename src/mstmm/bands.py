@@ -93,9 +93,11 @@ class Bands:
     ``gaps``: the stop bands in ``band`` as (lo, hi) pairs (a gap reaching an end of
     ``band`` is cut there). ``count_checked``: the count proved every edge at k L = 0 or
     pi (none missed, multiplicities exact) and, between them, every band end at an
-    interior k (a "coalescence": two pairs meet and turn complex), by ``_gaps``' argument
-    (but for EDGE_SLIVER of a stretch beside each edge); False where that argument does
-    not settle a stretch (``notes`` says where; an edge found there is not certified).
+    interior k (a "coalescence": two pairs meet and turn complex), by ``_gaps``' argument,
+    and in the sliver beside each edge that argument leaves out, by the sign of the
+    discriminant (``_sliver_meeting``); False where that argument does not settle a
+    stretch, or a meeting lies too near an edge to be told apart from it (``notes`` says
+    where; an edge found there is not certified).
     ``buckling``: a compressed cell whose periodic structure has no stable equilibrium
     says so here in one line (:func:`periodic_buckling`; then no edge is searched, and
     ``count_checked`` is False); None otherwise."""
@@ -595,9 +597,12 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
     is an uncertified "coalescence" edge; so is any other pattern of the ends (one pair at
     one end only would need an edge at k L = 0 or pi inside: a misread)."""
     cuts = sorted({lo, hi, *(e.omega for e in edges if lo <= e.omega <= hi)})
+    # (a double edge is where two pairs meet at k L = 0 or pi: nothing to look for beside)
+    at_edge = {e.omega for e in edges if e.multiplicity == 1}
     found = list(edges)
     notes: list[str] = []
     spans: list[tuple[float, float, int]] = []
+    slivers: list[tuple[float, float]] = []  # (edge, the sliver's other end)
     for a, b in zip(cuts, cuts[1:]):
         if b <= a:
             continue
@@ -606,6 +611,7 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
             continue
         h = max((b - a) * EDGE_SLIVER, SLIVER_FLOOR * b)  # not within round-off of an edge
         ea, eb = a + h, b - h
+        slivers += [(e, inner) for e, inner in ((a, ea), (b, eb)) if e in at_edge]
         na, nb = (int(v) for v in c.propagating(np.array([ea, eb])))
         if na == nb and na < 2:  # proved: none or one pair throughout
             spans.append((a, b, na))
@@ -649,8 +655,10 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
         xs.append(b)
         for u, v in zip(xs, xs[1:]):
             spans.append((u, v, int(c.propagating(np.array([0.5 * (u + v)]))[0])))
+    for edge, inner in slivers:
+        spans = _sliver_meeting(c, edge, inner, spans, found, notes)
     gaps: list[tuple[float, float]] = []
-    for a, b, n in spans:
+    for a, b, n in sorted(spans):
         if n == 0:
             if gaps and gaps[-1][1] == a:
                 gaps[-1] = (gaps[-1][0], b)
@@ -658,6 +666,73 @@ def _gaps(c: _Cell, edges: list[Edge], lo: float, hi: float):
                 gaps.append((a, b))
     found.sort(key=lambda e: e.omega)
     return found, gaps, notes
+
+
+def _quartet(c: _Cell, w: float) -> bool:
+    """Whether the two pairs' mu are a complex conjugate pair at w (the discriminant of
+    the cell's quadratic negative: ``numerics.bloch.shifted_roots`` gives real roots
+    exactly, imaginary parts 0, where it is not)."""
+    mu = c.mu(np.array([w]))[0]
+    return bool(np.any(mu.imag != 0.0))
+
+
+def _pairs_from_mu(c: _Cell, w: float) -> int:
+    """Propagating pairs at w read from the roots mu themselves (``propagating_pairs``),
+    not from the signs of P(+-2), which an edge beside w zeroes."""
+    return int(np.sum(propagating_pairs(c.mu(np.array([w]))[0])))
+
+
+#: A meeting of two pairs nearer an edge than this (relative) is not told apart from it.
+MEETING_RTOL = 64 * np.finfo(float).eps
+
+
+def _sliver_meeting(c, edge, inner, spans, found, notes):
+    """The sliver between an edge (k L = 0 or pi) and ``inner`` (``_gaps``' a' or b'),
+    where the pairs were read from the signs of P(+-2): where two pairs meet inside it
+    (at the top of a locally resonant gap, the complex quartet turns into two real pairs
+    a hair before one of them reaches k L = 0), the discriminant of the cell's quadratic
+    changes sign between the edge and ``inner``; the meeting is bisected on that sign
+    (``_quartet``; the roots about +-2 keep their digits there), listed as a "coalescence"
+    edge, and the span it falls in split there, the pairs on the edge's side read from
+    the roots (``_pairs_from_mu``). A meeting within MEETING_RTOL of the edge is not
+    separated from it in float64: said, and not certified."""
+    near = edge
+    for _ in range(4):  # a few ulps off the edge, towards inner
+        near = float(np.nextafter(near, inner))
+    if _quartet(c, near) == _quartet(c, inner):
+        return spans
+    a, b = near, inner
+    qa = _quartet(c, a)
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        if not (min(a, b) < m < max(a, b)):
+            break
+        if _quartet(c, m) == qa:
+            a = m
+        else:
+            b = m
+    x = 0.5 * (a + b)
+    apart = bool(abs(x - edge) > MEETING_RTOL * abs(edge))
+    found.append(Edge(x, "coalescence", 1, certified=apart))
+    found.sort(key=lambda e: e.omega)
+    if not apart:
+        notes.append(
+            f"two wave pairs meet within {abs(x - edge):.1e} rad/s of the band edge at"
+            f" {edge:.12g} rad/s: not told apart from it in float64 (the gap may end at"
+            " either)"
+        )
+    lo, hi = min(edge, x), max(edge, x)
+    n_beside = _pairs_from_mu(c, 0.5 * (lo + hi))  # between the edge and the meeting
+    out = []
+    for u, v, n in spans:
+        if u < x < v:  # the meeting splits its span: the edge's side changes
+            if edge > x:
+                out += [(u, x, n), (x, v, n_beside)]
+            else:
+                out += [(u, x, n_beside), (x, v, n)]
+        else:
+            out.append((u, v, n))
+    return out
 
 
 #: The stretch beside each edge left out of ``_gaps``' proof (relative to the stretch): the
