@@ -245,6 +245,46 @@ def test_ctrl_c_in_a_fresh_process_as_numpy_loads():
     assert stderr == "mstmm: interrupted\n" and stdout == ""
 
 
+def test_an_interrupt_inside_a_ctypes_callback_is_raised_again_and_not_printed(capfd):
+    """numba's machine-code cache is a ctypes callback that LLVM calls while it emits code;
+    a Ctrl-C there was "ignored" by ctypes, which printed "Exception ignored on calling
+    ctypes callback function" and a traceback (a CI run's ``mstmm solve`` interrupted
+    while compiling). Inside ``interrupts_not_lost`` (the whole command line) the
+    interrupt comes back in the main thread, SIGINT as KeyboardInterrupt and SIGTERM as
+    Terminated, and nothing is printed."""
+    import ctypes
+
+    from mstmm.signals import Terminated, interrupts_not_lost, sigterm_as_interrupt
+
+    def raising(exc):
+        def callback():
+            raise exc
+
+        return ctypes.CFUNCTYPE(None)(callback)
+
+    def spin():  # bytecodes at which the re-armed signal is handled (within a second)
+        end = time.monotonic() + 1.0
+        while time.monotonic() < end:
+            pass
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        sigint = raising(KeyboardInterrupt())
+        with pytest.raises(KeyboardInterrupt) as caught:
+            with interrupts_not_lost():
+                sigint()
+                spin()
+        assert not isinstance(caught.value, Terminated)
+        sigterm = raising(Terminated("SIGTERM"))
+        with pytest.raises(Terminated):
+            with sigterm_as_interrupt(), interrupts_not_lost():
+                sigterm()
+                spin()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert capfd.readouterr().err == ""
+
+
 def test_an_interrupt_that_c_code_turns_into_an_import_error_is_still_an_interrupt():
     """numpy's C extension, interrupted while it imports ``datetime``, raised
     ``ImportError`` (seen once in CI): inside ``interrupts_kept`` (the command line's heavy

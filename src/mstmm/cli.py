@@ -17,7 +17,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from . import __version__, progress
-from .signals import EXIT_TERMINATED, Terminated, interrupts_kept, sigterm_as_interrupt
+from .signals import (
+    EXIT_TERMINATED,
+    Terminated,
+    interrupts_kept,
+    interrupts_not_lost,
+    sigterm_as_interrupt,
+)
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -1005,7 +1011,7 @@ def main(argv: list[str] | None = None) -> int:
     for name in SINGLE_THREADED_BLAS:  # before numpy loads
         os.environ.setdefault(name, "1")
     try:
-        with sigterm_as_interrupt():
+        with sigterm_as_interrupt(), interrupts_not_lost():
             with interrupts_kept():
                 _load()
             return _main(argv)

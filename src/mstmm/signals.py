@@ -12,8 +12,11 @@ and numba load.
 
 from __future__ import annotations
 
+import _thread
 import os
 import signal
+import sys
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -89,3 +92,36 @@ def interrupts_kept() -> Iterator[None]:
     finally:
         for signum, handler in handlers.items():
             signal.signal(signum, handler)
+
+
+@contextmanager
+def interrupts_not_lost() -> Iterator[None]:
+    """While the block runs, a Ctrl-C or SIGTERM that arrives inside a ctypes callback is
+    raised again in the main thread, not lost: numba's machine-code cache is called back
+    from C while LLVM emits code (``ExecutionEngine._raw_object_cache_getbuffer``), and
+    ctypes "ignores" an exception raised there, printing "Exception ignored on calling
+    ctypes callback function" and a traceback (a CI run's ``mstmm solve`` interrupted
+    while compiling). Nothing is printed; the interrupt is re-armed a millisecond later
+    from a timer thread (``_thread.interrupt_main`` with its signal: the handler in place
+    raises it again in the main thread; re-armed from the hook itself, it would be raised
+    inside the hook, and lost again). Should it land in a callback again, it is re-armed
+    again."""
+    previous = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        exc = unraisable.exc_value
+        if isinstance(exc, KeyboardInterrupt):
+            signum = signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT
+            threading.Timer(REARM_S, _thread.interrupt_main, (signum,)).start()
+            return
+        previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
+
+
+#: Seconds after which an interrupt lost in a ctypes callback is raised again.
+REARM_S = 0.001
