@@ -283,10 +283,11 @@ def stored(f, name: str):
         finally:
             _inside.depth = 0
         if not RECORD:
-            missed_seconds += time.perf_counter() - t0
+            seconds = time.perf_counter() - t0
+            missed_seconds += seconds
             if MISSED:
                 with _lock, open(MISSED, "a") as fh:
-                    fh.write(json.dumps([name, time.perf_counter() - t0, arguments]) + "\n")
+                    fh.write(json.dumps([name, seconds, arguments]) + "\n")
         if RECORD:
             try:
                 encoded = encode(value)

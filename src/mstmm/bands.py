@@ -699,19 +699,10 @@ def _sliver_meeting(c, edge, inner, spans, found, notes):
     near = edge
     for _ in range(4):  # a few ulps off the edge, towards inner
         near = float(np.nextafter(near, inner))
-    if _quartet(c, near) == _quartet(c, inner):
+    qa = _quartet(c, near)
+    if qa == _quartet(c, inner):
         return spans
-    a, b = near, inner
-    qa = _quartet(c, a)
-    for _ in range(200):
-        m = 0.5 * (a + b)
-        if not (min(a, b) < m < max(a, b)):
-            break
-        if _quartet(c, m) == qa:
-            a = m
-        else:
-            b = m
-    x = 0.5 * (a + b)
+    x = _bisect(lambda m: _quartet(c, m) == qa, near, inner)
     apart = bool(abs(x - edge) > MEETING_RTOL * abs(edge))
     found.append(Edge(x, "coalescence", 1, certified=apart))
     found.sort(key=lambda e: e.omega)
@@ -802,11 +793,18 @@ def _two_pairs(c: _Cell, ea: float, eb: float) -> tuple[float, ...] | None:
 
 
 def _bisect_change(c: _Cell, a: float, b: float, na: int) -> float:
+    """Where the number of propagating pairs changes from ``na`` (at a) in (a, b)."""
+    return _bisect(lambda m: int(c.propagating(np.array([m]))[0]) == na, a, b)
+
+
+def _bisect(same, a: float, b: float) -> float:
+    """Where ``same`` (true at a, false at b; a > b allowed) turns false, to the last bit
+    between them."""
     for _ in range(200):
         m = 0.5 * (a + b)
-        if m <= a or m >= b:
+        if not min(a, b) < m < max(a, b):
             break
-        if int(c.propagating(np.array([m]))[0]) == na:
+        if same(m):
             a = m
         else:
             b = m
